@@ -1,0 +1,29 @@
+#pragma once
+// Atomic outputs (FORMATS.md): a file or folder is written under a temporary name beside its
+// final path and renamed into place only when complete, so a crash or Ctrl-C never leaves a
+// truncated result under the final name. An existing output is refused unless `force` is set;
+// with `force` the old one is replaced only after the new one is complete.
+#include <string>
+
+namespace dimer {
+
+class AtomicOutput {
+ public:
+  enum class Kind { kFile, kDirectory };
+  // Throws InputError if `final_path` exists and !force, or its folder does not exist.
+  AtomicOutput(std::string final_path, bool force, Kind kind = Kind::kFile);
+  ~AtomicOutput();  // removes the temporary if Commit() was not reached
+  AtomicOutput(const AtomicOutput&) = delete;
+  AtomicOutput& operator=(const AtomicOutput&) = delete;
+
+  const std::string& temp_path() const { return temp_path_; }
+  const std::string& final_path() const { return final_path_; }
+  void Commit();
+
+ private:
+  std::string final_path_, temp_path_;
+  Kind kind_;
+  bool committed_ = false;
+};
+
+}  // namespace dimer

@@ -1,0 +1,17 @@
+#pragma once
+// Reading and writing the shared trajectory datasets (/t, /tips/left, /tips/right, /plate_z,
+// /theta) of FORMATS.md, each with its `units` attribute.
+#include <string>
+
+#include "common/h5_file.h"
+#include "common/trajectory.h"
+
+namespace dimer {
+
+void WriteTrajectory(H5Writer& w, const Trajectory& traj);
+// Throws InputError naming the file if a dataset is missing or the lengths disagree.
+Trajectory ReadTrajectory(const H5Reader& r);
+// The file's `kind` root attribute ("sim", "track", ...), or "" if absent.
+std::string FileKind(const H5Reader& r);
+
+}  // namespace dimer

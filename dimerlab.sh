@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# dimerlab's one entry point for people and CI on Debian 12 (run as root, or with sudo present).
+#   ./dimerlab.sh setup      install the Debian packages dimerlab needs (idempotent)
+#   ./dimerlab.sh build      configure + build (Release) into build/
+#   ./dimerlab.sh demo       setup + build + the pipeline on the bundled sample scene
+#   ./dimerlab.sh test       setup + build + the whole GoogleTest suite through CTest
+#   ./dimerlab.sh sanitize   setup + ASan/UBSan build with warnings as errors + the suite
+#   ./dimerlab.sh bench      setup + build + every benchmark program (prints tables)
+set -euo pipefail
+cd "$(dirname "$0")"
+ROOT=$(pwd)
+JOBS=$(nproc)
+
+PACKAGES=(build-essential cmake ninja-build pkg-config libopencv-dev libeigen3-dev libhdf5-dev
+          hdf5-tools libcli11-dev libgtest-dev googletest)
+
+setup() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if ((${#missing[@]})); then
+    echo "dimerlab: installing ${missing[*]}" >&2
+    local SUDO=""
+    [ "$(id -u)" -eq 0 ] || SUDO=sudo
+    $SUDO apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+  fi
+}
+
+build_dir() {  # $1 = folder, rest = extra cmake flags
+  local dir=$1; shift
+  cmake -S "$ROOT" -B "$dir" -G Ninja "$@" >/dev/null
+  cmake --build "$dir" -j "$JOBS"
+}
+
+build() { build_dir build -DCMAKE_BUILD_TYPE=Release; }
+
+demo() {
+  setup; build
+  local out=demo_out
+  mkdir -p "$out"
+  echo "== simulate the drift mode of samples/drift_ar3.9.scene (10 periods at 25 Hz) =="
+  ./build/app/dimerlab sim --scene samples/drift_ar3.9.scene -o "$out/sim.h5" --force
+  if ./build/app/dimerlab --help | grep -q ' render'; then
+    echo "== render synthetic 2000 frames/s footage of it =="
+    ./build/app/dimerlab render "$out/sim.h5" -o "$out/frames" --force
+    echo "== track the frames =="
+    ./build/app/dimerlab track "$out/frames" -o "$out/track.h5" --force
+  fi
+  echo "== outputs in $out/ =="
+  ls -l "$out"
+}
+
+run_tests() {
+  setup; build
+  ctest --test-dir build --output-on-failure -j "$JOBS"
+}
+
+sanitize() {
+  setup
+  build_dir build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDIMERLAB_SANITIZE=ON \
+    -DDIMERLAB_WERROR=ON -DDIMERLAB_BENCH=OFF
+  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 DIMERLAB_TEST_SCALE=0.2 \
+    ctest --test-dir build-asan --output-on-failure -j "$JOBS"
+}
+
+bench() {
+  setup; build
+  for b in build/bench/bench_*; do echo "== $b =="; "$b"; done
+}
+
+case "${1:-}" in
+  setup) setup ;;
+  build) setup; build ;;
+  demo) demo ;;
+  test) run_tests ;;
+  sanitize) sanitize ;;
+  bench) bench ;;
+  *) echo "usage: $0 setup|build|demo|test|sanitize|bench" >&2; exit 2 ;;
+esac
