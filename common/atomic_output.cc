@@ -22,18 +22,24 @@ fs::path Sibling(const fs::path& p, const char* tag) {
 }
 }  // namespace
 
-AtomicOutput::AtomicOutput(std::string final_path, bool force, Kind kind)
-    : final_path_(std::move(final_path)), kind_(kind) {
-  if (final_path_.empty()) throw InputError("output path is empty");
-  fs::path p(final_path_);
+void CheckCanWrite(const std::string& final_path, bool force) {
+  if (final_path.empty()) throw InputError("output path is empty");
+  fs::path p(final_path);
   std::error_code ec;
   if (fs::exists(p, ec) && !force) {
-    throw InputError(final_path_ + ": already exists; pass --force to replace it");
+    throw InputError(final_path + ": already exists; pass --force to replace it");
   }
   fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   if (!fs::is_directory(dir, ec)) {
-    throw InputError(final_path_ + ": folder " + dir.string() + " does not exist");
+    throw InputError(final_path + ": folder " + dir.string() + " does not exist");
   }
+}
+
+AtomicOutput::AtomicOutput(std::string final_path, bool force, Kind kind)
+    : final_path_(std::move(final_path)), kind_(kind) {
+  CheckCanWrite(final_path_, force);
+  fs::path p(final_path_);
+  std::error_code ec;
   temp_path_ = Sibling(p, ".tmp-").string();
   fs::remove_all(temp_path_, ec);
   if (kind_ == Kind::kDirectory) fs::create_directory(temp_path_);

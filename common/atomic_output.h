@@ -7,6 +7,10 @@
 
 namespace dimer {
 
+// Fails early (InputError) if `final_path` could not be written: it exists and !force, or its
+// folder is missing. Long computations call it before they start.
+void CheckCanWrite(const std::string& final_path, bool force);
+
 class AtomicOutput {
  public:
   enum class Kind { kFile, kDirectory };

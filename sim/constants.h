@@ -1,0 +1,28 @@
+#pragma once
+// Every numerical tolerance of the simulator, named once, with its unit and what it trades.
+// Lengths are metres, times seconds. Tolerances that users may want to trade for speed are
+// options (SimOptions); these are the fixed ones, derived from a few base values.
+namespace dimer::sim {
+
+// Gap (m) a sphere may penetrate before an impact is declared: the impact finder steps so that
+// no root of h(t) + kGapTol can be skipped, then refines to the exact root of h(t) = 0.
+// Penetration is therefore never deeper than this. Warning: 1e-13 m is ~2e-11 sphere radii;
+// much smaller values meet the round-off of z (~1e-18 m) only at extreme tolerances.
+inline constexpr double kGapTol_m = 1e-13;
+// Time accuracy of impact-time refinement (s): Newton stops below this step.
+inline constexpr double kRootTimeTol_s = 1e-14;
+// A sphere whose gap is below this at another sphere's impact takes part in it (m).
+inline constexpr double kTouchTol_m = 1e-10;
+// Iteration caps: root refinement, impulse segments in one impact, event-location iterations.
+inline constexpr int kMaxNewtonIterations = 50;
+inline constexpr int kMaxImpactSegments = 64;
+inline constexpr int kMaxLocateIterations = 100;
+// Relative size below which a slip velocity counts as zero (of the velocity scale g/f).
+inline constexpr double kSlipZeroRel = 1e-12;
+// Persistent-contact integration: smallest and largest step, as fractions of the plate period.
+inline constexpr double kMinStepRel = 1e-12;
+inline constexpr double kMaxStepRel = 1.0 / 32.0;
+// Event time accuracy inside persistent contact (s).
+inline constexpr double kEventTimeTol_s = 1e-13;
+
+}  // namespace dimer::sim

@@ -1,0 +1,200 @@
+#include "sim/contact_integrator.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "sim/constants.h"
+
+namespace dimer::sim {
+namespace {
+
+using Vec6 = std::array<double, 6>;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+Vec6 ToVec(const State& q) { return {q.x, q.z, q.th, q.u, q.v, q.w}; }
+State ToState(const Vec6& y) { return {y[0], y[1], y[2], y[3], y[4], y[5]}; }
+
+Vec6 Deriv(const Model& m, const ContactConfig& cfg, double t, const Vec6& y) {
+  const State q = ToState(y);
+  const ContactForces f = SolveContactForces(m, t, q, cfg);
+  return {q.u, q.v, q.w, f.ax, f.az, f.aw};
+}
+
+// One Dormand-Prince step; returns the 5th-order solution and the error estimate.
+struct RkStep {
+  Vec6 y, err;
+};
+RkStep DormandPrince(const Model& m, const ContactConfig& cfg, double t, const Vec6& y,
+                     double h) {
+  static constexpr double c[7] = {0, 1.0 / 5, 3.0 / 10, 4.0 / 5, 8.0 / 9, 1, 1};
+  static constexpr double a[7][6] = {
+      {0, 0, 0, 0, 0, 0},
+      {1.0 / 5, 0, 0, 0, 0, 0},
+      {3.0 / 40, 9.0 / 40, 0, 0, 0, 0},
+      {44.0 / 45, -56.0 / 15, 32.0 / 9, 0, 0, 0},
+      {19372.0 / 6561, -25360.0 / 2187, 64448.0 / 6561, -212.0 / 729, 0, 0},
+      {9017.0 / 3168, -355.0 / 33, 46732.0 / 5247, 49.0 / 176, -5103.0 / 18656, 0},
+      {35.0 / 384, 0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84}};
+  static constexpr double e[7] = {71.0 / 57600,  0,           -71.0 / 16695, 71.0 / 1920,
+                                  -17253.0 / 339200, 22.0 / 525, -1.0 / 40};
+  std::array<Vec6, 7> k;
+  for (int s = 0; s < 7; ++s) {
+    Vec6 ys = y;
+    for (int j = 0; j < s; ++j)
+      for (int i = 0; i < 6; ++i) ys[i] += h * a[s][j] * k[j][i];
+    k[s] = Deriv(m, cfg, t + c[s] * h, ys);
+  }
+  RkStep out;
+  for (int i = 0; i < 6; ++i) {
+    double y5 = y[i], er = 0;
+    for (int s = 0; s < 6; ++s) y5 += h * a[6][s] * k[s][i];
+    for (int s = 0; s < 7; ++s) er += h * e[s] * k[s][i];
+    out.y[i] = y5;
+    out.err[i] = er;
+  }
+  return out;
+}
+
+// Event functions, positive while nothing happens. Index: 0/1 the per-sphere contact event
+// (lift-off or slip), 2/3 the per-sphere gap of a non-resting sphere. A second event per
+// resting sphere (lift-off while sliding/sticking) is folded in by taking the minimum.
+struct EventValues {
+  std::array<double, 4> v;
+  std::array<ContactEvent, 4> kind;
+};
+EventValues Events(const Model& m, const ContactConfig& cfg, double t, const State& q) {
+  EventValues ev;
+  const ContactForces f = SolveContactForces(m, t, q, cfg);
+  const double fscale = kGravity;  // makes force and velocity events comparable in size
+  for (int s = 0; s < 2; ++s) {
+    ev.v[s] = kInf;
+    ev.kind[s] = ContactEvent::kEnd;
+    ev.v[2 + s] = kInf;
+    ev.kind[2 + s] = ContactEvent::kImpact;
+    const Arm r = ContactArm(m, q.th, s);
+    if (!cfg.resting[s]) {
+      ev.v[2 + s] = q.z + r.rz;
+      continue;
+    }
+    // Lift-off in the second slot (index 2+s is free for a resting sphere).
+    ev.v[2 + s] = f.n[s] / fscale;
+    ev.kind[2 + s] = ContactEvent::kLiftoff;
+    if (cfg.slide[s] != 0) {
+      ev.v[s] = cfg.slide[s] * SlipU(r, q) / m.vel_scale;
+      ev.kind[s] = ContactEvent::kSlipStops;
+    } else {
+      ev.v[s] = (m.mu_s * f.n[s] - std::abs(f.f[s])) / fscale;
+      ev.kind[s] = ContactEvent::kSlipStarts;
+    }
+  }
+  return ev;
+}
+
+State Project(const Model& m, const ContactConfig& cfg, const Vec6& y) {
+  State q = ToState(y);
+  ProjectOnContacts(m, cfg, &q);
+  return q;
+}
+
+// Illinois (modified regula falsi) on f over [0, h] with f(0) > 0 >= f(h).
+template <typename F>
+double LocateRoot(F&& f, double f0, double h, double fh) {
+  double a = 0, b = h, fa = f0, fb = fh;
+  int side = 0;
+  for (int i = 0; i < kMaxLocateIterations && b - a > kEventTimeTol_s; ++i) {
+    double c = (fa * b - fb * a) / (fa - fb);
+    if (!(c > a && c < b)) c = 0.5 * (a + b);
+    const double fc = f(c);
+    if (fc > 0) {
+      a = c, fa = fc;
+      if (side == -1) fb *= 0.5;
+      side = -1;
+    } else {
+      b = c, fb = fc;
+      if (side == 1) fa *= 0.5;
+      side = 1;
+    }
+  }
+  return b;  // the event has happened at b (f <= 0)
+}
+
+}  // namespace
+
+ContactRun IntegrateContact(const Model& m, const ContactConfig& cfg, double t0, const State& q0,
+                            double t_end, double* h, SampleSink* sink) {
+  ContactRun run;
+  const double tol = m.contact_tol;
+  const double scale[6] = {m.R, m.R, 1.0, m.vel_scale, m.vel_scale, m.vel_scale / m.R};
+  const double h_min = kMinStepRel * m.period, h_max = kMaxStepRel * m.period;
+  double t = t0;
+  State q = q0;
+  EventValues ev0 = Events(m, cfg, t, q);
+  *h = std::clamp(*h, h_min, h_max);
+  while (t < t_end) {
+    const double hs = std::min(*h, t_end - t);
+    const Vec6 y0 = ToVec(q);
+    const RkStep st = DormandPrince(m, cfg, t, y0, hs);
+    double err = 0;
+    for (int i = 0; i < 6; ++i) err = std::max(err, std::abs(st.err[i]) / (tol * scale[i]));
+    if (!(err <= 1.0) && hs > h_min) {
+      ++run.rejected;
+      *h = std::max(h_min, hs * std::clamp(0.9 * std::pow(err, -0.2), 0.1, 0.5));
+      continue;
+    }
+    ++run.steps;
+    if (!(err <= 1.0)) run.ok = false;  // accepted at h_min: tolerance could not be met
+    const State q1 = Project(m, cfg, st.y);
+    const EventValues ev1 = Events(m, cfg, t + hs, q1);
+    // Earliest event inside the step.
+    double t_ev = kInf;
+    int which = -1;
+    auto at = [&](double tau) { return Project(m, cfg, DormandPrince(m, cfg, t, y0, tau).y); };
+    for (int k = 0; k < 4; ++k) {
+      double f0 = ev0.v[k], f1 = ev1.v[k];
+      double hi = hs;
+      if (!(f0 > 0)) continue;
+      if (f1 > 0 && ev1.kind[k] == ContactEvent::kImpact) {
+        // Grazing: minimum of the Hermite cubic of the gap inside the step.
+        const int s = k - 2;
+        const double d0 = NormalV(ContactArm(m, q.th, s), q) * hs;
+        const double d1 = NormalV(ContactArm(m, q1.th, s), q1) * hs;
+        const double c3 = 2 * f0 - 2 * f1 + d0 + d1, c2 = -3 * f0 + 3 * f1 - 2 * d0 - d1;
+        const double disc = c2 * c2 - 3 * c3 * d0;
+        if (d0 < 0 && d1 > 0 && disc >= 0 && c3 != 0) {
+          const double xm = (-c2 + std::sqrt(disc)) / (3 * c3);
+          if (xm > 0 && xm < 1) {
+            const double fm = Events(m, cfg, t + xm * hs, at(xm * hs)).v[k];
+            if (fm <= 0) f1 = fm, hi = xm * hs;
+          }
+        }
+      }
+      if (f1 > 0) continue;
+      auto fk = [&](double tau) { return Events(m, cfg, t + tau, at(tau)).v[k]; };
+      const double tau = LocateRoot(fk, f0, hi, f1);
+      if (t + tau < t_ev) t_ev = t + tau, which = k;
+    }
+    const double t_next = which >= 0 ? t_ev : t + hs;
+    while (sink && sink->Next() <= t_next) {
+      const double ts = sink->Next();
+      sink->Record(ts, ts == t ? q : at(ts - t));
+    }
+    if (which >= 0) {
+      run.t = t_ev;
+      run.q = at(t_ev - t);
+      run.event = ev1.kind[which];
+      run.sphere = which % 2;
+      return run;
+    }
+    t += hs;
+    q = q1;
+    ev0 = ev1;
+    *h = std::min(h_max, hs * std::clamp(0.9 * std::pow(std::max(err, 1e-10), -0.2), 0.2, 5.0));
+  }
+  run.t = t_end;
+  run.q = q;
+  return run;
+}
+
+}  // namespace dimer::sim

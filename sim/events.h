@@ -1,0 +1,30 @@
+#pragma once
+// The event log of a run (FORMATS.md /events/*) and per-period statistics used to say which
+// mode a run settled in.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sim/state.h"
+
+namespace dimer::sim {
+
+enum class EventKind { kImpact, kDoubleImpact, kCollapse, kLiftoff, kStick, kSlip, kPainleve };
+std::string ToString(EventKind k);
+
+struct EventRecord {
+  double t;
+  EventKind kind;
+  int8_t sphere;       // 0 left, 1 right, 2 both
+  std::string detail;  // impacts: continuous_slide | slip_stick | slip_reversal (per sphere)
+  State before, after; // plate frame (converted to lab when written)
+};
+
+struct PeriodStats {
+  std::array<int, 2> impacts{};       // impacts faster than the collapse speed, per sphere
+  std::array<double, 2> rest_time{};  // time in persistent contact, s
+  double x_start = 0;                 // lab x of the CM at the period start, m
+  int events = 0;
+};
+
+}  // namespace dimer::sim

@@ -1,0 +1,95 @@
+#include "sim/flight.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sim/constants.h"
+
+namespace dimer::sim {
+
+State FlightPropagate(const Model& m, const State& q0, double t0, double dt) {
+  const double t1 = t0 + dt;
+  const double gz = kGravity * m.cos_a;
+  // Plate displacement beyond its linear extrapolation: the plate frame's fictitious force.
+  const double dzp = m.PlateZ(t1) - m.PlateZ(t0) - m.PlateV(t0) * dt;
+  const double dvp = m.PlateV(t1) - m.PlateV(t0);
+  State q;
+  q.x = q0.x + q0.u * dt + 0.5 * m.Gx() * dt * dt;
+  q.z = q0.z + q0.v * dt - 0.5 * gz * dt * dt - dzp;
+  q.th = q0.th + q0.w * dt;
+  q.u = q0.u + m.Gx() * dt;
+  q.v = q0.v - gz * dt - dvp;
+  q.w = q0.w;
+  return q;
+}
+
+GapDerivatives FlightGap(const Model& m, const State& q0, double t0, double dt, int sphere) {
+  const State q = FlightPropagate(m, q0, t0, dt);
+  const Arm r = ContactArm(m, q.th, sphere);
+  const double ar_sin = r.rz + m.R;  // s A R sin(theta)
+  return {q.z + r.rz, NormalV(r, q), m.Gz(t0 + dt) - ar_sin * q.w * q.w};
+}
+
+namespace {
+
+// Largest tau for which c0 + c1 tau - c2 tau^2 - c3 tau^3 > 0 on [0, tau] (c0 > 0, c2, c3 >= 0):
+// the polynomial is concave on tau > 0, so it has one positive root; bisection keeps the lower
+// end, which is always safe.
+double SafeCubicStep(double c0, double c1, double c2, double c3, double cap) {
+  auto L = [&](double t) { return c0 + t * (c1 - t * (c2 + t * c3)); };
+  if (L(cap) > 0) return cap;
+  double lo = 0, hi = cap;
+  for (int i = 0; i < 60 && hi - lo > 1e-3 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (L(mid) > 0 ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+}  // namespace
+
+ImpactSearch FindFlightImpact(const Model& m, const State& q0, double t0, double dt_max,
+                              int sphere) {
+  ImpactSearch out;
+  const double arm = m.A * m.R;
+  const double M = kGravity * m.cos_a + m.amp * m.omega_p * m.omega_p + arm * q0.w * q0.w;
+  const double J = m.amp * std::pow(m.omega_p, 3) + arm * std::pow(std::abs(q0.w), 3);
+  // A flight that runs for more than a few hundred thousand safe steps is a grazing pathology;
+  // report it rather than hang.
+  constexpr int kMaxSteps = 2000000;
+  double tau = 0;
+  while (out.steps < kMaxSteps) {
+    ++out.steps;
+    const GapDerivatives g = FlightGap(m, q0, t0, tau, sphere);
+    if (g.h <= kGapTol_m && g.hd < 0) {
+      // Approaching and within tolerance: Newton to h = 0 (converges from either side).
+      for (int i = 0; i < kMaxNewtonIterations; ++i) {
+        const GapDerivatives gi = FlightGap(m, q0, t0, tau, sphere);
+        if (gi.hd >= 0) break;
+        const double step = -gi.h / gi.hd;
+        tau = std::max(0.0, tau + step);
+        if (std::abs(step) < kRootTimeTol_s) break;
+      }
+      if (tau > dt_max) return out;
+      out.found = true;
+      out.dt = tau;
+      return out;
+    }
+    const double c0 = g.h + kGapTol_m;
+    const double remaining = dt_max - tau;
+    if (remaining <= 0) return out;
+    const double quad = (g.hd + std::sqrt(g.hd * g.hd + 2.0 * M * c0)) / M;
+    const double cubic = SafeCubicStep(c0, g.hd, 0.5 * std::max(-g.hdd, 0.0), J / 6.0, remaining);
+    tau += std::min(std::max(quad, cubic), remaining);
+    if (tau >= dt_max) {
+      // Last look at the end point (the step guarantees h > -kGapTol up to here).
+      const GapDerivatives ge = FlightGap(m, q0, t0, dt_max, sphere);
+      if (!(ge.h <= kGapTol_m && ge.hd < 0)) return out;
+      tau = dt_max;
+    }
+  }
+  out.capped = true;
+  return out;
+}
+
+}  // namespace dimer::sim

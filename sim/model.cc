@@ -1,0 +1,100 @@
+#include "sim/model.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace dimer::sim {
+
+const std::vector<std::pair<std::string, InitKind>>& InitKindNames() {
+  static const std::vector<std::pair<std::string, InitKind>> kNames = {
+      {"drift", InitKind::kDrift},
+      {"jump", InitKind::kJump},
+      {"flutter", InitKind::kFlutter},
+      {"rest", InitKind::kRest}};
+  return kNames;
+}
+
+std::string ToString(InitKind k) {
+  for (const auto& [name, kind] : InitKindNames()) {
+    if (kind == k) return name;
+  }
+  return "?";
+}
+
+namespace {
+void Require(std::vector<std::string>& errors, bool ok, const char* flag, double value,
+             const char* expected) {
+  if (ok) return;
+  std::ostringstream s;
+  s << flag << ": " << value << ": expected " << expected;
+  errors.push_back(s.str());
+}
+}  // namespace
+
+std::vector<std::string> SimOptions::Check() const {
+  std::vector<std::string> e;
+  auto finite = [](double x) { return std::isfinite(x); };
+  Require(e, finite(ar) && ar > 1.0, "--ar", ar, "A_r > 1 (spheres cannot overlap)");
+  Require(e, finite(diameter_m) && diameter_m > 0, "--diameter", diameter_m, "a diameter > 0 m");
+  Require(e, finite(freq_hz) && freq_hz > 0, "--freq", freq_hz, "a frequency > 0 Hz");
+  Require(e, finite(gamma) && gamma >= 0, "--gamma", gamma, "Gamma >= 0");
+  Require(e, finite(tilt_deg) && std::abs(tilt_deg) < 90, "--tilt-deg", tilt_deg,
+          "|tilt| < 90 degrees");
+  Require(e, finite(plate_phase), "--plate-phase", plate_phase, "a finite fraction of a period");
+  Require(e, finite(eps) && eps >= 0 && eps <= 1, "--eps", eps, "0 <= eps <= 1");
+  Require(e, finite(mu) && mu >= 0, "--mu", mu, "mu >= 0");
+  Require(e, finite(mu_s) && mu_s >= mu, "--mu-s", mu_s, "mu_s >= mu");
+  Require(e, finite(mu_hat) && mu_hat >= 0, "--mu-hat", mu_hat, "mu_hat >= 0");
+  Require(e, finite(mu_hat_s) && mu_hat_s >= mu_hat, "--mu-hat-s", mu_hat_s,
+          "mu_hat_s >= mu_hat");
+  Require(e, finite(lift) && lift >= 0 && lift < ar - 1, "--lift", lift,
+          "0 <= lift < A_r - 1 (fraction of the diameter)");
+  Require(e, finite(release_phase), "--release-phase", release_phase,
+          "a finite fraction of a period");
+  Require(e, finite(cycles) && cycles > 0, "--cycles", cycles, "a number of periods > 0");
+  Require(e, finite(duration_s) && duration_s >= 0, "--duration", duration_s, "a duration >= 0 s");
+  Require(e, finite(fps) && fps >= 0, "--fps", fps, "a sampling rate >= 0 (0: events only)");
+  Require(e, finite(collapse_rel) && collapse_rel > 0 && collapse_rel < 1, "--collapse-vc",
+          collapse_rel, "0 < v_c/(g/f) < 1");
+  Require(e, finite(contact_tol) && contact_tol >= 1e-14 && contact_tol <= 1e-2,
+          "--contact-tol", contact_tol, "1e-14 <= tol <= 1e-2");
+  Require(e, max_events_per_period >= 10, "--max-events-per-period", max_events_per_period,
+          ">= 10");
+  if (init_state) {
+    for (double x : *init_state) {
+      Require(e, finite(x), "--init-state", x, "six finite numbers x,z,theta,u,v,omega");
+    }
+  }
+  return e;
+}
+
+Model Model::FromOptions(const SimOptions& o) {
+  Model m{};
+  m.R = 0.5 * o.diameter_m;
+  m.A = o.ar - 1.0;
+  m.inv_I = 1.0 / (m.R * m.R * (m.A * m.A + 0.4));
+  m.omega_p = 2.0 * M_PI * o.freq_hz;
+  m.amp = o.gamma * kGravity / (m.omega_p * m.omega_p);
+  m.phi0 = 2.0 * M_PI * o.plate_phase;
+  m.period = 1.0 / o.freq_hz;
+  const double alpha = o.tilt_deg * M_PI / 180.0;
+  m.sin_a = std::sin(alpha);
+  m.cos_a = std::cos(alpha);
+  m.eps = o.eps;
+  m.mu = o.mu;
+  m.mu_s = o.mu_s;
+  m.mu_hat = o.mu_hat;
+  m.mu_hat_s = o.mu_hat_s;
+  m.vel_scale = kGravity / o.freq_hz;
+  m.v_collapse = o.collapse_rel * m.vel_scale;
+  m.contact_tol = o.contact_tol;
+  return m;
+}
+
+double Model::PlateZ(double t) const { return amp * std::sin(omega_p * t + phi0); }
+double Model::PlateV(double t) const { return amp * omega_p * std::cos(omega_p * t + phi0); }
+double Model::PlateA(double t) const {
+  return -amp * omega_p * omega_p * std::sin(omega_p * t + phi0);
+}
+
+}  // namespace dimer::sim

@@ -1,0 +1,83 @@
+#pragma once
+// The immutable description of one simulated experiment: geometry of the dimer, the drive of the
+// plate, friction and restitution (MODEL.md), plus the numerical knobs that trade speed for
+// accuracy. SimOptions is what the user gives (CLI flags of FORMATS.md, SI units or fractions);
+// Model is what the stages read (derived quantities, all SI).
+//
+// Frames: the simulator works in the plate frame (x' along the plate, z' along its normal,
+// origin on the moving plate surface), where the plate is still and gravity becomes
+// g_eff(t) = (-g sin(alpha), -g cos(alpha) - zddot_p(t)). Files and --init-state use the lab
+// frame (frames.h converts). Mass is 1 (nothing depends on it), forces are per unit mass.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dimer::sim {
+
+inline constexpr double kGravity = 9.81;  // m/s^2 (MODEL.md)
+
+enum class InitKind { kDrift, kJump, kFlutter, kRest };
+const std::vector<std::pair<std::string, InitKind>>& InitKindNames();
+std::string ToString(InitKind k);
+
+struct SimOptions {
+  // Dimer.
+  double ar = 3.9;             // aspect ratio A_r = length / diameter (> 1)
+  double diameter_m = 9.5e-3;  // sphere diameter d, m
+  // Drive.
+  double freq_hz = 25.0;       // plate frequency f, Hz
+  double gamma = 0.9;          // Gamma = 4 pi^2 a f^2 / g
+  double tilt_deg = 0.0;       // plate inclination alpha, degrees (> 0: rising toward +x)
+  double plate_phase = 0.0;    // plate phase at t = 0, fraction of a period
+  // Contact laws (paper's values).
+  double eps = 0.65;           // kinematic restitution coefficient, [0, 1]
+  double mu = 0.2;             // persistent-contact sliding friction
+  double mu_s = 0.4;           // persistent-contact static friction (>= mu)
+  double mu_hat = 0.1;         // impact sliding friction
+  double mu_hat_s = 0.2;       // impact static (stick) friction
+  // Initial condition.
+  InitKind init = InitKind::kDrift;
+  double lift = 0.3;           // drift release: lift of the bouncing end, fraction of d
+  double release_phase = 0.25; // plate phase of the release, fraction of a period
+  std::optional<std::array<double, 6>> init_state;  // lab (x, z, theta, u, v, omega) at t = 0
+  // Duration and output.
+  double cycles = 100.0;       // plate periods to simulate (ignored if duration_s > 0)
+  double duration_s = 0.0;     // s; 0: use cycles
+  double fps = 2000.0;         // output sampling rate, samples/s; 0: events only
+  // Numerical knobs (measured in bench/bench_sim_accuracy).
+  double collapse_rel = 1e-4;  // v_c / (g/f): impacts slower than v_c are plastic (collapse)
+  double contact_tol = 1e-9;   // persistent-contact RK45 tolerance (relative, on g/f and R)
+  double max_events_per_period = 5000;  // a run above this average stops with an error
+
+  // Every invalid field at once, as "--flag: value: expected ..." lines; empty if valid.
+  std::vector<std::string> Check() const;
+  double Duration() const { return duration_s > 0 ? duration_s : cycles / freq_hz; }
+};
+
+struct Model {
+  // Geometry.
+  double R;        // sphere radius, m
+  double A;        // A_r - 1: half the centre distance is A R
+  double inv_I;    // 1 / I, I = R^2 (A^2 + 2/5) for unit mass
+  // Drive: z_p(t) = amp sin(omega_p t + phi0) along the plate normal.
+  double amp, omega_p, phi0, period;
+  double sin_a, cos_a;  // tilt
+  // Laws.
+  double eps, mu, mu_s, mu_hat, mu_hat_s;
+  // Numerics.
+  double v_collapse;  // m/s
+  double contact_tol;
+  double vel_scale;   // g/f, m/s: scale for relative velocity tolerances
+
+  static Model FromOptions(const SimOptions& o);  // assumes o.Check() is empty
+  // Plate position, velocity and acceleration along its normal (lab), at time t.
+  double PlateZ(double t) const;
+  double PlateV(double t) const;
+  double PlateA(double t) const;
+  // Effective gravity in the plate frame (tangential, normal).
+  double Gx() const { return -kGravity * sin_a; }
+  double Gz(double t) const { return -kGravity * cos_a - PlateA(t); }
+};
+
+}  // namespace dimer::sim

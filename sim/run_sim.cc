@@ -1,0 +1,71 @@
+#include "sim/run_sim.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include "common/atomic_output.h"
+#include "common/error.h"
+#include "common/interrupt.h"
+#include "common/progress.h"
+#include "sim/sim_file.h"
+#include "sim/simulator.h"
+
+namespace dimer::sim {
+
+std::array<double, 6> ParseInitState(const std::string& text) {
+  std::array<double, 6> v{};
+  std::stringstream ss(text);
+  std::string item;
+  int n = 0;
+  while (std::getline(ss, item, ',')) {
+    char* end = nullptr;
+    const double x = std::strtod(item.c_str(), &end);
+    if (n >= 6 || end == item.c_str() || *end != '\0') {
+      throw InputError("--init-state: \"" + text +
+                       "\": expected six comma-separated numbers x,z,theta,u,v,omega");
+    }
+    v[n++] = x;
+  }
+  if (n != 6) {
+    throw InputError("--init-state: \"" + text +
+                     "\": expected six comma-separated numbers x,z,theta,u,v,omega");
+  }
+  return v;
+}
+
+int RunSim(const SimRunArgs& args) {
+  // Check the output path before spending time on the run.
+  if (args.output.empty()) throw InputError("sim: -o/--output is required");
+  {
+    std::vector<std::string> errors = args.options.Check();
+    if (!errors.empty()) {
+      std::string msg = "invalid simulation parameters: ";
+      for (size_t i = 0; i < errors.size(); ++i) msg += (i ? "; " : "") + errors[i];
+      throw InputError(msg);
+    }
+  }
+  CheckCanWrite(args.output, args.force);
+  const double total = args.options.Duration() * args.options.freq_hz;
+  ProgressMeter meter("sim", "periods", total, args.progress);
+  RunControls controls;
+  controls.progress = [&](double done, double) { meter.Update(done); };
+  controls.should_stop = [] { return InterruptRequested(); };
+  const SimResult r = RunSimulation(args.options, controls);
+  meter.Finish(static_cast<double>(r.periods.size()));
+  WriteSimFile(args.output, args.force, args.options, r);
+  const ModeSummary& ms = r.mode;
+  std::printf("%s: %zu samples, %ld events (%.1f per period), settled in %s mode",
+              args.output.c_str(), r.t.size(), r.diag.events,
+              r.diag.events / std::max(1.0, (r.t_end - r.t_start) * args.options.freq_hz),
+              ms.label.c_str());
+  if (ms.label == "drift") {
+    std::printf(" (bouncing %s end), drift speed %.4g m/s, <u> f/g = %.4g",
+                ms.bouncing_sphere == 1 ? "right" : "left", ms.drift_speed,
+                ms.drift_speed * args.options.freq_hz / kGravity);
+  }
+  std::printf("\n");
+  if (r.interrupted) throw Interrupted();
+  return 0;
+}
+
+}  // namespace dimer::sim

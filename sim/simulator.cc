@@ -1,0 +1,307 @@
+#include "sim/simulator.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "common/error.h"
+#include "sim/constants.h"
+#include "sim/contact_integrator.h"
+#include "sim/flight.h"
+#include "sim/frames.h"
+#include "sim/impact_law.h"
+#include "sim/initial_conditions.h"
+#include "sim/persistent_contact.h"
+
+namespace dimer::sim {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// An impact counts toward the mode statistics when it approaches faster than this (of g/f):
+// the micro-bounces of a resting end are far slower.
+constexpr double kSignificantImpactRel = 0.05;
+// A touching sphere whose normal velocity is below this (of g/f) after an impact rests.
+constexpr double kRestingSpeedRel = 1e-9;
+
+class Sampler : public SampleSink {
+ public:
+  Sampler(const Model& m, double t0, double t_end, double fps, SimResult* res)
+      : m_(&m), t0_(t0), t_end_(t_end), fps_(fps), res_(res) {
+    next_ = fps > 0 ? t0 : kInf;
+  }
+  double Next() const override { return next_; }
+  void Record(double t, const State& q) override {
+    res_->t.push_back(t);
+    res_->lab.push_back(LabFromPlate(*m_, t, q));
+    ++k_;
+    next_ = t0_ + k_ / fps_;
+    if (next_ > t_end_) next_ = kInf;
+  }
+
+ private:
+  const Model* m_;
+  double t0_, t_end_, fps_;
+  SimResult* res_;
+  long k_ = 0;
+  double next_;
+};
+
+class Runner {
+ public:
+  Runner(const SimOptions& o, const RunControls& c)
+      : o_(o), c_(c), m_(Model::FromOptions(o)), sampler_(m_, 0, 0, 0, &res_) {}
+  SimResult Run();
+
+ private:
+  void Settle(std::array<bool, 2> candidates, int force_slide_sphere = -1);
+  std::array<bool, 2> RestingAmong(std::array<bool, 2> touching) const;
+  void FlightStage(double t_lim);
+  void ContactStage(double t_lim);
+  void DoImpact(std::array<bool, 2> touching);
+  void Log(EventKind kind, int sphere, const State& before, std::string detail = "");
+  void StartPeriod();
+  void TrackPenetration(const State& q, const ContactConfig& cfg);
+
+  const SimOptions& o_;
+  const RunControls& c_;
+  Model m_;
+  SimResult res_;
+  Sampler sampler_;
+  double t_ = 0;
+  State q_;
+  ContactConfig cfg_;
+  double h_ = 0;  // contact step size carried between phases
+  double period_end_ = 0;
+  PeriodStats cur_;
+};
+
+void Runner::Log(EventKind kind, int sphere, const State& before, std::string detail) {
+  ++res_.diag.events;
+  ++cur_.events;
+  if (cur_.events > o_.max_events_per_period) {
+    std::ostringstream s;
+    s << "event storm: more than " << o_.max_events_per_period << " events in the period at t = "
+      << t_ << " s (last: " << ToString(kind) << "); see --max-events-per-period";
+    throw std::runtime_error(s.str());
+  }
+  if (!c_.keep_events) return;
+  res_.events.push_back({t_, kind, static_cast<int8_t>(sphere), std::move(detail), before, q_});
+}
+
+std::array<bool, 2> Runner::RestingAmong(std::array<bool, 2> touching) const {
+  std::array<bool, 2> out{};
+  for (int s = 0; s < 2; ++s) {
+    out[s] = touching[s] &&
+             std::abs(NormalV(ContactArm(m_, q_.th, s), q_)) <= kRestingSpeedRel * m_.vel_scale;
+  }
+  return out;
+}
+
+void Runner::Settle(std::array<bool, 2> candidates, int force_slide_sphere) {
+  for (int iter = 0; iter < 4; ++iter) {
+    ModeChoice mc = ChooseContactMode(m_, t_, q_, candidates);
+    if (mc.painleve_sphere < 0) {
+      const int s = force_slide_sphere;
+      if (s >= 0 && mc.cfg.resting[s] && mc.cfg.slide[s] == 0) {
+        // At the static cone's edge the stick test is decided by round-off: slide, as found.
+        mc.cfg.slide[s] = mc.forces.f[s] > 0 ? -1 : 1;
+      }
+      cfg_ = mc.cfg;
+      ProjectOnContacts(m_, cfg_, &q_);
+      return;
+    }
+    // Painleve: impact without collision at the sliding contact (impact_law.h).
+    const State before = q_;
+    std::array<bool, 2> forced{};
+    forced[mc.painleve_sphere] = true;
+    const ImpactOutcome io = ResolveImpact(m_, q_, candidates, forced);
+    q_ = io.after;
+    ++res_.diag.painleve;
+    Log(EventKind::kPainleve, mc.painleve_sphere, before);
+    candidates = RestingAmong(candidates);
+  }
+  cfg_ = ContactConfig{};
+}
+
+void Runner::TrackPenetration(const State& q, const ContactConfig& cfg) {
+  for (int s = 0; s < 2; ++s) {
+    if (!cfg.resting[s]) {
+      res_.diag.max_penetration_m = std::max(res_.diag.max_penetration_m, -Gap(m_, q, s));
+    }
+  }
+}
+
+void Runner::FlightStage(double t_lim) {
+  double dt_max = t_lim - t_;
+  int hitter = -1;
+  for (int s = 0; s < 2; ++s) {
+    const ImpactSearch is = FindFlightImpact(m_, q_, t_, dt_max, s);
+    res_.diag.flight_steps += is.steps;
+    res_.diag.capped_searches += is.capped;
+    if (is.found && is.dt <= dt_max) {
+      hitter = s;
+      dt_max = is.dt;
+    }
+  }
+  while (sampler_.Next() <= t_ + dt_max) {
+    const double ts = sampler_.Next();
+    const State qs = FlightPropagate(m_, q_, t_, ts - t_);
+    TrackPenetration(qs, cfg_);
+    sampler_.Record(ts, qs);
+  }
+  q_ = FlightPropagate(m_, q_, t_, dt_max);
+  t_ = hitter >= 0 ? t_ + dt_max : t_lim;
+  TrackPenetration(q_, cfg_);
+  if (hitter < 0) return;
+  std::array<bool, 2> touching{};
+  for (int s = 0; s < 2; ++s) touching[s] = s == hitter || Gap(m_, q_, s) < kTouchTol_m;
+  DoImpact(touching);
+}
+
+namespace {
+std::string ImpactDetail(const ImpactOutcome& io) {
+  std::string d;
+  for (int s = 0; s < 2; ++s) {
+    if (!io.took_part[s]) continue;
+    if (!d.empty()) d += ' ';
+    d += s == kLeft ? "L:" : "R:";
+    d += io.reversed[s] ? "slip_reversal" : io.stuck[s] ? "slip_stick" : "continuous_slide";
+  }
+  return d;
+}
+}  // namespace
+
+void Runner::DoImpact(std::array<bool, 2> touching) {
+  const State before = q_;
+  const ImpactOutcome io = ResolveImpact(m_, q_, touching);
+  res_.diag.impact_segments += io.segments;
+  res_.diag.impact_failures += !io.ok;
+  q_ = io.after;
+  const int took = int(io.took_part[0]) + int(io.took_part[1]);
+  for (int s = 0; s < 2; ++s) {
+    if (io.took_part[s] && !io.collapsed[s] &&
+        -io.v_before[s] > kSignificantImpactRel * m_.vel_scale) {
+      ++cur_.impacts[s];
+    }
+  }
+  if (took == 2) {
+    Log(EventKind::kDoubleImpact, 2, before, ImpactDetail(io));
+  } else if (took == 1) {
+    const int s = io.took_part[0] ? 0 : 1;
+    Log(io.collapsed[s] ? EventKind::kCollapse : EventKind::kImpact, s, before,
+        ImpactDetail(io));
+  }
+  Settle(RestingAmong(touching));
+}
+
+void Runner::ContactStage(double t_lim) {
+  const ContactRun run = IntegrateContact(m_, cfg_, t_, q_, t_lim, &h_, &sampler_);
+  res_.diag.contact_steps += run.steps;
+  res_.diag.contact_rejected += run.rejected;
+  res_.diag.step_underflows += !run.ok;
+  for (int s = 0; s < 2; ++s) {
+    if (cfg_.resting[s]) cur_.rest_time[s] += run.t - t_;
+  }
+  t_ = run.t;
+  q_ = run.q;
+  TrackPenetration(q_, cfg_);
+  const int s = run.sphere;
+  const State before = q_;
+  switch (run.event) {
+    case ContactEvent::kEnd:
+      ProjectOnContacts(m_, cfg_, &q_);
+      return;
+    case ContactEvent::kImpact: {
+      std::array<bool, 2> touching = cfg_.resting;
+      touching[s] = true;
+      DoImpact(touching);
+      return;
+    }
+    case ContactEvent::kLiftoff: {
+      std::array<bool, 2> cand = cfg_.resting;
+      cand[s] = false;
+      Settle(cand);
+      Log(EventKind::kLiftoff, s, before);
+      return;
+    }
+    case ContactEvent::kSlipStops: {
+      q_.u = q_.w * ContactArm(m_, q_.th, s).rz;  // U_s = 0 exactly
+      Settle(cfg_.resting);
+      Log(cfg_.resting[s] && cfg_.slide[s] == 0 ? EventKind::kStick : EventKind::kSlip, s,
+          before, cfg_.resting[s] && cfg_.slide[s] != 0 ? "reversal" : "");
+      return;
+    }
+    case ContactEvent::kSlipStarts:
+      Settle(cfg_.resting, s);
+      Log(EventKind::kSlip, s, before);
+      return;
+  }
+}
+
+void Runner::StartPeriod() {
+  cur_ = PeriodStats{};
+  cur_.x_start = LabFromPlate(m_, t_, q_).x;
+  const double k = std::floor((t_ - res_.t_start) / m_.period + 0.5);
+  period_end_ = res_.t_start + (k + 1) * m_.period;
+}
+
+SimResult Runner::Run() {
+  const InitialCondition ic = MakeInitialCondition(m_, o_);
+  res_.model = m_;
+  t_ = ic.t0;
+  q_ = ic.q;
+  res_.t_start = t_;
+  res_.t_end = t_ + o_.Duration();
+  sampler_ = Sampler(m_, t_, res_.t_end, o_.fps, &res_);
+  h_ = 1e-3 * m_.period;
+  StartPeriod();
+  std::array<bool, 2> touching{};
+  for (int s = 0; s < 2; ++s) touching[s] = Gap(m_, q_, s) < kTouchTol_m;
+  Settle(RestingAmong(touching));
+  const double total = o_.Duration() / m_.period;
+  while (t_ < res_.t_end) {
+    const double t_lim = std::min(res_.t_end, period_end_);
+    if (cfg_.Count() == 0) {
+      FlightStage(t_lim);
+    } else {
+      ContactStage(t_lim);
+    }
+    if (t_ >= period_end_) {
+      res_.periods.push_back(cur_);
+      res_.diag.max_events_in_period = std::max(res_.diag.max_events_in_period, cur_.events);
+      StartPeriod();
+      const double done = static_cast<double>(res_.periods.size());
+      if (c_.progress) c_.progress(done, total);
+      if (c_.should_stop && c_.should_stop()) {
+        res_.interrupted = true;
+        break;
+      }
+    }
+  }
+  // Mode over the last half of the run (at most 100 periods).
+  const State lab = LabFromPlate(m_, t_, q_);
+  std::array<int, 2> dir{};
+  for (int s = 0; s < 2; ++s) {
+    const double dx = TipLab(m_, lab, s).x() - TipLab(m_, lab, 1 - s).x();
+    dir[s] = dx >= 0 ? 1 : -1;
+  }
+  const int n = static_cast<int>(res_.periods.size());
+  res_.mode = ClassifyMode(res_.periods, m_.period, lab.x, dir, std::max(1, std::min(100, n / 2)));
+  return std::move(res_);
+}
+
+}  // namespace
+
+SimResult RunSimulation(const SimOptions& options, const RunControls& controls) {
+  const std::vector<std::string> errors = options.Check();
+  if (!errors.empty()) {
+    std::string msg = "invalid simulation parameters: ";
+    for (size_t i = 0; i < errors.size(); ++i) msg += (i ? "; " : "") + errors[i];
+    throw InputError(msg);
+  }
+  Runner runner(options, controls);
+  return runner.Run();
+}
+
+}  // namespace dimer::sim
