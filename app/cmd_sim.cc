@@ -35,8 +35,9 @@ void AddSimOptions(CLI::App* c, SimCli* a) {
   c->add_option("--init", a->init, "initial condition")
       ->check(CLI::IsMember(inits))
       ->capture_default_str();
-  c->add_option("--lift", o.lift, "drift release: lift of one end, fraction of d")
-      ->capture_default_str();
+  c->add_option("--lift", o.lift,
+                "drift release: lift of one end, fraction of d (default 0.3 at 25 Hz, scaled "
+                "by (25 Hz/f)^2)");
   c->add_option("--release-phase", o.release_phase,
                 "drift release: plate phase, fraction of a period (0.25: plate at its top)")
       ->capture_default_str();

@@ -75,7 +75,9 @@ EventValues Events(const Model& m, const ContactConfig& cfg, double t, const Sta
     ev.kind[2 + s] = ContactEvent::kImpact;
     const Arm r = ContactArm(m, q.th, s);
     if (!cfg.resting[s]) {
-      ev.v[2 + s] = q.z + r.rz;
+      // Offset by the gap tolerance (constants.h): a sphere that starts exactly at the plate
+      // (h = 0 after a collapse nearby) is still watched, and penetration stays < kGapTol_m.
+      ev.v[2 + s] = q.z + r.rz + kGapTol_m;
       continue;
     }
     // Lift-off in the second slot (index 2+s is free for a resting sphere).
@@ -181,8 +183,24 @@ ContactRun IntegrateContact(const Model& m, const ContactConfig& cfg, double t0,
       sink->Record(ts, ts == t ? q : at(ts - t));
     }
     if (which >= 0) {
+      double tau = t_ev - t;
+      if (ev1.kind[which] == ContactEvent::kImpact) {
+        // The event fired at h = -kGapTol; Newton back to h = 0 so that the sphere leaves the
+        // impact from the plate surface and stays watched in the next phase.
+        const int s = which - 2;
+        for (int i = 0; i < kMaxNewtonIterations; ++i) {
+          const State qs = at(tau);
+          const Arm r = ContactArm(m, qs.th, s);
+          const double vn = NormalV(r, qs), gap = qs.z + r.rz;
+          if (!(vn < 0)) break;
+          const double step = std::clamp(-gap / vn, -tau, hs - tau);
+          tau += step;
+          if (std::abs(step) < kRootTimeTol_s) break;
+        }
+        t_ev = t + tau;
+      }
       run.t = t_ev;
-      run.q = at(t_ev - t);
+      run.q = at(tau);
       run.event = ev1.kind[which];
       run.sphere = which % 2;
       return run;

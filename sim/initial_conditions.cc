@@ -61,7 +61,7 @@ InitialCondition MakeInitialCondition(const Model& m, const SimOptions& o) {
   switch (o.init) {
     case InitKind::kDrift: {
       ic.t0 = TimeAtPhase(m, 2 * M_PI * o.release_phase);
-      const double sin_th = o.lift / m.A;  // right centre lift * d = 2 R lift above the left
+      const double sin_th = o.EffectiveLift() / m.A;  // right centre lift * d = 2 R lift above the left
       ic.q.th = std::asin(sin_th);
       ic.q.z = m.R + m.A * m.R * sin_th;
       ic.q.x = m.A * m.R * std::cos(ic.q.th);  // left sphere centre at x = 0

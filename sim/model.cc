@@ -47,8 +47,11 @@ std::vector<std::string> SimOptions::Check() const {
   Require(e, finite(mu_hat) && mu_hat >= 0, "--mu-hat", mu_hat, "mu_hat >= 0");
   Require(e, finite(mu_hat_s) && mu_hat_s >= mu_hat, "--mu-hat-s", mu_hat_s,
           "mu_hat_s >= mu_hat");
-  Require(e, finite(lift) && lift >= 0 && lift < ar - 1, "--lift", lift,
-          "0 <= lift < A_r - 1 (fraction of the diameter)");
+  const double lift_eff = EffectiveLift();
+  Require(e, std::isnan(lift) || (finite(lift) && lift >= 0), "--lift", lift,
+          "a lift >= 0 (fraction of the diameter)");
+  Require(e, !(lift_eff >= ar - 1), "--lift", lift_eff,
+          "lift < A_r - 1 (the lifted centre must stay below the top of the other sphere)");
   Require(e, finite(release_phase), "--release-phase", release_phase,
           "a finite fraction of a period");
   Require(e, finite(cycles) && cycles > 0, "--cycles", cycles, "a number of periods > 0");
@@ -66,6 +69,12 @@ std::vector<std::string> SimOptions::Check() const {
     }
   }
   return e;
+}
+
+double SimOptions::EffectiveLift() const {
+  if (!std::isnan(lift)) return lift;
+  const double r = kDefaultLiftFreqHz / freq_hz;
+  return kDefaultLift * r * r;
 }
 
 Model Model::FromOptions(const SimOptions& o) {

@@ -9,6 +9,7 @@
 // g_eff(t) = (-g sin(alpha), -g cos(alpha) - zddot_p(t)). Files and --init-state use the lab
 // frame (frames.h converts). Mass is 1 (nothing depends on it), forces are per unit mass.
 #include <array>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,10 @@
 namespace dimer::sim {
 
 inline constexpr double kGravity = 9.81;  // m/s^2 (MODEL.md)
+// The paper's release lifts one end by "a fraction of the sphere diameter"; 0.3 d at its
+// base frequency of 25 Hz (FORMATS.md default).
+inline constexpr double kDefaultLift = 0.3;
+inline constexpr double kDefaultLiftFreqHz = 25.0;
 
 enum class InitKind { kDrift, kJump, kFlutter, kRest };
 const std::vector<std::pair<std::string, InitKind>>& InitKindNames();
@@ -38,7 +43,10 @@ struct SimOptions {
   double mu_hat_s = 0.2;       // impact static (stick) friction
   // Initial condition.
   InitKind init = InitKind::kDrift;
-  double lift = 0.3;           // drift release: lift of the bouncing end, fraction of d
+  // Drift release: lift of the bouncing end, fraction of d. NaN (the default) means
+  // kDefaultLift at 25 Hz scaled by (25 Hz / f)^2, a release dynamically similar at every
+  // frequency (the drift orbit's heights scale as g T^2); see EffectiveLift().
+  double lift = std::numeric_limits<double>::quiet_NaN();
   double release_phase = 0.25; // plate phase of the release, fraction of a period
   std::optional<std::array<double, 6>> init_state;  // lab (x, z, theta, u, v, omega) at t = 0
   // Duration and output.
@@ -53,6 +61,7 @@ struct SimOptions {
   // Every invalid field at once, as "--flag: value: expected ..." lines; empty if valid.
   std::vector<std::string> Check() const;
   double Duration() const { return duration_s > 0 ? duration_s : cycles / freq_hz; }
+  double EffectiveLift() const;
 };
 
 struct Model {

@@ -64,6 +64,9 @@ int RunSim(const SimRunArgs& args) {
                 ms.drift_speed * args.options.freq_hz / kGravity);
   }
   std::printf("\n");
+  if (!r.error.empty()) {
+    throw std::runtime_error(r.error + " (partial run written to " + args.output + ")");
+  }
   if (r.interrupted) throw Interrupted();
   return 0;
 }

@@ -20,7 +20,7 @@ AttrList SimParameters(const SimOptions& o) {
                 {"mu_hat", o.mu_hat},
                 {"mu_hat_s", o.mu_hat_s},
                 {"init", ToString(o.init)},
-                {"lift", o.lift},
+                {"lift", o.EffectiveLift()},
                 {"release_phase", o.release_phase},
                 {"cycles", o.cycles},
                 {"duration", o.Duration()},
@@ -96,6 +96,10 @@ void WriteSimFile(const std::string& path, bool force, const SimOptions& o, cons
                   {"drift_speed_err", r.mode.drift_speed_err},
                   {"drift_scaled", r.mode.drift_speed * o.freq_hz / kGravity},
                   {"mode_window_periods", int64_t{r.mode.window_periods}},
+                  {"mode_impacts_per_period_left", r.mode.impacts_per_period[0]},
+                  {"mode_impacts_per_period_right", r.mode.impacts_per_period[1]},
+                  {"mode_rest_fraction_left", r.mode.rest_fraction[0]},
+                  {"mode_rest_fraction_right", r.mode.rest_fraction[1]},
                   {"events_per_period", d.events / periods},
                   {"max_events_in_period", int64_t{d.max_events_in_period}},
                   {"max_penetration_m", d.max_penetration_m},
@@ -103,7 +107,8 @@ void WriteSimFile(const std::string& path, bool force, const SimOptions& o, cons
                   {"capped_searches", int64_t{d.capped_searches}},
                   {"step_underflows", int64_t{d.step_underflows}},
                   {"painleve_events", int64_t{d.painleve}},
-                  {"interrupted", int64_t{r.interrupted}}});
+                  {"interrupted", int64_t{r.interrupted}},
+                  {"error", r.error}});
     WriteProvenance(w, "sim", attrs);
     w.Close();
   }

@@ -21,8 +21,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // An impact counts toward the mode statistics when it approaches faster than this (of g/f):
 // the micro-bounces of a resting end are far slower.
 constexpr double kSignificantImpactRel = 0.05;
-// A touching sphere whose normal velocity is below this (of g/f) after an impact rests.
-constexpr double kRestingSpeedRel = 1e-9;
+
+struct EventStorm : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 class Sampler : public SampleSink {
  public:
@@ -83,7 +85,7 @@ void Runner::Log(EventKind kind, int sphere, const State& before, std::string de
     std::ostringstream s;
     s << "event storm: more than " << o_.max_events_per_period << " events in the period at t = "
       << t_ << " s (last: " << ToString(kind) << "); see --max-events-per-period";
-    throw std::runtime_error(s.str());
+    throw EventStorm(s.str());
   }
   if (!c_.keep_events) return;
   res_.events.push_back({t_, kind, static_cast<int8_t>(sphere), std::move(detail), before, q_});
@@ -92,8 +94,10 @@ void Runner::Log(EventKind kind, int sphere, const State& before, std::string de
 std::array<bool, 2> Runner::RestingAmong(std::array<bool, 2> touching) const {
   std::array<bool, 2> out{};
   for (int s = 0; s < 2; ++s) {
-    out[s] = touching[s] &&
-             std::abs(NormalV(ContactArm(m_, q_.th, s), q_)) <= kRestingSpeedRel * m_.vel_scale;
+    // Inelastic collapse, second half: a touching sphere that leaves slower than v_c (typically
+    // lifted by the other sphere's impact) stays in persistent contact, so that two spheres
+    // near the plate cannot pass ever smaller bounces back and forth without end.
+    out[s] = touching[s] && std::abs(NormalV(ContactArm(m_, q_.th, s), q_)) < m_.v_collapse;
   }
   return out;
 }
@@ -262,10 +266,15 @@ SimResult Runner::Run() {
   const double total = o_.Duration() / m_.period;
   while (t_ < res_.t_end) {
     const double t_lim = std::min(res_.t_end, period_end_);
-    if (cfg_.Count() == 0) {
-      FlightStage(t_lim);
-    } else {
-      ContactStage(t_lim);
+    try {
+      if (cfg_.Count() == 0) {
+        FlightStage(t_lim);
+      } else {
+        ContactStage(t_lim);
+      }
+    } catch (const EventStorm& e) {
+      res_.error = e.what();  // the run stops; what it computed so far is kept
+      break;
     }
     if (t_ >= period_end_) {
       res_.periods.push_back(cur_);

@@ -44,6 +44,7 @@ struct SimResult {
   SimDiagnostics diag;
   ModeSummary mode;
   bool interrupted = false;
+  std::string error;  // non-empty: the run stopped early (event storm); the rest is valid
 };
 
 struct RunControls {
@@ -52,7 +53,7 @@ struct RunControls {
   std::function<bool()> should_stop;            // polled once per period (Ctrl-C)
 };
 
-// Throws InputError for invalid options, std::runtime_error for an event storm.
+// Throws InputError for invalid options. An event storm stops the run and sets `error`.
 SimResult RunSimulation(const SimOptions& options, const RunControls& controls = {});
 
 }  // namespace dimer::sim
