@@ -1,0 +1,38 @@
+// `dimerlab track FRAMES -o track.h5`: parses into TrackArgs and calls RunTrack.
+#include <memory>
+
+#include "app/commands.h"
+#include "tracking/track.h"
+
+namespace dimer::app {
+namespace {
+
+void AddTrackOptions(CLI::App* sub, tracking::TrackArgs* a) {
+  sub->add_option("input", a->input, "folder of frames, multi-page TIFF or video")->required();
+  sub->add_option("-o,--output", a->output, "track file to write (HDF5)")->required();
+  sub->add_flag("--force", a->force, "replace an existing output file");
+  sub->add_option("--fps", a->fps, "frame rate, frames/s")->capture_default_str();
+  sub->add_option("--m-per-px", a->m_per_px, "metres per pixel [from --diameter]");
+  sub->add_option("--diameter", a->diameter, "sphere diameter, m (calibrates m/px)")
+      ->capture_default_str();
+  sub->add_option("--row0", a->row0, "row of z = 0, px [median plate row]");
+  sub->add_option("--method", a->method, "centroid | discfit")->capture_default_str();
+  sub->add_option("--polarity", a->polarity, "auto | bright | dark")->capture_default_str();
+  sub->add_option("--radius-px", a->sequence.tracker.radius_px, "sphere radius, px [measured]");
+  sub->add_option("--threads", a->sequence.threads, "worker threads (0: all cores)");
+  sub->add_option("--chunk-frames", a->sequence.chunk_frames, "frames per parallel chunk")
+      ->capture_default_str();
+  sub->add_flag("--quiet", a->quiet, "no progress on stderr");
+}
+
+}  // namespace
+
+void RegisterTrack(CLI::App& app) {
+  auto args = std::make_shared<tracking::TrackArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "track", "sub-pixel sphere centres and plate edge in every frame, to a track file");
+  AddTrackOptions(sub, args.get());
+  sub->callback([args]() { tracking::RunTrack(*args); });
+}
+
+}  // namespace dimer::app

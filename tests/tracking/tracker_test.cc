@@ -1,0 +1,74 @@
+#include "tracking/tracker.h"
+
+#include <gtest/gtest.h>
+
+#include "tests/tracking/synthetic.h"
+#include "tracking/detector.h"
+#include "tracking/pixel_map.h"
+#include "tracking/render.h"
+
+namespace dimer::tracking {
+namespace {
+
+TEST(Detector, PolarityFollowsTheLighting) {
+  for (Lighting l : {Lighting::kDisc, Lighting::kBacklit, Lighting::kReflect}) {
+    RenderOptions o;
+    o.lighting = l;
+    const cv::Mat img = RenderFrame({testing::TiltedDimer(150, 200, 23.75, 0.1, 3.75)}, o, 0);
+    EXPECT_EQ(DetectPolarity(img), l == Lighting::kBacklit ? -1 : 1) << ToString(l);
+  }
+}
+
+TEST(Tracker, IdentityNeverSwapsOnALongDriftSequence) {
+  // 10,000 frames of drift-like motion at 2000 frames/s, in small frames (200 x 96 at 5e-4 m/px,
+  // spheres 19 px across), rendered and tracked one at a time: nothing is stored.
+  const size_t n = size_t(10000 * testing::TestScale());
+  const Trajectory traj = testing::DriftTrajectory(n, 2000.0);
+  RenderPlan plan;
+  plan.map = {5e-4, 80.0, 60.0};
+  plan.radius_px = 0.5 * testing::kDiameterM / plan.map.m_per_px;
+  plan.rod_half_width_px = 1.5;
+  RenderOptions o;
+  o.width = 200;
+  o.height = 96;
+  o.lighting = Lighting::kBacklit;
+  o.noise = 2.0;
+  SequenceTracker tracker(TrackerOptions{});
+  size_t swaps = 0, lost = 0, acquisitions = 0;
+  double worst = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const SceneGeometry s = plan.SceneAt(traj, traj.t[i]);
+    const FrameTrack t = tracker.Process(RenderFrame({s}, o, i), i);
+    acquisitions += t.acquired;
+    if (!t.found[0] || !t.found[1]) {
+      ++lost;
+      continue;
+    }
+    const double e0 = (t.centre[0] - s.left).norm(), e1 = (t.centre[1] - s.right).norm();
+    swaps += (t.centre[0] - s.right).norm() < e0;
+    worst = std::max({worst, e0, e1});
+  }
+  EXPECT_EQ(swaps, 0u);
+  EXPECT_EQ(lost, 0u);
+  EXPECT_EQ(acquisitions, 1u);  // the first frame only: the windows follow the dimer
+  EXPECT_LT(worst, 0.1);        // px; 9.5 px spheres at sigma 2
+}
+
+TEST(Tracker, SphereOutOfViewIsNotFoundAndTheOtherIs) {
+  RenderOptions o;
+  o.lighting = Lighting::kDisc;
+  SequenceTracker tracker(TrackerOptions{});
+  SceneGeometry s = testing::TiltedDimer(150, 200, 23.75, 0.0, 3.75);
+  const FrameTrack first = tracker.Process(RenderFrame({s}, o, 0), 0);
+  ASSERT_TRUE(first.found[0] && first.found[1]);
+  // The dimer moves right until the right sphere is cut by the frame edge.
+  s.left.x() += 230;
+  s.right.x() += 230;
+  const FrameTrack cut = tracker.Process(RenderFrame({s}, o, 1), 1);
+  EXPECT_TRUE(cut.found[0]);
+  EXPECT_FALSE(cut.found[1]);
+  EXPECT_NEAR(cut.centre[0].x(), s.left.x(), 0.05);
+}
+
+}  // namespace
+}  // namespace dimer::tracking

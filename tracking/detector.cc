@@ -1,0 +1,71 @@
+#include "tracking/detector.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "tracking/plate_edge.h"
+#include "tracking/tolerances.h"
+
+namespace dimer::tracking {
+namespace {
+
+// Pixel stride of the polarity sample: 1/16 of the pixels is plenty for three quantiles.
+constexpr int kPolarityStride = 4;
+// Smallest sphere radius the detector accepts, px (smaller blobs are noise or debris).
+constexpr double kMinRadiusPx = 3.0;
+
+}  // namespace
+
+int DetectPolarity(const cv::Mat& frame) {
+  std::vector<double> v;
+  for (int r = 0; r < frame.rows; r += kPolarityStride) {
+    for (int c = 0; c < frame.cols; c += kPolarityStride) {
+      v.push_back(frame.depth() == CV_8U ? frame.at<uint8_t>(r, c) : frame.at<uint16_t>(r, c));
+    }
+  }
+  auto quantile = [&](double q) {
+    auto it = v.begin() + std::ptrdiff_t(q * double(v.size() - 1));
+    std::nth_element(v.begin(), it, v.end());
+    return *it;
+  };
+  const double lo = quantile(0.01), med = quantile(0.5), hi = quantile(0.99);
+  return (hi - med) >= (med - lo) ? 1 : -1;
+}
+
+Detection DetectSpheres(const cv::Mat& frame, int polarity) {
+  Detection out;
+  out.plate_row = FindPlateRowCoarse(frame);
+  // The plate and a guard band above it are left out of the silhouette.
+  int rows = frame.rows;
+  if (std::isfinite(out.plate_row)) rows = std::max(0, int(out.plate_row - kPlateGuardPx));
+  if (rows < 2 * kMinRadiusPx) return out;
+  cv::Mat region;
+  frame.rowRange(0, rows).convertTo(region, CV_32F, polarity);
+  cv::Mat norm8, silhouette;
+  cv::normalize(region, region, 0, 255, cv::NORM_MINMAX);
+  region.convertTo(norm8, CV_8U);
+  cv::threshold(norm8, silhouette, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(silhouette, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
+  silhouette.setTo(0);
+  cv::drawContours(silhouette, contours, -1, cv::Scalar(255), cv::FILLED);
+  cv::Mat dist;
+  cv::distanceTransform(silhouette, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  double first_peak = 0;
+  for (int k = 0; k < 2; ++k) {
+    double peak = 0;
+    cv::Point at;
+    cv::minMaxLoc(dist, nullptr, &peak, nullptr, &at);
+    if (peak < kMinRadiusPx || (k == 1 && peak < kSecondPeakFraction * first_peak)) break;
+    if (k == 0) first_peak = peak;
+    out.centres.emplace_back(at.x, at.y);
+    out.radii_px.push_back(peak);
+    // Suppress this sphere (and the rod near it) before looking for the other one.
+    cv::circle(dist, at, int(std::ceil(1.5 * peak)), cv::Scalar(0), cv::FILLED);
+  }
+  return out;
+}
+
+}  // namespace dimer::tracking

@@ -1,0 +1,30 @@
+#pragma once
+// Acquisition: finding the plate and the two spheres in a whole frame, with no prior. Used on
+// the first frame of each chunk and whenever tracking loses a sphere; in between, the tracker
+// only looks at windows around its predictions (tracker.h).
+//
+// Spheres are separated from the rod without knowing the geometry: above the plate, the frame
+// is thresholded (Otsu) into a silhouette, holes are filled (a mirror sphere's dark reflections),
+// and the distance transform peaks at a sphere centre with the value ~R, while the rod, thin,
+// never gets far from its edge. The two highest peaks, separated by more than a radius, are the
+// spheres.
+#include <opencv2/core.hpp>
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace dimer::tracking {
+
+// +1 when objects are brighter than the background (front light), -1 when darker (backlit):
+// the background is the frame's median, and the objects are the farther tail.
+int DetectPolarity(const cv::Mat& frame);
+
+struct Detection {
+  double plate_row = 0;                 // coarse plate row (whole px), NaN if none
+  std::vector<Eigen::Vector2d> centres; // 0, 1 or 2 coarse sphere centres (+-1 px)
+  std::vector<double> radii_px;         // distance-transform radius of each
+};
+
+Detection DetectSpheres(const cv::Mat& frame, int polarity);
+
+}  // namespace dimer::tracking

@@ -1,0 +1,83 @@
+#include "tracking/disc_coverage.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace dimer::tracking {
+namespace {
+
+// Half-diagonal of a unit pixel: a pixel whose centre is farther than R + this from the disc
+// centre is outside, nearer than R - this is inside.
+constexpr double kHalfDiagonalPx = 0.70710678118654752;
+
+struct Disc {
+  double r, r2;
+  double S(double x) const {  // antiderivative of s(X) = sqrt(R^2 - X^2) on [-R, R]
+    const double s = std::sqrt(std::max(0.0, r2 - x * x));
+    return 0.5 * (x * s + r2 * std::asin(std::clamp(x / r, -1.0, 1.0)));
+  }
+  double Left(double x) const {  // H(x): area of the disc left of X = x
+    const double xc = std::clamp(x, -r, r);
+    return 2.0 * (S(xc) - S(-r));
+  }
+  double F(double x, double y) const {  // area with X <= x and Y <= y
+    if (y < 0) return Left(x) - F(x, -y);
+    const double xc = std::clamp(x, -r, r);
+    const double half = S(xc) - S(-r);  // integral of s up to x'
+    if (y >= r) return 2.0 * half;
+    const double c = std::sqrt(r2 - y * y);
+    const double m = (S(std::min(xc, -c)) - S(-r)) + y * (std::clamp(xc, -c, c) + c) +
+                     (S(std::max(xc, c)) - S(c));
+    return half + m;
+  }
+  // dF/dx: chord length at X = x with Y <= y.
+  double Fx(double x, double y) const {
+    if (x <= -r || x >= r) return 0.0;
+    const double s = std::sqrt(r2 - x * x);
+    return std::clamp(y, -s, s) + s;
+  }
+};
+
+}  // namespace
+
+double DiscPixelArea(double col, double row, const Eigen::Vector2d& centre, double radius_px) {
+  const double dx = col - centre.x(), dy = row - centre.y();
+  const double dist = std::sqrt(dx * dx + dy * dy);
+  if (dist >= radius_px + kHalfDiagonalPx) return 0.0;
+  if (dist <= radius_px - kHalfDiagonalPx) return 1.0;
+  const Disc d{radius_px, radius_px * radius_px};
+  const double a = d.F(dx + 0.5, dy + 0.5) - d.F(dx - 0.5, dy + 0.5) - d.F(dx + 0.5, dy - 0.5) +
+                   d.F(dx - 0.5, dy - 0.5);
+  return std::clamp(a, 0.0, 1.0);
+}
+
+PixelCoverage DiscPixelCoverage(double col, double row, const Eigen::Vector2d& centre,
+                                double radius_px) {
+  PixelCoverage out;
+  const double dx = col - centre.x(), dy = row - centre.y();
+  const double dist = std::sqrt(dx * dx + dy * dy);
+  if (dist >= radius_px + kHalfDiagonalPx) return out;
+  if (dist <= radius_px - kHalfDiagonalPx) {
+    out.area = 1.0;
+    return out;
+  }
+  const Disc d{radius_px, radius_px * radius_px};
+  double f = 0, fx = 0, fy = 0, xfx_yfy = 0;
+  for (int i = 0; i < 4; ++i) {  // corners with inclusion-exclusion sign
+    const double x = dx + ((i & 1) ? -0.5 : 0.5), y = dy + ((i & 2) ? -0.5 : 0.5);
+    const double sign = ((i == 0) || (i == 3)) ? 1.0 : -1.0;
+    const double cfx = d.Fx(x, y), cfy = d.Fx(y, x);  // F is symmetric in (x, y)
+    f += sign * d.F(x, y);
+    fx += sign * cfx;
+    fy += sign * cfy;
+    xfx_yfy += sign * (x * cfx + y * cfy);
+  }
+  out.area = std::clamp(f, 0.0, 1.0);
+  out.d_cx = -fx;  // moving the centre right is moving the pixel left
+  out.d_cy = -fy;
+  out.d_r = (2.0 * f - xfx_yfy) / radius_px;
+  return out;
+}
+
+}  // namespace dimer::tracking

@@ -1,0 +1,64 @@
+#pragma once
+// Where frames come from: a folder of images (PNG, TIFF including multi-page, BMP, JPEG; 8- or
+// 16-bit), one multi-page TIFF, or a video file read through OpenCV. Folder entries are sorted
+// naturally (frame_2 before frame_10). Frames are decoded on demand, never held for the whole
+// sequence, so memory does not grow with its length.
+//
+// A frame that cannot be decoded is not an exception: Read() returns it with `error` set to a
+// one-line reason (empty file, corrupt or truncated, unsupported pixel type) and the caller
+// reports and skips it. Only a source that cannot be opened at all throws InputError.
+#include <opencv2/core.hpp>
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dimer::tracking {
+
+// "Natural" order: runs of digits compare as numbers, the rest byte-wise.
+bool NaturalLess(const std::string& a, const std::string& b);
+
+struct Frame {
+  size_t index = 0;      // position in the sorted frame list
+  std::string name;      // file name, or "file#page" for a page of a multi-page file
+  cv::Mat image;         // single channel, CV_8U or CV_16U; empty when `error` is set
+  std::string error;     // why the frame is unusable, empty when fine
+};
+
+class FrameSource {
+ public:
+  virtual ~FrameSource() = default;
+  // Opens a folder, a multi-page TIFF or a video (by extension). Throws InputError naming the
+  // path when it does not exist, holds no frames, or cannot be opened.
+  static std::unique_ptr<FrameSource> Open(const std::string& path);
+
+  // Number of frames (for video, the count the container declares; reading may end earlier).
+  virtual size_t size() const = 0;
+  // True when Read(i) works in any order and from several threads at once (folders, TIFF).
+  virtual bool random_access() const = 0;
+  // Frame `index`. Random-access sources only.
+  virtual Frame Read(size_t index) const = 0;
+  // The next frame in order; false at the end. Every source supports it (one thread).
+  virtual bool Next(Frame* frame) = 0;
+};
+
+// Frames already in memory (benchmarks, tests): random access, names "memory#i".
+class MemorySource : public FrameSource {
+ public:
+  explicit MemorySource(std::vector<cv::Mat> frames) : frames_(std::move(frames)) {}
+  size_t size() const override { return frames_.size(); }
+  bool random_access() const override { return true; }
+  Frame Read(size_t index) const override;
+  bool Next(Frame* frame) override;
+
+ private:
+  std::vector<cv::Mat> frames_;
+  size_t next_ = 0;
+};
+
+// Decodes one image file as a single-channel 8- or 16-bit frame (colour is converted to grey).
+// Never throws: a bad file gives a Frame with `error` set.
+Frame DecodeImageFile(const std::string& path, size_t index, const std::string& name);
+
+}  // namespace dimer::tracking

@@ -1,0 +1,33 @@
+#pragma once
+// The plate's top surface, as a sub-pixel row. The plate spans the whole width, so a row profile
+// (mean over columns clear of the spheres) shows its top edge as the strongest step.
+//
+// Sub-pixel position by the coverage sum: with levels L_a above and L_b just below a straight
+// edge at row y (pixel r spans [r - 1/2, r + 1/2]), a box-sampled pixel holds the fraction
+// f_r = (p_r - L_a) / (L_b - L_a) of the lower side, and summing f over rows j0..j1 that bracket
+// the edge gives j1 + 1/2 - y exactly: unlike interpolating a half-level crossing, it has no
+// pixel locking. L_b is read three rows below the strongest step, so a lit edge band must be at
+// least 4 px thick (the renderer's kPlateEdgeBandPx), or the edge a plain step.
+#include <opencv2/core.hpp>
+
+#include <utility>
+#include <vector>
+
+namespace dimer::tracking {
+
+// Sub-pixel row of the strongest step of `profile` (profile[i] is the mean of row
+// first_row + i), or NaN when there is no step of at least `min_step` or it is too close to the
+// ends of the profile to bracket.
+double EdgeRowInProfile(const std::vector<double>& profile, int first_row, double min_step);
+
+// Acquisition: the strongest step of the per-row median over sampled columns (the median
+// ignores the spheres, which cover less than half the width). Whole-pixel accuracy; NaN if no
+// plate edge (no step of kPlateMinStepFraction of the frame's range).
+double FindPlateRowCoarse(const cv::Mat& frame);
+
+// Sub-pixel plate row near `row_guess`, from the mean profile over all columns outside
+// `excluded` (column intervals covered by the spheres). NaN if not found.
+double RefinePlateRow(const cv::Mat& frame, double row_guess,
+                      const std::vector<std::pair<double, double>>& excluded);
+
+}  // namespace dimer::tracking

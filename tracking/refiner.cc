@@ -1,0 +1,349 @@
+#include "tracking/refiner.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "common/error.h"
+#include "tracking/disc_coverage.h"
+#include "tracking/tolerances.h"
+
+namespace dimer::tracking {
+namespace {
+
+// A sphere must differ from the background by at least this fraction of full scale.
+constexpr double kMinContrastFraction = 0.03;
+// Fraction of the radius inside which the sphere level is first taken (median).
+constexpr double kInnerLevelRadiusR = 0.5;
+// Second level estimate for non-uniform spheres (BodyLevel): a low quantile, so the dim parts
+// of the body weigh 1 too, but not the minimum (noise, the small dark reflection of the lens).
+constexpr double kBodyLevelRadiusR = 0.8;
+constexpr double kBodyQuantile = 0.04;
+// Width of the linear ramp of the symmetric cuts (rod, plate), px: a smooth mask is sampled by
+// the pixels with less error than a sharp one (less pixel locking).
+constexpr double kMaskRampPx = 2.0;
+// Rim and interior levels closer than this fraction of the contrast: a uniform sphere, the
+// first estimate stands (no second pass).
+constexpr double kUniformLevelFraction = 0.15;
+// Body level passes: stop when the level moves less than this fraction of the contrast.
+constexpr double kLevelSettledFraction = 0.01;
+constexpr int kMaxLevelPasses = 5;
+
+const std::pair<Method, const char*> kMethodNames[] = {{Method::kCentroid, "centroid"},
+                                                       {Method::kDiscFit, "discfit"}};
+
+// Polarity-applied float copy of the square [col0, col0 + size) x [row0, row0 + size).
+struct Window {
+  int col0 = 0, row0 = 0, size = 0;
+  std::vector<float> v;
+  float at(int x, int y) const { return v[size_t(y) * size + x]; }
+};
+
+template <typename T>
+void CopyWindow(const cv::Mat& frame, int polarity, Window* w) {
+  w->v.resize(size_t(w->size) * w->size);
+  for (int y = 0; y < w->size; ++y) {
+    const T* src = frame.ptr<T>(w->row0 + y) + w->col0;
+    float* dst = &w->v[size_t(y) * w->size];
+    for (int x = 0; x < w->size; ++x) dst[x] = float(polarity * double(src[x]));
+  }
+}
+
+// False when the square of half-size `half` around `centre` leaves the frame (clipped sphere).
+bool Extract(const cv::Mat& frame, const Eigen::Vector2d& centre, int half, int polarity,
+             Window* w) {
+  w->col0 = int(std::lround(centre.x())) - half;
+  w->row0 = int(std::lround(centre.y())) - half;
+  w->size = 2 * half + 1;
+  if (w->col0 < 0 || w->row0 < 0 || w->col0 + w->size > frame.cols ||
+      w->row0 + w->size > frame.rows) {
+    return false;
+  }
+  if (frame.depth() == CV_8U) {
+    CopyWindow<uint8_t>(frame, polarity, w);
+  } else {
+    CopyWindow<uint16_t>(frame, polarity, w);
+  }
+  return true;
+}
+
+double Median(std::vector<float>& v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+struct Levels {
+  double background = 0, sphere = 0;
+  bool uniform = true;  // false: `sphere` is the body level of a non-uniform sphere
+};
+
+double Quantile(std::vector<float>& v, double q) {
+  if (v.empty()) return 0;
+  auto it = v.begin() + std::ptrdiff_t(q * double(v.size() - 1));
+  std::nth_element(v.begin(), it, v.end());
+  return *it;
+}
+
+// Background: median of the window's outer ring (the rod and plate cross it, but cover less
+// than half). Sphere: median of the inner part of the disc (highlights are a small minority).
+Levels MeasureLevels(const Window& w, const Eigen::Vector2d& c, double radius) {
+  std::vector<float> ring, inner;
+  const double inner_r2 = std::pow(kInnerLevelRadiusR * radius, 2);
+  for (int y = 0; y < w.size; ++y) {
+    for (int x = 0; x < w.size; ++x) {
+      if (x == 0 || y == 0 || x == w.size - 1 || y == w.size - 1) ring.push_back(w.at(x, y));
+      const double dx = w.col0 + x - c.x(), dy = w.row0 + y - c.y();
+      if (dx * dx + dy * dy < inner_r2) inner.push_back(w.at(x, y));
+    }
+  }
+  return {Median(ring), Median(inner)};
+}
+
+// The body level of a non-uniform sphere: a low quantile of the inner disc. On a uniform disc
+// it is the interior level less ~1.3 sigma; on a mirror sphere most of the body can be much
+// dimmer than its median (the rim reflects the dark backdrop, the bottom the lit plate), and
+// normalising by this level makes the whole body weigh 1, so the centroid is that of the
+// silhouette, not pulled toward the bright reflections. The inner disc (kBodyLevelRadiusR) stays
+// inside the sphere even when the first estimate is off by several pixels.
+double BodyLevel(const Window& w, const Eigen::Vector2d& c, double radius) {
+  std::vector<float> body;
+  const double r2 = std::pow(kBodyLevelRadiusR * radius, 2);
+  for (int y = 0; y < w.size; ++y) {
+    for (int x = 0; x < w.size; ++x) {
+      const double dx = w.col0 + x - c.x(), dy = w.row0 + y - c.y();
+      if (dx * dx + dy * dy <= r2) body.push_back(w.at(x, y));
+    }
+  }
+  return Quantile(body, kBodyQuantile);
+}
+
+// Point-symmetric mask about the estimate: the rod corridor beyond the inset on both sides,
+// and the rows beyond the plate guard with their mirror image above.
+// 0 below -ramp/2, 1 above +ramp/2, linear between.
+double Ramp(double d) { return std::clamp(d / kMaskRampPx + 0.5, 0.0, 1.0); }
+
+struct SymmetricMask {
+  Eigen::Vector2d rod_dir{0, 0};
+  double rod_half_width = 0, rod_inset = 0;
+  double plate_cut = std::numeric_limits<double>::infinity();
+  double operator()(double dx, double dy) const {
+    double m = 1.0;
+    if (rod_half_width > 0) {
+      const double along = std::abs(dx * rod_dir.x() + dy * rod_dir.y());
+      const double across = std::abs(dx * rod_dir.y() - dy * rod_dir.x());
+      m *= 1.0 - Ramp(rod_half_width - across) * Ramp(along - rod_inset);
+    }
+    if (std::isfinite(plate_cut)) {  // plate_cut is relative to the centre: dy < plate_cut
+      m *= Ramp(plate_cut - dy) * Ramp(plate_cut + dy);
+    }
+    return m;
+  }
+};
+
+SymmetricMask MakeMask(const RefineContext& ctx, double radius, const Eigen::Vector2d& c) {
+  SymmetricMask m;
+  if (ctx.rod_dir.squaredNorm() > 0) {
+    m.rod_dir = ctx.rod_dir.normalized();
+    m.rod_half_width = kRodCorridorHalfWidthR * radius;
+    m.rod_inset = radius - kRodCutInsetPx;
+  }
+  if (std::isfinite(ctx.plate_row)) {
+    const double cut = ctx.plate_row - kPlateGuardPx - 0.5 * kMaskRampPx - c.y();
+    if (cut < radius + kWindowMarginPx) m.plate_cut = cut;
+  }
+  return m;
+}
+
+struct CentroidState {
+  Window window;
+  Levels levels;
+  std::vector<float> weight;  // clamped level fraction per window pixel
+};
+
+void ComputeWeights(CentroidState* s) {
+  const double span = s->levels.sphere - s->levels.background;
+  s->weight.resize(s->window.v.size());
+  for (size_t i = 0; i < s->weight.size(); ++i) {
+    s->weight[i] = float(std::clamp((s->window.v[i] - s->levels.background) / span, 0.0, 1.0));
+  }
+}
+
+// One centroid step under the symmetric mask centred at c; returns the new centre.
+Eigen::Vector2d CentroidStep(const CentroidState& s, const Eigen::Vector2d& c, double win_r,
+                             const SymmetricMask& mask) {
+  double sw = 0, sx = 0, sy = 0;
+  const Window& w = s.window;
+  for (int y = 0; y < w.size; ++y) {
+    const double dy = w.row0 + y - c.y();
+    for (int x = 0; x < w.size; ++x) {
+      const float wt = s.weight[size_t(y) * w.size + x];
+      if (wt <= 0) continue;
+      const double dx = w.col0 + x - c.x();
+      const double m = std::clamp(win_r - std::sqrt(dx * dx + dy * dy), 0.0, 1.0) * mask(dx, dy);
+      sw += wt * m;
+      sx += wt * m * dx;
+      sy += wt * m * dy;
+    }
+  }
+  if (sw <= 0) return c;
+  return c + Eigen::Vector2d(sx / sw, sy / sw);
+}
+
+// Weighted area inside the window circle and above the plate guard (no symmetric cuts).
+double WeightedArea(const CentroidState& s, const Eigen::Vector2d& c, double win_r,
+                    double plate_row) {
+  double area = 0;
+  const Window& w = s.window;
+  for (int y = 0; y < w.size; ++y) {
+    const double row = w.row0 + y;
+    if (std::isfinite(plate_row) && row > plate_row - kPlateGuardPx) break;
+    for (int x = 0; x < w.size; ++x) {
+      const double dx = w.col0 + x - c.x(), dy = row - c.y();
+      area += s.weight[size_t(y) * w.size + x] *
+              std::clamp(win_r - std::sqrt(dx * dx + dy * dy), 0.0, 1.0);
+    }
+  }
+  return area;
+}
+
+// Centroid iterations from *centre until converged, keeping the window centred on the
+// estimate. False (status kClipped) when the window would leave the frame.
+bool Iterate(const cv::Mat& frame, const RefineContext& ctx, double radius, int half,
+             CentroidState* s, Eigen::Vector2d* centre, SphereMeasurement* out) {
+  const double win_r = half - 1.0;  // stays inside the window while |c - centre| <= 1 px
+  Eigen::Vector2d& c = *centre;
+  Eigen::Vector2d window_centre(s->window.col0 + half, s->window.row0 + half);
+  for (int it = 0; it < kCentroidMaxIter; ++it) {
+    ++out->iterations;
+    const Eigen::Vector2d next = CentroidStep(*s, c, win_r, MakeMask(ctx, radius, c));
+    const double moved = (next - c).norm();
+    c = next;
+    if ((c - window_centre).cwiseAbs().maxCoeff() > 0.5) {  // keep the window centred
+      window_centre = c;
+      if (!Extract(frame, c, half, ctx.polarity, &s->window)) {
+        out->status = SphereMeasurement::Status::kClipped;
+        return false;
+      }
+      ComputeWeights(s);
+    } else if (moved < kCentroidConvergedPx) {
+      break;
+    }
+  }
+  return true;
+}
+
+SphereMeasurement Centroid(const cv::Mat& frame, const Eigen::Vector2d& guess, double radius,
+                           const RefineContext& ctx, CentroidState* s) {
+  SphereMeasurement out;
+  const int half = int(std::ceil(radius + kWindowMarginPx));
+  const double win_r = half - 1.0;  // stays inside the window while |c - centre| <= 1 px
+  Eigen::Vector2d c = guess;
+  if (!Extract(frame, c, half, ctx.polarity, &s->window)) {
+    out.status = SphereMeasurement::Status::kClipped;
+    return out;
+  }
+  s->levels = MeasureLevels(s->window, c, radius);
+  const double full = frame.depth() == CV_8U ? 255.0 : 65535.0;
+  if (s->levels.sphere - s->levels.background < kMinContrastFraction * full) return out;
+  ComputeWeights(s);
+  if (!Iterate(frame, ctx, radius, half, s, &c, &out)) return out;
+  // Non-uniform spheres: normalise by the body level, measured again around each new centre
+  // until it settles (the first centre can be pixels off, pulled by bright reflections).
+  const double contrast = s->levels.sphere - s->levels.background;
+  for (int pass = 0; pass < kMaxLevelPasses; ++pass) {
+    const double body = BodyLevel(s->window, c, radius);
+    const double change = std::abs(body - s->levels.sphere);
+    if (change <= (pass == 0 ? kUniformLevelFraction : kLevelSettledFraction) * contrast ||
+        body - s->levels.background < kMinContrastFraction * full) {
+      break;
+    }
+    s->levels.sphere = body;
+    s->levels.uniform = false;
+    ComputeWeights(s);
+    if (!Iterate(frame, ctx, radius, half, s, &c, &out)) return out;
+  }
+  const double area = WeightedArea(*s, c, win_r, ctx.plate_row);
+  out.area_fraction = area / (std::numbers::pi * radius * radius);
+  out.centre = c;
+  out.radius_px = std::sqrt(area / std::numbers::pi);
+  const bool ok = out.area_fraction > kMinAreaFraction && out.area_fraction < kMaxAreaFraction;
+  out.status = ok ? SphereMeasurement::Status::kFound : SphereMeasurement::Status::kMissing;
+  return out;
+}
+
+// What the fit sees of a pixel: its level for a uniform sphere, its clamped weight otherwise.
+double Data(double v, const Levels& l) {
+  if (l.uniform) return v;
+  return std::clamp((v - l.background) / (l.sphere - l.background), 0.0, 1.0);
+}
+
+// Gauss-Newton on (cx, cy, R, background, sphere level) over the edge band.
+void DiscFit(const cv::Mat& frame, const RefineContext& ctx, const Levels& start,
+             SphereMeasurement* m) {
+  // A non-uniform sphere is fitted through its clamped weights (its silhouette), 0 to 1.
+  Eigen::Matrix<double, 5, 1> p;
+  p << m->centre.x(), m->centre.y(), m->radius_px, start.uniform ? start.background : 0.0,
+      start.uniform ? start.sphere : 1.0;
+  const double radius_guess = m->radius_px;
+  Window w;
+  const int half = int(std::ceil(radius_guess + kFitBandPx + 2.0));
+  for (int it = 1; it <= kFitMaxIter; ++it) {
+    const Eigen::Vector2d c(p(0), p(1));
+    if (!Extract(frame, c, half, ctx.polarity, &w)) {
+      m->status = SphereMeasurement::Status::kClipped;
+      return;
+    }
+    const SymmetricMask mask = MakeMask(ctx, p(2), c);
+    Eigen::Matrix<double, 5, 5> jtj = Eigen::Matrix<double, 5, 5>::Zero();
+    Eigen::Matrix<double, 5, 1> jtr = Eigen::Matrix<double, 5, 1>::Zero();
+    for (int y = 0; y < w.size; ++y) {
+      for (int x = 0; x < w.size; ++x) {
+        const double col = w.col0 + x, row = w.row0 + y, dx = col - c.x(), dy = row - c.y();
+        if (std::abs(std::sqrt(dx * dx + dy * dy) - p(2)) > kFitBandPx) continue;
+        if (mask(dx, dy) < 1.0) continue;  // rod corridor, plate: not part of the disc model
+        const PixelCoverage cov = DiscPixelCoverage(col, row, c, p(2));
+        const double span = p(4) - p(3);
+        Eigen::Matrix<double, 5, 1> j;
+        j << span * cov.d_cx, span * cov.d_cy, span * cov.d_r, 1.0 - cov.area, cov.area;
+        jtj += j * j.transpose();
+        jtr += j * (Data(w.at(x, y), start) - (p(3) + span * cov.area));
+      }
+    }
+    const Eigen::Matrix<double, 5, 1> step = jtj.ldlt().solve(jtr);
+    if (!step.allFinite()) return;  // keep the centroid result
+    p += step;
+    m->iterations = it;
+    if (step.head<2>().norm() < kFitConvergedPx) break;
+  }
+  m->centre = {p(0), p(1)};
+  m->radius_px = p(2);
+}
+
+}  // namespace
+
+std::string ToString(Method m) {
+  for (const auto& [value, name] : kMethodNames) {
+    if (value == m) return name;
+  }
+  return "?";
+}
+
+Method ParseMethod(const std::string& name, const std::string& option) {
+  for (const auto& [value, n] : kMethodNames) {
+    if (name == n) return value;
+  }
+  throw InputError(option + " '" + name + "': expected centroid or discfit");
+}
+
+SphereMeasurement MeasureSphere(const cv::Mat& frame, const Eigen::Vector2d& guess,
+                                double radius_px, const RefineContext& context, Method method) {
+  CentroidState state;
+  SphereMeasurement m = Centroid(frame, guess, radius_px, context, &state);
+  if (m.found() && method == Method::kDiscFit) DiscFit(frame, context, state.levels, &m);
+  return m;
+}
+
+}  // namespace dimer::tracking

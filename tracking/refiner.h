@@ -1,0 +1,51 @@
+#pragma once
+// Sub-pixel centre of one sphere near a first guess, by one of two methods (`--method`):
+//
+//  - centroid: the paper's thresholded intensity-weighted centroid. Each pixel's weight is its
+//    level between the local background and sphere levels, clamped to [0, 1]: interior pixels
+//    weigh 1 (their noise is clipped away), exterior 0, and an edge pixel its covered fraction,
+//    so the weighted centroid is the silhouette's area centroid (intensity variations inside a
+//    mirror sphere do not pull it). Anything that is not the sphere (the rod leaving it, the
+//    plate below) is masked out by a mask that is point-symmetric about the current estimate:
+//    a symmetric mask removes equal parts on both sides and leaves the centroid of a symmetric
+//    object unbiased, and iterating makes the estimate the mask's fixed point.
+//  - discfit: least squares fit of the exact pixel-coverage disc model (disc_coverage.h) to the
+//    pixels within kFitBandPx of the edge: centre, radius and the two levels (Gauss-Newton with
+//    Eigen). It is the maximum-likelihood estimate under Gaussian noise for a uniform disc, so it
+//    approaches the Cramér-Rao bound; it costs more.
+//
+// A sphere whose window leaves the frame is `kClipped`; one whose weighted area is far from
+// pi R^2 (absent, or merged with something) is `kMissing`. Both are expected outcomes, not errors.
+#include <opencv2/core.hpp>
+
+#include <Eigen/Core>
+#include <string>
+
+namespace dimer::tracking {
+
+enum class Method { kCentroid, kDiscFit };
+std::string ToString(Method m);
+Method ParseMethod(const std::string& name, const std::string& option = "--method");
+
+struct RefineContext {
+  int polarity = 1;                   // +1: spheres brighter than background; -1: darker
+  double plate_row = std::numeric_limits<double>::quiet_NaN();  // plate top surface, px
+  Eigen::Vector2d rod_dir{0, 0};      // unit vector toward the other sphere; zero: no rod cut
+};
+
+struct SphereMeasurement {
+  enum class Status { kFound, kClipped, kMissing };
+  Status status = Status::kMissing;
+  Eigen::Vector2d centre{0, 0};  // (col, row), px
+  double radius_px = 0;          // from the weighted area (centroid) or the fit (discfit)
+  double area_fraction = 0;      // weighted area / (pi radius_guess^2)
+  int iterations = 0;
+  bool found() const { return status == Status::kFound; }
+};
+
+// `radius_px` is the expected sphere radius: it sizes the window (radius + kWindowMarginPx) and
+// the masks. `frame` is CV_8U or CV_16U, single channel.
+SphereMeasurement MeasureSphere(const cv::Mat& frame, const Eigen::Vector2d& guess,
+                                double radius_px, const RefineContext& context, Method method);
+
+}  // namespace dimer::tracking

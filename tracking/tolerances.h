@@ -1,0 +1,45 @@
+#pragma once
+// Every tolerance, margin and iteration cap of the tracking library, named once with its unit.
+// They derive from two base facts: pixels are the unit of image geometry, and the spheres are
+// tens of pixels across, so a few pixels of margin separate a sphere from its surroundings.
+namespace dimer::tracking {
+
+// Half-size added to the sphere radius for a measurement window, px. Must exceed the largest
+// frame-to-frame prediction error (a sphere moves < 1 px per frame at 2000 frames/s), else the
+// first centroid iteration sees a cut disc.
+inline constexpr double kWindowMarginPx = 4.0;
+// Iterative centroid: stop when the centre moves less than this between iterations, px.
+// Two orders below the accuracy target (0.02 px) so convergence never shows in the error.
+inline constexpr double kCentroidConvergedPx = 1e-4;
+inline constexpr int kCentroidMaxIter = 12;
+// Disc fit (Gauss-Newton): stop when the centre update is below this, px.
+inline constexpr double kFitConvergedPx = 1e-5;
+inline constexpr int kFitMaxIter = 8;
+// Disc fit uses pixels whose centre is within this distance of the current edge, px: the edge
+// pixels carry the position information, and a band of whole pixels on both sides pins the
+// two levels locally (so a non-uniform interior, e.g. a mirror sphere, matters less).
+inline constexpr double kFitBandPx = 3.0;
+// Pixels whose centre lies this close above the plate surface are left out, px: their extent
+// (half a pixel) plus motion blur and edge-estimate error must not reach the plate.
+inline constexpr double kPlateGuardPx = 1.0;
+// The rod leaves a sphere along its axis: pixels in a corridor of this half-width (in units of
+// the sphere radius) beyond kRodCutInsetPx inside the edge are left out, on both sides so the
+// mask stays point-symmetric (a symmetric mask does not bias a centroid).
+inline constexpr double kRodCorridorHalfWidthR = 0.3;
+inline constexpr double kRodCutInsetPx = 2.0;
+// A sphere is "found" when its weighted area is within this factor of pi R^2 (the masks remove
+// at most ~25 %; a missing sphere gives ~0, a merged blob far more).
+inline constexpr double kMinAreaFraction = 0.45;
+inline constexpr double kMaxAreaFraction = 1.6;
+// Plate edge: search band half-height around the previous row, px (plate motion is < 1 px per
+// frame at 2000 frames/s; a wider band costs time only).
+inline constexpr int kPlateBandHalfPx = 8;
+// Columns within this distance of a sphere's edge are not used for the plate profile, px.
+inline constexpr double kPlateSphereClearPx = 4.0;
+// A step smaller than this fraction of the frame's dynamic range is not a plate edge.
+inline constexpr double kPlateMinStepFraction = 0.15;
+// Acquisition: a second distance-transform peak is a sphere if at least this fraction of the
+// first one (a rod or a clipped sliver gives much less).
+inline constexpr double kSecondPeakFraction = 0.6;
+
+}  // namespace dimer::tracking

@@ -1,0 +1,305 @@
+#include "tracking/track.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <future>
+#include <thread>
+
+#include "common/atomic_output.h"
+#include "common/error.h"
+#include "common/h5_file.h"
+#include "common/interrupt.h"
+#include "common/progress.h"
+#include "common/provenance.h"
+#include "common/trajectory_io.h"
+
+namespace dimer::tracking {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Found radii used for the diameter calibration (a median over this many is plenty).
+constexpr size_t kCalibrationSamples = 2000;
+
+// What every chunk must agree on, fixed from the first readable frame.
+struct Reference {
+  int width = 0, height = 0, polarity = 0;
+  double radius_px = kNaN;
+};
+
+struct ChunkResult {
+  std::vector<FrameTrack> frames;
+  std::vector<std::string> names;
+  std::vector<SkippedFrame> skipped;
+  bool interrupted = false;
+};
+
+std::string SizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+ChunkResult TrackChunk(const FrameSource& source, size_t start, size_t count,
+                       std::vector<Frame> prefetched, const TrackerOptions& opts,
+                       const Reference& ref) {
+  ChunkResult out;
+  TrackerOptions o = opts;
+  o.polarity = ref.polarity;
+  o.radius_px = ref.radius_px;
+  SequenceTracker tracker(o);
+  const size_t n = prefetched.empty() ? count : prefetched.size();
+  for (size_t j = 0; j < n; ++j) {
+    if (InterruptRequested()) {
+      out.interrupted = true;
+      break;
+    }
+    Frame f = prefetched.empty() ? source.Read(start + j) : std::move(prefetched[j]);
+    if (f.error.empty() && (f.image.cols != ref.width || f.image.rows != ref.height)) {
+      f.error = "size " + SizeText(f.image.cols, f.image.rows) + " differs from the first frame's " +
+                SizeText(ref.width, ref.height);
+    }
+    if (!f.error.empty()) {
+      out.skipped.push_back({f.index, f.name, f.error});
+      continue;
+    }
+    out.frames.push_back(tracker.Process(f.image, f.index));
+    out.names.push_back(f.name);
+  }
+  return out;
+}
+
+Reference MakeReference(const cv::Mat& image, const TrackerOptions& opts) {
+  Reference ref;
+  ref.width = image.cols;
+  ref.height = image.rows;
+  SequenceTracker probe(opts);
+  probe.Process(image, 0);
+  ref.polarity = probe.polarity();
+  ref.radius_px = probe.radius_px();
+  return ref;
+}
+
+// Swaps a chunk's identities when that continues the previous chunk's positions better.
+void Stitch(const std::vector<FrameTrack>& done, std::vector<FrameTrack>* chunk) {
+  auto both = [](const FrameTrack& t) { return t.found[0] && t.found[1]; };
+  auto last = std::find_if(done.rbegin(), done.rend(), both);
+  auto first = std::find_if(chunk->begin(), chunk->end(), both);
+  if (last == done.rend() || first == chunk->end()) return;
+  const double keep = (first->centre[0] - last->centre[0]).norm() +
+                      (first->centre[1] - last->centre[1]).norm();
+  const double cross = (first->centre[0] - last->centre[1]).norm() +
+                       (first->centre[1] - last->centre[0]).norm();
+  if (cross >= keep) return;
+  for (FrameTrack& t : *chunk) {
+    std::swap(t.found[0], t.found[1]);
+    std::swap(t.centre[0], t.centre[1]);
+    std::swap(t.radius_px[0], t.radius_px[1]);
+  }
+}
+
+}  // namespace
+
+void SequenceOptions::Check() const {
+  tracker.Check();
+  if (threads < 0 || threads > 256) throw InputError("--threads must be 0 (all cores) .. 256");
+  if (chunk_frames < 1) throw InputError("--chunk-frames must be >= 1");
+}
+
+SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options,
+                             const std::function<void(size_t)>& on_progress,
+                             const std::function<void(const SkippedFrame&)>& on_skip) {
+  options.Check();
+  const int threads = options.threads > 0 ? options.threads
+                                          : int(std::max(1u, std::thread::hardware_concurrency()));
+  SequenceResult result;
+  Reference ref;
+  bool have_ref = false;
+  size_t next = 0;
+  bool exhausted = false;
+  std::deque<std::future<ChunkResult>> inflight;
+  auto launch = [&]() {
+    std::vector<Frame> buffer;
+    size_t count = options.chunk_frames;
+    if (!source.random_access()) {  // decode ahead on this thread
+      Frame f;
+      while (buffer.size() < options.chunk_frames && source.Next(&f)) buffer.push_back(f);
+      count = buffer.size();
+    } else {
+      count = std::min(count, source.size() - next);
+    }
+    if (count == 0) {
+      exhausted = true;
+      return;
+    }
+    if (!have_ref) {  // the first readable frame fixes size, polarity and radius
+      for (size_t j = 0; j < count && !have_ref; ++j) {
+        Frame f = buffer.empty() ? source.Read(next + j) : buffer[j];
+        if (f.error.empty()) ref = MakeReference(f.image, options.tracker), have_ref = true;
+      }
+    }
+    inflight.push_back(std::async(std::launch::async, TrackChunk, std::cref(source), next, count,
+                                  std::move(buffer), options.tracker, ref));
+    next += count;
+    if (source.random_access() && next >= source.size()) exhausted = true;
+  };
+  while (true) {
+    while (!exhausted && !InterruptRequested() && int(inflight.size()) < threads + 1) launch();
+    if (inflight.empty()) break;
+    ChunkResult chunk = inflight.front().get();
+    inflight.pop_front();
+    for (const auto& s : chunk.skipped) {
+      if (on_skip) on_skip(s);
+      result.skipped.push_back(s);
+    }
+    if (!result.complete) continue;  // after an interruption keep only whole prefixes
+    Stitch(result.frames, &chunk.frames);
+    result.frames.insert(result.frames.end(), chunk.frames.begin(), chunk.frames.end());
+    result.names.insert(result.names.end(), chunk.names.begin(), chunk.names.end());
+    if (chunk.interrupted) result.complete = false;
+    if (on_progress) on_progress(result.frames.size() + result.skipped.size());
+  }
+  if (InterruptRequested()) result.complete = false;
+  result.polarity = ref.polarity;
+  result.width = ref.width;
+  result.height = ref.height;
+  return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+void TrackArgs::Check() const {
+  std::string bad;
+  auto need = [&](bool ok, const std::string& what) {
+    if (!ok) bad += (bad.empty() ? "" : "; ") + what;
+  };
+  need(!input.empty(), "input: a folder of frames, a TIFF or a video is required");
+  need(!output.empty(), "-o: the output track file is required");
+  need(fps > 0 && std::isfinite(fps), "--fps must be > 0 frames/s");
+  need(std::isnan(m_per_px) || m_per_px > 0, "--m-per-px must be > 0 m/px");
+  need(diameter > 0 && std::isfinite(diameter), "--diameter must be > 0 m");
+  need(polarity == "auto" || polarity == "bright" || polarity == "dark",
+       "--polarity '" + polarity + "': expected auto, bright or dark");
+  try {
+    ParseMethod(method);
+  } catch (const InputError& e) {
+    need(false, e.what());
+  }
+  if (!bad.empty()) throw InputError(bad);
+  sequence.Check();
+}
+
+namespace {
+
+double Median(std::vector<double> v) {
+  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
+  if (v.empty()) return kNaN;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+struct Calibration {
+  double m_per_px, row0;
+};
+
+Calibration Calibrate(const TrackArgs& args, const SequenceResult& r) {
+  Calibration cal{args.m_per_px, args.row0};
+  if (std::isnan(cal.m_per_px)) {
+    std::vector<double> radii;
+    for (const auto& f : r.frames) {
+      for (int k = 0; k < 2 && radii.size() < kCalibrationSamples; ++k) {
+        if (f.found[k]) radii.push_back(f.radius_px[k]);
+      }
+    }
+    const double radius = Median(radii);
+    if (!std::isfinite(radius)) {
+      throw InputError(args.input + ": no sphere found, cannot calibrate; pass --m-per-px");
+    }
+    cal.m_per_px = args.diameter / (2.0 * radius);
+  }
+  if (std::isnan(cal.row0)) {
+    std::vector<double> rows;
+    for (const auto& f : r.frames) rows.push_back(f.plate_row);
+    cal.row0 = Median(rows);
+    if (std::isnan(cal.row0)) cal.row0 = r.height - 0.5;  // no plate seen: bottom of the frame
+  }
+  return cal;
+}
+
+void WriteTrackFile(const std::string& path, const TrackArgs& args, const SequenceResult& r,
+                    const Calibration& cal) {
+  const size_t n = r.frames.size();
+  Trajectory traj;
+  traj.Reserve(n);
+  std::vector<double> px[2], plate_row(n);
+  std::vector<int64_t> index(n);
+  std::vector<uint8_t> found(2 * n);
+  for (size_t i = 0; i < n; ++i) {
+    const FrameTrack& f = r.frames[i];
+    Eigen::Vector2d tip[2];
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::Vector2d c = f.found[k] ? f.centre[k] : Eigen::Vector2d(kNaN, kNaN);
+      px[k].push_back(c.x());
+      px[k].push_back(c.y());
+      tip[k] = {c.x() * cal.m_per_px, (cal.row0 - c.y()) * cal.m_per_px};
+      found[2 * i + k] = f.found[k];
+    }
+    const Eigen::Vector2d axis = tip[1] - tip[0];
+    traj.Append(double(f.index) / args.fps, tip[0], tip[1],
+                (cal.row0 - f.plate_row) * cal.m_per_px, std::atan2(axis.y(), axis.x()));
+    plate_row[i] = f.plate_row;
+    index[i] = int64_t(f.index);
+  }
+  std::vector<std::string> skipped_names, skipped_reasons;
+  for (const auto& s : r.skipped) {
+    skipped_names.push_back(s.name);
+    skipped_reasons.push_back(s.reason);
+  }
+  H5Writer w(path);
+  WriteProvenance(w, "track",
+                  {{"source", args.input}, {"method", args.method}, {"fps", args.fps},
+                   {"m_per_px", cal.m_per_px}, {"row0", cal.row0}, {"diameter", args.diameter},
+                   {"polarity", std::string(r.polarity > 0 ? "bright" : "dark")},
+                   {"polarity_requested", args.polarity},
+                   {"m_per_px_given", int64_t(!std::isnan(args.m_per_px))},
+                   {"chunk_frames", int64_t(args.sequence.chunk_frames)},
+                   {"width", int64_t(r.width)}, {"height", int64_t(r.height)},
+                   {"frames_tracked", int64_t(n)}, {"frames_skipped", int64_t(r.skipped.size())},
+                   {"complete", int64_t(r.complete)}});
+  WriteTrajectory(w, traj);
+  w.WriteDoubles("/pixels/left", px[0], {n, 2}, "px");
+  w.WriteDoubles("/pixels/right", px[1], {n, 2}, "px");
+  w.WriteDoubles("/pixels/plate_row", plate_row, {n}, "px");
+  w.WriteInt64("/frame_index", index, {n});
+  w.WriteStrings("/frame_files", r.names);
+  w.WriteUint8("/found", found, {n, 2});
+  w.WriteStrings("/skipped/files", skipped_names);
+  w.WriteStrings("/skipped/reasons", skipped_reasons);
+  w.Close();
+}
+
+}  // namespace
+
+void RunTrack(const TrackArgs& args) {
+  args.Check();
+  SequenceOptions seq = args.sequence;
+  seq.tracker.method = ParseMethod(args.method);
+  seq.tracker.polarity = args.polarity == "bright" ? 1 : args.polarity == "dark" ? -1 : 0;
+  AtomicOutput out(args.output, args.force);  // refuses an existing output before any work
+  auto source = FrameSource::Open(args.input);
+  ProgressMeter progress("track", "frames", double(source->size()), !args.quiet);
+  const SequenceResult r = TrackSequence(
+      *source, seq, [&](size_t done) { progress.Update(double(done)); },
+      [&](const SkippedFrame& s) {
+        std::fprintf(stderr, "%sdimerlab: warning: %s: %s; skipped\n", args.quiet ? "" : "\n",
+                     s.name.c_str(), s.reason.c_str());
+      });
+  progress.Finish(double(r.frames.size() + r.skipped.size()));
+  if (r.frames.empty()) {
+    if (!r.complete) throw Interrupted();
+    throw InputError(args.input + ": no readable frame (all " +
+                     std::to_string(r.skipped.size()) + " were skipped)");
+  }
+  WriteTrackFile(out.temp_path(), args, r, Calibrate(args, r));
+  out.Commit();
+  if (!r.complete) throw Interrupted();
+}
+
+}  // namespace dimer::tracking

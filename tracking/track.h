@@ -1,0 +1,70 @@
+#pragma once
+// `dimerlab track FRAMES -o track.h5`: the tracker over a whole source, in parallel, and the
+// track file of FORMATS.md.
+//
+// Parallelism with deterministic results: the sequence is cut into chunks of a fixed number of
+// frames; each chunk is decoded and tracked by its own worker with its own SequenceTracker
+// (which acquires at the chunk start), and chunks are joined in order, identities stitched by
+// nearest position across the boundary. Results depend on the chunk size, never on the number
+// of threads or on scheduling. Memory: at most `threads + 1` chunks of results in flight, and
+// frames are decoded one at a time per worker (sequential sources such as video decode ahead
+// one chunk per worker).
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "tracking/frame_source.h"
+#include "tracking/tracker.h"
+
+namespace dimer::tracking {
+
+struct SequenceOptions {
+  TrackerOptions tracker;
+  int threads = 0;            // worker threads; 0: all cores
+  size_t chunk_frames = 512;  // frames per chunk (changing it may change the last digits)
+  void Check() const;
+};
+
+struct SkippedFrame {
+  size_t index = 0;
+  std::string name, reason;
+};
+
+struct SequenceResult {
+  std::vector<FrameTrack> frames;       // readable frames, in order
+  std::vector<std::string> names;       // file name of each row of `frames`
+  std::vector<SkippedFrame> skipped;    // unreadable or wrong-size frames
+  int polarity = 0;                     // the polarity used
+  int width = 0, height = 0;            // frame size
+  bool complete = true;                 // false when interrupted
+};
+
+// Tracks every frame of `source`. `on_progress(done)` is called from the calling thread.
+// Skipped frames are reported through `on_skip` as they are met (may be empty).
+SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options,
+                             const std::function<void(size_t)>& on_progress = {},
+                             const std::function<void(const SkippedFrame&)>& on_skip = {});
+
+struct TrackArgs {
+  std::string input;            // folder of frames, multi-page TIFF or video
+  std::string output;           // track.h5
+  bool force = false;           // replace an existing output
+  double fps = 2000.0;          // frame rate, frames/s
+  double m_per_px = std::numeric_limits<double>::quiet_NaN();  // m/px; NaN: from --diameter
+  double diameter = 9.5e-3;     // sphere diameter, m (calibration when m_per_px is not given)
+  double row0 = std::numeric_limits<double>::quiet_NaN();      // z = 0 row, px; NaN: plate median
+  std::string method = "centroid";
+  std::string polarity = "auto";  // auto | bright | dark
+  SequenceOptions sequence;
+  bool quiet = false;           // no progress on stderr
+  void Check() const;           // InputError listing every invalid field
+};
+
+// Runs the whole command; throws InputError for bad input, Interrupted after writing a valid
+// partial file on Ctrl-C.
+void RunTrack(const TrackArgs& args);
+
+}  // namespace dimer::tracking

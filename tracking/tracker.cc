@@ -1,0 +1,140 @@
+#include "tracking/tracker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "common/error.h"
+#include "tracking/detector.h"
+#include "tracking/plate_edge.h"
+#include "tracking/tolerances.h"
+
+namespace dimer::tracking {
+namespace {
+
+// Before the radius is known, windows are sized from the distance-transform radius with this
+// headroom (the silhouette of a mirror sphere can look smaller than the sphere).
+constexpr double kProvisionalRadiusScale = 1.25;
+
+RefineContext Context(int polarity, double plate_row, const Eigen::Vector2d& self,
+                      const Eigen::Vector2d* other) {
+  RefineContext ctx;
+  ctx.polarity = polarity;
+  ctx.plate_row = plate_row;
+  if (other && (*other - self).norm() > 0) ctx.rod_dir = (*other - self).normalized();
+  return ctx;
+}
+
+}  // namespace
+
+void TrackerOptions::Check() const {
+  std::string bad;
+  if (polarity < -1 || polarity > 1) bad += "polarity must be -1, 0 or +1; ";
+  if (!std::isnan(radius_px) && !(radius_px >= 3)) bad += "sphere radius must be >= 3 px; ";
+  if (!bad.empty()) throw InputError(bad.substr(0, bad.size() - 2));
+}
+
+SequenceTracker::SequenceTracker(const TrackerOptions& options)
+    : options_(options), polarity_(options.polarity), radius_px_(options.radius_px) {
+  options_.Check();
+}
+
+double SequenceTracker::PlateRow(const cv::Mat& frame, double guess,
+                                 const std::array<Eigen::Vector2d, 2>& centres, int n) const {
+  std::vector<std::pair<double, double>> excluded;
+  const double r = (std::isnan(radius_px_) ? 0.0 : radius_px_) + kPlateSphereClearPx;
+  for (int k = 0; k < n; ++k) excluded.emplace_back(centres[k].x() - r, centres[k].x() + r);
+  return RefinePlateRow(frame, guess, excluded);
+}
+
+bool SequenceTracker::Follow(const cv::Mat& frame, FrameTrack* out) {
+  if (!locked_[0] || !locked_[1] || !std::isfinite(plate_row_)) return false;
+  const std::array<Eigen::Vector2d, 2> predicted{last_[0] + velocity_[0],
+                                                 last_[1] + velocity_[1]};
+  out->plate_row = PlateRow(frame, plate_row_, predicted, 2);
+  if (!std::isfinite(out->plate_row)) return false;
+  for (int k = 0; k < 2; ++k) {
+    const RefineContext ctx = Context(polarity_, out->plate_row, predicted[k], &predicted[1 - k]);
+    const SphereMeasurement m = MeasureSphere(frame, predicted[k], radius_px_, ctx, options_.method);
+    if (!m.found()) return false;
+    out->found[k] = true;
+    out->centre[k] = m.centre;
+    out->radius_px[k] = m.radius_px;
+  }
+  return true;
+}
+
+void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
+  *out = FrameTrack{out->index};
+  out->acquired = true;
+  const Detection det = DetectSpheres(frame, polarity_);
+  const int n = int(det.centres.size());
+  std::array<Eigen::Vector2d, 2> coarse{};
+  for (int k = 0; k < n; ++k) coarse[k] = det.centres[k];
+  if (std::isnan(radius_px_) && n > 0) {
+    // Measure with a provisional window, then keep the larger of the two radius estimates.
+    const double dt_r = *std::max_element(det.radii_px.begin(), det.radii_px.end());
+    const RefineContext ctx = Context(polarity_, det.plate_row, coarse[0], n > 1 ? &coarse[1] : nullptr);
+    const SphereMeasurement m = MeasureSphere(frame, coarse[0], kProvisionalRadiusScale * dt_r,
+                                              ctx, Method::kCentroid);
+    radius_px_ = std::max(dt_r, m.found() ? m.radius_px : 0.0);
+  }
+  out->plate_row = PlateRow(frame, det.plate_row, coarse, n);
+  std::vector<SphereMeasurement> found;
+  for (int k = 0; k < n; ++k) {
+    const RefineContext ctx =
+        Context(polarity_, out->plate_row, coarse[k], n > 1 ? &coarse[1 - k] : nullptr);
+    const SphereMeasurement m = MeasureSphere(frame, coarse[k], radius_px_, ctx, options_.method);
+    if (m.found()) found.push_back(m);
+  }
+  // Identities: nearest last position if any is known, else left = smaller column.
+  std::array<int, 2> slot_of{0, 1};
+  if (found.size() == 2) {
+    bool swap = found[1].centre.x() < found[0].centre.x();
+    if (known_[0] && known_[1]) {
+      const double keep = (found[0].centre - last_[0]).norm() + (found[1].centre - last_[1]).norm();
+      const double cross = (found[0].centre - last_[1]).norm() + (found[1].centre - last_[0]).norm();
+      swap = cross < keep;
+    }
+    if (swap) slot_of = {1, 0};
+  } else if (found.size() == 1) {
+    const Eigen::Vector2d c = found[0].centre;
+    if (known_[0] || known_[1]) {
+      const double d0 = known_[0] ? (c - last_[0]).norm() : INFINITY;
+      const double d1 = known_[1] ? (c - last_[1]).norm() : INFINITY;
+      slot_of[0] = d1 < d0 ? 1 : 0;
+    } else {
+      slot_of[0] = c.x() < 0.5 * frame.cols ? 0 : 1;
+    }
+  }
+  for (size_t i = 0; i < found.size(); ++i) {
+    out->found[slot_of[i]] = true;
+    out->centre[slot_of[i]] = found[i].centre;
+    out->radius_px[slot_of[i]] = found[i].radius_px;
+  }
+}
+
+void SequenceTracker::Commit(const FrameTrack& t) {
+  if (std::isfinite(t.plate_row)) plate_row_ = t.plate_row;
+  for (int k = 0; k < 2; ++k) {
+    velocity_[k] = (t.found[k] && locked_[k]) ? Eigen::Vector2d(t.centre[k] - last_[k])
+                                              : Eigen::Vector2d(0, 0);
+    locked_[k] = t.found[k];
+    if (t.found[k]) {
+      last_[k] = t.centre[k];
+      known_[k] = true;
+    }
+  }
+}
+
+FrameTrack SequenceTracker::Process(const cv::Mat& frame, size_t index) {
+  if (polarity_ == 0) polarity_ = DetectPolarity(frame);
+  FrameTrack out;
+  out.index = index;
+  if (!Follow(frame, &out)) Acquire(frame, &out);
+  Commit(out);
+  return out;
+}
+
+}  // namespace dimer::tracking

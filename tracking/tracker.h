@@ -1,0 +1,65 @@
+#pragma once
+// Following the two spheres and the plate edge through a sequence, one frame at a time.
+// A list of stages per frame:
+//   1. predict each sphere from its last two positions (constant velocity);
+//   2. refine the plate row in a band around the last one, using columns clear of the spheres;
+//   3. measure each sphere in a window around its prediction (refiner.h), masking the rod toward
+//      the other sphere and the plate;
+//   4. if a sphere is lost (missing, clipped) or nothing is locked yet, acquire on the whole
+//      frame (detector.h) and give each detection the identity of the nearest last position;
+//      with no history, `left` is the one with the smaller column (FORMATS.md).
+// The tracker keeps only the last positions, so memory does not depend on sequence length.
+#include <opencv2/core.hpp>
+
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <limits>
+
+#include "tracking/refiner.h"
+
+namespace dimer::tracking {
+
+struct TrackerOptions {
+  Method method = Method::kCentroid;  // sub-pixel method
+  int polarity = 0;                   // +1 bright spheres, -1 dark (backlit), 0 automatic
+  double radius_px = std::numeric_limits<double>::quiet_NaN();  // sphere radius, px; NaN: measured
+
+  void Check() const;  // InputError listing every invalid field
+};
+
+// One frame's result. Sphere 0 is `left`, 1 is `right`.
+struct FrameTrack {
+  size_t index = 0;                                // position in the frame list
+  std::array<bool, 2> found{false, false};
+  std::array<Eigen::Vector2d, 2> centre{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};  // px
+  std::array<double, 2> radius_px{0, 0};           // measured radius (for calibration), px
+  double plate_row = std::numeric_limits<double>::quiet_NaN();  // plate top surface, px
+  bool acquired = false;                           // whole-frame detection was needed
+};
+
+class SequenceTracker {
+ public:
+  explicit SequenceTracker(const TrackerOptions& options);
+  FrameTrack Process(const cv::Mat& frame, size_t index);
+  int polarity() const { return polarity_; }
+  double radius_px() const { return radius_px_; }
+
+ private:
+  bool Follow(const cv::Mat& frame, FrameTrack* out);
+  void Acquire(const cv::Mat& frame, FrameTrack* out);
+  double PlateRow(const cv::Mat& frame, double guess,
+                  const std::array<Eigen::Vector2d, 2>& centres, int n) const;
+  void Commit(const FrameTrack& t);
+
+  TrackerOptions options_;
+  int polarity_ = 0;
+  double radius_px_;
+  double plate_row_ = std::numeric_limits<double>::quiet_NaN();
+  std::array<bool, 2> known_{false, false};    // a last position exists (maybe stale)
+  std::array<bool, 2> locked_{false, false};   // found in the previous frame
+  std::array<Eigen::Vector2d, 2> last_{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
+  std::array<Eigen::Vector2d, 2> velocity_{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
+};
+
+}  // namespace dimer::tracking
