@@ -11,6 +11,7 @@ namespace {
 struct SimCli {
   sim::SimRunArgs args;
   std::string init = "drift";
+  std::string restitution = "capped";
   std::string init_state;
   bool quiet = false;
 };
@@ -30,6 +31,11 @@ void AddSimOptions(CLI::App* c, SimCli* a) {
   c->add_option("--mu-s", o.mu_s, "static friction, persistent contact")->capture_default_str();
   c->add_option("--mu-hat", o.mu_hat, "sliding friction, impacts")->capture_default_str();
   c->add_option("--mu-hat-s", o.mu_hat_s, "static friction, impacts")->capture_default_str();
+  c->add_option("--restitution", a->restitution,
+                "impact restitution law: capped (Newton, scaled down where it would create "
+                "energy) or newton (plain)")
+      ->check(CLI::IsMember(std::vector<std::string>{"capped", "newton"}))
+      ->capture_default_str();
   std::vector<std::string> inits;
   for (const auto& [name, kind] : sim::InitKindNames()) inits.push_back(name);
   c->add_option("--init", a->init, "initial condition")
@@ -70,6 +76,9 @@ void RegisterSim(CLI::App& app) {
   c->callback([cli] {
     for (const auto& [name, kind] : sim::InitKindNames()) {
       if (name == cli->init) cli->args.options.init = kind;
+    }
+    for (const auto& [name, law] : sim::RestitutionLawNames()) {
+      if (name == cli->restitution) cli->args.options.restitution = law;
     }
     if (!cli->init_state.empty()) {
       cli->args.options.init_state = sim::ParseInitState(cli->init_state);

@@ -19,6 +19,8 @@ inline constexpr int kMaxImpactSegments = 64;
 inline constexpr int kMaxLocateIterations = 100;
 // Relative size below which a slip velocity counts as zero (of the velocity scale g/f).
 inline constexpr double kSlipZeroRel = 1e-12;
+// Relative size of a kinetic-energy change that is round-off, not physics (64 ulp).
+inline constexpr double kEnergyRoundoffRel = 64 * 2.220446049250313e-16;
 // Persistent-contact integration: smallest and largest step, as fractions of the plate period.
 inline constexpr double kMinStepRel = 1e-12;
 inline constexpr double kMaxStepRel = 1.0 / 32.0;

@@ -105,8 +105,11 @@ Rates AdmissibleRates(const Model& m, std::array<ContactRow, 2>& c, std::array<b
 
 }  // namespace
 
-ImpactOutcome ResolveImpact(const Model& m, const State& before, std::array<bool, 2> touching,
-                            std::array<bool, 2> forced) {
+namespace {
+
+// Newton's law with every restitution target scaled by `lambda` (1: the plain law).
+ImpactOutcome ResolveNewton(const Model& m, const State& before, std::array<bool, 2> touching,
+                            std::array<bool, 2> forced, double lambda) {
   ImpactOutcome out;
   Vec3 vel(before.u, before.v, before.w);
   const double zero_u = kSlipZeroRel * m.vel_scale;
@@ -120,7 +123,7 @@ ImpactOutcome ResolveImpact(const Model& m, const State& before, std::array<bool
     const double vb = c[s].jn.dot(vel);
     out.v_before[s] = vb;
     const bool slow = std::abs(vb) < m.v_collapse;
-    c[s].target = -(slow ? 0.0 : m.eps) * std::min(vb, 0.0);
+    c[s].target = -(slow ? 0.0 : lambda * m.eps) * std::min(vb, 0.0);
     out.collapsed[s] = touching[s] && slow && vb < 0;
   }
   auto deficit = [&](int s) { return c[s].jn.dot(vel) - c[s].target; };
@@ -176,7 +179,9 @@ ImpactOutcome ResolveImpact(const Model& m, const State& before, std::array<bool
         }
       } else if (c[s].mode == Friction::kSlide) {
         const double u = c[s].jt.dot(vel), ud = c[s].jt.dot(r.dvel);
-        if (u * ud < 0 && -u / ud < dp) dp = -u / ud, ends = false;
+        // A slip that has just started from rest is at round-off size with either sign:
+        // it cannot "stop" again before it has grown.
+        if (u * ud < 0 && std::abs(u) > zero_u && -u / ud < dp) dp = -u / ud, ends = false;
       }
     }
     if (!std::isfinite(dp)) {
@@ -212,6 +217,47 @@ ImpactOutcome ResolveImpact(const Model& m, const State& before, std::array<bool
     out.collapsed[s] = out.collapsed[s] && out.took_part[s];
   }
   return out;
+}
+
+double Kinetic(const Model& m, const State& q) {
+  return 0.5 * (q.u * q.u + q.v * q.v + q.w * q.w / m.inv_I);
+}
+
+}  // namespace
+
+const std::vector<std::pair<std::string, RestitutionLaw>>& RestitutionLawNames() {
+  static const std::vector<std::pair<std::string, RestitutionLaw>> kNames = {
+      {"capped", RestitutionLaw::kCappedNewton}, {"newton", RestitutionLaw::kNewton}};
+  return kNames;
+}
+
+ImpactOutcome ResolveImpact(const Model& m, const State& before, std::array<bool, 2> touching,
+                            std::array<bool, 2> forced) {
+  ImpactOutcome out = ResolveNewton(m, before, touching, forced, 1.0);
+  const double e0 = Kinetic(m, before);
+  out.energy_gain = Kinetic(m, out.after) - e0;
+  // Gains at the level of round-off in the energy itself are not Stronge's effect.
+  if (!(out.energy_gain > kEnergyRoundoffRel * e0)) out.energy_gain = 0;
+  if (m.restitution != RestitutionLaw::kCappedNewton || !(out.energy_gain > 0)) return out;
+  // Newton's kinematic restitution with friction can return more energy than it took when
+  // slip stops or reverses in the restitution phase (Stronge 1990). Lower every target by
+  // the same factor, found by bisection, until the impact no longer creates energy; the
+  // plastic end (lambda = 0) never does: all normal and friction work is then dissipative.
+  double lo = 0, hi = 1;
+  ImpactOutcome best = ResolveNewton(m, before, touching, forced, 0.0);
+  for (int i = 0; i < 60 && hi - lo > 1e-15; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    ImpactOutcome trial = ResolveNewton(m, before, touching, forced, mid);
+    if (Kinetic(m, trial.after) <= e0) {
+      lo = mid;
+      best = trial;
+    } else {
+      hi = mid;
+    }
+  }
+  best.energy_gain = out.energy_gain;  // what plain Newton would have created
+  best.restitution_scale = lo;
+  return best;
 }
 
 }  // namespace dimer::sim

@@ -20,10 +20,17 @@
 //  - frictionless: every contact that took impulse ends exactly at its target, so
 //    dE = sum_i P_i (1 - eps_i) V_b,i / 2 <= 0, with equality for eps = 1 (energy conserved).
 //    With friction, energy is checked by property tests over random impacts.
+// Energy: Newton's kinematic restitution with friction can create energy when slip stops or
+// reverses during restitution (Stronge 1990). The default law, `capped`, is Newton's wherever
+// Newton's creates no energy (every paper case we measured) and otherwise scales all targets
+// down by the largest common factor that does not; `newton` is the plain law.
 // Inelastic collapse: a contact approaching slower than v_c gets eps_i = 0 (plastic) and
 // stays in persistent contact; the decaying series of small bounces is thereby cut off at v_c,
 // whose effect is measured in bench/bench_sim_accuracy.
 #include <array>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "sim/model.h"
 #include "sim/state.h"
@@ -40,6 +47,8 @@ struct ImpactOutcome {
   std::array<double, 2> v_before{};     // V_b at each contact, m/s
   int segments = 0;
   bool ok = true;                       // false: no progress or segment cap (counted by caller)
+  double energy_gain = 0;               // kinetic energy plain Newton would add (>0: capped)
+  double restitution_scale = 1;         // capped law: factor applied to the Newton targets
 };
 
 // `touching[s]`: sphere s is at the plate. `forced[s]`: treat s as active even with a zero

@@ -94,6 +94,7 @@ Model Model::FromOptions(const SimOptions& o) {
   m.mu_s = o.mu_s;
   m.mu_hat = o.mu_hat;
   m.mu_hat_s = o.mu_hat_s;
+  m.restitution = o.restitution;
   m.vel_scale = kGravity / o.freq_hz;
   m.v_collapse = o.collapse_rel * m.vel_scale;
   m.contact_tol = o.contact_tol;

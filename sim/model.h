@@ -23,6 +23,8 @@ inline constexpr double kDefaultLift = 0.3;
 inline constexpr double kDefaultLiftFreqHz = 25.0;
 
 enum class InitKind { kDrift, kJump, kFlutter, kRest };
+enum class RestitutionLaw { kCappedNewton, kNewton };  // impact_law.h
+const std::vector<std::pair<std::string, RestitutionLaw>>& RestitutionLawNames();
 const std::vector<std::pair<std::string, InitKind>>& InitKindNames();
 std::string ToString(InitKind k);
 
@@ -41,6 +43,7 @@ struct SimOptions {
   double mu_s = 0.4;           // persistent-contact static friction (>= mu)
   double mu_hat = 0.1;         // impact sliding friction
   double mu_hat_s = 0.2;       // impact static (stick) friction
+  RestitutionLaw restitution = RestitutionLaw::kCappedNewton;  // see impact_law.h
   // Initial condition.
   InitKind init = InitKind::kDrift;
   // Drift release: lift of the bouncing end, fraction of d. NaN (the default) means
@@ -74,6 +77,7 @@ struct Model {
   double sin_a, cos_a;  // tilt
   // Laws.
   double eps, mu, mu_s, mu_hat, mu_hat_s;
+  RestitutionLaw restitution;
   // Numerics.
   double v_collapse;  // m/s
   double contact_tol;

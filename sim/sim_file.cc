@@ -7,6 +7,10 @@
 
 namespace dimer::sim {
 
+namespace {
+std::string RestitutionName(RestitutionLaw law);
+}  // namespace
+
 AttrList SimParameters(const SimOptions& o) {
   AttrList a = {{"ar", o.ar},
                 {"diameter", o.diameter_m},
@@ -19,6 +23,7 @@ AttrList SimParameters(const SimOptions& o) {
                 {"mu_s", o.mu_s},
                 {"mu_hat", o.mu_hat},
                 {"mu_hat_s", o.mu_hat_s},
+                {"restitution", RestitutionName(o.restitution)},
                 {"init", ToString(o.init)},
                 {"lift", o.EffectiveLift()},
                 {"release_phase", o.release_phase},
@@ -37,6 +42,13 @@ AttrList SimParameters(const SimOptions& o) {
 }
 
 namespace {
+
+std::string RestitutionName(RestitutionLaw law) {
+  for (const auto& [name, l] : RestitutionLawNames()) {
+    if (l == law) return name;
+  }
+  return "?";
+}
 
 std::vector<double> StateRows(const std::vector<State>& states) {
   std::vector<double> out;
@@ -107,6 +119,8 @@ void WriteSimFile(const std::string& path, bool force, const SimOptions& o, cons
                   {"capped_searches", int64_t{d.capped_searches}},
                   {"step_underflows", int64_t{d.step_underflows}},
                   {"painleve_events", int64_t{d.painleve}},
+                  {"newton_energy_gain_impacts", int64_t{d.energy_capped}},
+                  {"newton_max_relative_gain", d.max_newton_gain},
                   {"interrupted", int64_t{r.interrupted}},
                   {"error", r.error}});
     WriteProvenance(w, "sim", attrs);

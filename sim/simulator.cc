@@ -181,6 +181,12 @@ void Runner::DoImpact(std::array<bool, 2> touching) {
   const ImpactOutcome io = ResolveImpact(m_, q_, touching);
   res_.diag.impact_segments += io.segments;
   res_.diag.impact_failures += !io.ok;
+  if (io.energy_gain > 0) {
+    ++res_.diag.energy_capped;
+    const double e0 = 0.5 * (before.u * before.u + before.v * before.v +
+                             before.w * before.w / m_.inv_I);
+    res_.diag.max_newton_gain = std::max(res_.diag.max_newton_gain, io.energy_gain / e0);
+  }
   q_ = io.after;
   const int took = int(io.took_part[0]) + int(io.took_part[1]);
   for (int s = 0; s < 2; ++s) {

@@ -29,6 +29,8 @@ struct SimDiagnostics {
   long capped_searches = 0;    // impact searches that hit their step cap (should be 0)
   long step_underflows = 0;    // contact steps accepted at the minimum size (should be 0)
   long painleve = 0;           // Painleve situations resolved by impact without collision
+  long energy_capped = 0;      // impacts where plain Newton would have created energy
+  double max_newton_gain = 0;  // largest such gain relative to the kinetic energy before
   double max_penetration_m = 0;  // deepest gap seen at any evaluated point, m
   long events = 0;
   int max_events_in_period = 0;
