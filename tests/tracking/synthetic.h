@@ -46,7 +46,7 @@ inline Trajectory DriftTrajectory(size_t n, double fps, double freq_hz = 25.0) {
   Trajectory traj;
   traj.Reserve(n);
   const double r = 0.5 * kDiameterM, half = (kAspectRatio - 1.0) * r;
-  const double amplitude = 0.35e-3, drift_speed = 0.02;  // m, m/s
+  const double amplitude = 0.35e-3, drift_speed = 2e-3;  // m, m/s (10 mm in 5 s)
   for (size_t i = 0; i < n; ++i) {
     const double t = double(i) / fps;
     const double phase = 2.0 * std::numbers::pi * freq_hz * t;

@@ -61,10 +61,13 @@ TEST(Tracker, SphereOutOfViewIsNotFoundAndTheOtherIs) {
   SceneGeometry s = testing::TiltedDimer(150, 200, 23.75, 0.0, 3.75);
   const FrameTrack first = tracker.Process(RenderFrame({s}, o, 0), 0);
   ASSERT_TRUE(first.found[0] && first.found[1]);
-  // The dimer moves right until the right sphere is cut by the frame edge.
-  s.left.x() += 230;
-  s.right.x() += 230;
-  const FrameTrack cut = tracker.Process(RenderFrame({s}, o, 1), 1);
+  // The dimer moves right, 0.8 px per frame, until the right sphere is cut by the frame edge.
+  FrameTrack cut;
+  for (int i = 1; i <= 300; ++i) {
+    s.left.x() += 0.8;
+    s.right.x() += 0.8;
+    cut = tracker.Process(RenderFrame({s}, o, i), i);
+  }
   EXPECT_TRUE(cut.found[0]);
   EXPECT_FALSE(cut.found[1]);
   EXPECT_NEAR(cut.centre[0].x(), s.left.x(), 0.05);
