@@ -1,1 +1,216 @@
+#include "tracking/track.h"
 
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "common/error.h"
+#include "common/h5_file.h"
+#include "common/interrupt.h"
+#include "common/trajectory_io.h"
+#include "tests/common/test_tmpdir.h"
+#include "tests/tracking/synthetic.h"
+#include "tracking/render.h"
+
+namespace dimer::tracking {
+namespace {
+
+// Renders `n` drift frames into dir/frames (PNG unless `format` says tiff).
+RenderArgs RenderDrift(const dimer::testing::TempDir& dir, size_t n, Lighting l,
+                       const std::string& format = "png", int bit_depth = 8) {
+  testing::WriteSimFile(dir / "sim.h5", testing::DriftTrajectory(n, 2000.0), 2000.0);
+  RenderArgs a;
+  a.input = dir / "sim.h5";
+  a.output = dir / "frames";
+  a.quiet = true;
+  a.format = format;
+  a.image.lighting = l;
+  a.image.bit_depth = bit_depth;
+  RunRender(a);
+  return a;
+}
+
+TrackArgs Track(const dimer::testing::TempDir& dir) {
+  TrackArgs t;
+  t.input = dir / "frames";
+  t.output = dir / "track.h5";
+  t.quiet = true;
+  t.m_per_px = 2e-4;
+  t.sequence.chunk_frames = 8;
+  return t;
+}
+
+// Truth pixel centres per frame from truth.csv.
+std::vector<std::array<double, 5>> ReadTruth(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::vector<std::array<double, 5>> rows;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || line[0] == 'f') continue;
+    std::array<double, 5> r;
+    int frame;
+    char file[64];
+    double t;
+    std::sscanf(line.c_str(), "%d,%63[^,],%lf,%lf,%lf,%lf,%lf,%lf", &frame, file, &t, &r[0], &r[1],
+                &r[2], &r[3], &r[4]);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+TEST(RunTrack, RenderThenTrackMatchesTheTruthAndWritesTheFormat) {
+  dimer::testing::TempDir dir;
+  const RenderArgs r = RenderDrift(dir, 20, Lighting::kBacklit);
+  TrackArgs t = Track(dir);
+  RunTrack(t);
+  H5Reader h(t.output);
+  EXPECT_EQ(FileKind(h), "track");
+  const Trajectory traj = ReadTrajectory(h);
+  ASSERT_EQ(traj.size(), 20u);
+  Dims dims;
+  const auto left = h.ReadDoubles("/pixels/left", &dims);
+  EXPECT_EQ(dims, (Dims{20, 2}));
+  const auto right = h.ReadDoubles("/pixels/right");
+  const auto plate = h.ReadDoubles("/pixels/plate_row");
+  const auto found = h.ReadUint8("/found", &dims);
+  EXPECT_EQ(dims, (Dims{20, 2}));
+  EXPECT_EQ(h.ReadStrings("/frame_files")[3], "frame_000003.png");
+  EXPECT_EQ(h.ReadInt64("/frame_index")[3], 3);
+  EXPECT_EQ(h.AttrString("/", "method"), "centroid");
+  EXPECT_EQ(h.AttrDouble("/", "fps"), 2000.0);
+  const auto truth = ReadTruth(r.output + "/truth.csv");
+  const double row0 = *h.AttrDouble("/", "row0");
+  for (size_t i = 0; i < 20; ++i) {
+    EXPECT_EQ(found[2 * i] + found[2 * i + 1], 2);
+    // sigma = 2, 47 px spheres, motion blur: 0.03 px is ~4x the measured scatter.
+    EXPECT_NEAR(left[2 * i], truth[i][0], 0.03);
+    EXPECT_NEAR(left[2 * i + 1], truth[i][1], 0.03);
+    EXPECT_NEAR(right[2 * i], truth[i][2], 0.03);
+    EXPECT_NEAR(right[2 * i + 1], truth[i][3], 0.03);
+    EXPECT_NEAR(plate[i], truth[i][4], 0.03);
+    // Metric = (col * m_per_px, (row0 - row) * m_per_px).
+    EXPECT_NEAR(traj.tip_left[i].x(), left[2 * i] * 2e-4, 1e-12);
+    EXPECT_NEAR(traj.tip_left[i].y(), (row0 - left[2 * i + 1]) * 2e-4, 1e-12);
+    EXPECT_NEAR(traj.t[i], i / 2000.0, 1e-15);
+  }
+  EXPECT_THROW(RunTrack(t), InputError);  // refuses to overwrite without --force
+}
+
+TEST(RunTrack, BadFramesAreReportedSkippedAndTheRunContinues) {
+  dimer::testing::TempDir dir;
+  RenderDrift(dir, 12, Lighting::kDisc);
+  const std::string f = dir / "frames";
+  std::ofstream(f + "/frame_000003.png", std::ios::trunc).close();  // empty
+  std::ofstream(f + "/frame_000004.png", std::ios::trunc) << "not an image at all";
+  {  // truncated: the first half of a real PNG
+    std::ifstream in(f + "/frame_000005.png", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream(f + "/frame_000005.png", std::ios::binary | std::ios::trunc)
+        << bytes.substr(0, bytes.size() / 2);
+  }
+  cv::imwrite(f + "/frame_000006.png", cv::Mat(100, 100, CV_8U, cv::Scalar(7)));  // wrong size
+  {  // corrupt: valid header, garbage body
+    std::ifstream in(f + "/frame_000007.png", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (size_t i = 64; i < bytes.size(); i += 7) bytes[i] = char(bytes[i] ^ 0x5a);
+    std::ofstream(f + "/frame_000007.png", std::ios::binary | std::ios::trunc) << bytes;
+  }
+  TrackArgs t = Track(dir);
+  RunTrack(t);
+  H5Reader h(t.output);
+  const auto files = h.ReadStrings("/skipped/files");
+  const auto reasons = h.ReadStrings("/skipped/reasons");
+  ASSERT_EQ(files.size(), 5u);
+  EXPECT_EQ(files[0], "frame_000003.png");
+  EXPECT_NE(reasons[0].find("empty"), std::string::npos);
+  EXPECT_NE(reasons[1].find("not a decodable image"), std::string::npos);
+  EXPECT_NE(reasons[2].find("not a decodable image"), std::string::npos);
+  EXPECT_NE(reasons[3].find("size 100x100"), std::string::npos);
+  EXPECT_NE(reasons[4].find("not a decodable image"), std::string::npos);
+  const auto index = h.ReadInt64("/frame_index");
+  EXPECT_EQ(index, (std::vector<int64_t>{0, 1, 2, 8, 9, 10, 11}));
+}
+
+TEST(RunTrack, UnusableInputsAreOneLineErrors) {
+  dimer::testing::TempDir dir;
+  TrackArgs t = Track(dir);
+  t.input = dir / "nowhere";
+  EXPECT_THROW(RunTrack(t), InputError);
+  std::filesystem::create_directories(dir / "empty");
+  t.input = dir / "empty";
+  try {
+    RunTrack(t);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no image files"), std::string::npos);
+  }
+  t.method = "magic";
+  t.fps = -1;
+  try {
+    RunTrack(t);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--method 'magic'"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("--fps"), std::string::npos);
+  }
+}
+
+TEST(RunTrack, SixteenBitTiffFramesAndMultiPageTiff) {
+  dimer::testing::TempDir dir;
+  const RenderArgs r = RenderDrift(dir, 6, Lighting::kBacklit, "tiff", 16);
+  TrackArgs t = Track(dir);
+  RunTrack(t);
+  H5Reader h(t.output);
+  const auto found = h.ReadUint8("/found");
+  EXPECT_EQ(std::count(found.begin(), found.end(), 1), 12);
+  // The same frames as one multi-page TIFF.
+  std::vector<cv::Mat> pages;
+  for (int i = 0; i < 6; ++i) {
+    char name[40];
+    std::snprintf(name, sizeof name, "/frame_%06d.tif", i);
+    pages.push_back(cv::imread(r.output + name, cv::IMREAD_ANYDEPTH));
+  }
+  ASSERT_TRUE(cv::imwritemulti(dir / "stack.tif", pages));
+  t.input = dir / "stack.tif";
+  t.output = dir / "stack.h5";
+  RunTrack(t);
+  H5Reader hs(t.output);
+  EXPECT_EQ(hs.ReadStrings("/frame_files")[2], "stack.tif#2");
+  EXPECT_EQ(hs.ReadDoubles("/pixels/left"), h.ReadDoubles("/pixels/left"));
+}
+
+TEST(TrackSequence, DeterministicAcrossThreadCountsAndPartialOnInterrupt) {
+  RenderPlan plan;
+  plan.map = {2e-4, 200, 300};
+  plan.radius_px = 23.75;
+  plan.rod_half_width_px = 3.75;
+  const Trajectory traj = testing::DriftTrajectory(40, 2000.0);
+  RenderOptions o;
+  std::vector<cv::Mat> frames;
+  for (size_t i = 0; i < traj.size(); ++i) frames.push_back(RenderFrame({plan.SceneAt(traj, traj.t[i])}, o, i));
+  MemorySource source(frames);
+  SequenceOptions opts;
+  opts.chunk_frames = 7;
+  opts.threads = 1;
+  const SequenceResult one = TrackSequence(source, opts);
+  opts.threads = 2;
+  const SequenceResult two = TrackSequence(source, opts);
+  ASSERT_EQ(one.frames.size(), 40u);
+  ASSERT_EQ(two.frames.size(), 40u);
+  for (size_t i = 0; i < 40; ++i) {
+    EXPECT_EQ(one.frames[i].centre[0], two.frames[i].centre[0]);  // bit-identical
+    EXPECT_EQ(one.frames[i].centre[1], two.frames[i].centre[1]);
+  }
+  // Ctrl-C after the first chunk: a complete prefix, flagged incomplete.
+  const SequenceResult cut = TrackSequence(source, opts, [](size_t) { SetInterruptRequested(true); });
+  SetInterruptRequested(false);
+  EXPECT_FALSE(cut.complete);
+  EXPECT_LT(cut.frames.size(), 40u);
+  for (size_t i = 0; i < cut.frames.size(); ++i) EXPECT_EQ(cut.frames[i].index, i);
+}
+
+}  // namespace
+}  // namespace dimer::tracking
