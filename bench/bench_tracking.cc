@@ -1,0 +1,174 @@
+// Tracking benchmark: accuracy against speed for every method on the targets.
+//   bench_tracking [frames]   (default 2000 frames per case)
+// Prints, per method: RMS error and pixel locking on uniform discs at sigma = 2 with the
+// Cramér-Rao bound computed from the exact disc model; scatter about the bias on reflect-lit
+// spheres; in-memory tracking rate on both cores; and PNG decode-only vs end-to-end rates.
+#include <opencv2/imgcodecs.hpp>
+
+#include <Eigen/Dense>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+#include <thread>
+
+#include "tracking/disc_coverage.h"
+#include "tracking/frame_source.h"
+#include "tracking/refiner.h"
+#include "tracking/scene_renderer.h"
+#include "tracking/track.h"
+
+using namespace dimer::tracking;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+constexpr double kRadius = 23.75, kRodHalf = 3.75, kSigma = 2.0;
+
+double Seconds(Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); }
+
+SceneGeometry Dimer(double col, double row, double plate) {
+  SceneGeometry s;
+  s.radius_px = kRadius;
+  s.rod_half_width_px = kRodHalf;
+  s.plate_row = plate;
+  s.left = {col, row};
+  s.right = s.left + Eigen::Vector2d(137.75, -10);
+  return s;
+}
+
+// Cramér-Rao bound on the centre column of a disc (5 parameters: cx, cy, R, levels) with
+// Gaussian noise sigma_eff (noise plus quantisation), from the exact coverage derivatives.
+double CramerRao(double contrast, double sigma_eff) {
+  const Eigen::Vector2d c(100.37, 100.61);
+  Eigen::Matrix<double, 5, 5> fisher = Eigen::Matrix<double, 5, 5>::Zero();
+  for (int row = 70; row <= 131; ++row) {
+    for (int col = 70; col <= 131; ++col) {
+      const PixelCoverage p = DiscPixelCoverage(col, row, c, kRadius);
+      Eigen::Matrix<double, 5, 1> j;
+      j << contrast * p.d_cx, contrast * p.d_cy, contrast * p.d_r, 1 - p.area, p.area;
+      fisher += j * j.transpose() / (sigma_eff * sigma_eff);
+    }
+  }
+  return std::sqrt(fisher.inverse()(0, 0));
+}
+
+struct Accuracy {
+  double rms = 0, scatter = 0, locking = 0;
+};
+
+// Lifted spheres at random sub-pixel positions; locking = peak to peak of the binned mean
+// error against the fractional column (10 bins).
+Accuracy MeasureAccuracy(Method method, Lighting lighting, int n) {
+  RenderOptions o;
+  o.lighting = lighting;
+  o.noise = kSigma;
+  o.gradient = 0;
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<double> ex, ey, frac;
+  for (int i = 0; i < n; ++i) {
+    const SceneGeometry s = Dimer(150 + 20 * u(rng), 150 + 10 * u(rng), 200);
+    const cv::Mat img = RenderFrame({s}, o, i);
+    RefineContext ctx;
+    ctx.polarity = 1;
+    ctx.plate_row = s.plate_row;
+    ctx.rod_dir = (s.right - s.left).normalized();
+    const SphereMeasurement m = MeasureSphere(img, s.left + Eigen::Vector2d(0.7, -0.5), kRadius, ctx, method);
+    if (!m.found()) continue;
+    ex.push_back(m.centre.x() - s.left.x());
+    ey.push_back(m.centre.y() - s.left.y());
+    frac.push_back(s.left.x() - std::floor(s.left.x()));
+  }
+  Accuracy a;
+  double mx = 0, my = 0;
+  for (size_t i = 0; i < ex.size(); ++i) mx += ex[i] / ex.size(), my += ey[i] / ey.size();
+  std::vector<double> bin_sum(10, 0), bin_n(10, 0);
+  for (size_t i = 0; i < ex.size(); ++i) {
+    a.rms += (ex[i] * ex[i] + ey[i] * ey[i]) / ex.size();
+    a.scatter += ((ex[i] - mx) * (ex[i] - mx) + (ey[i] - my) * (ey[i] - my)) / ex.size();
+    const int b = std::min(9, int(frac[i] * 10));
+    bin_sum[b] += ex[i];
+    bin_n[b] += 1;
+  }
+  double lo = 1e9, hi = -1e9;
+  for (int b = 0; b < 10; ++b) {
+    if (bin_n[b] == 0) continue;
+    lo = std::min(lo, bin_sum[b] / bin_n[b]);
+    hi = std::max(hi, bin_sum[b] / bin_n[b]);
+  }
+  a.rms = std::sqrt(a.rms);
+  a.scatter = std::sqrt(a.scatter);
+  a.locking = hi - lo;
+  return a;
+}
+
+std::vector<cv::Mat> Frames(int n, Lighting l) {
+  RenderOptions o;
+  o.lighting = l;
+  o.noise = kSigma;
+  std::vector<cv::Mat> out;
+  for (int i = 0; i < n; ++i) out.push_back(RenderFrame({Dimer(150 + 0.01 * i, 170, 200)}, o, i));
+  return out;
+}
+
+double InMemoryRate(Method method, const std::vector<cv::Mat>& frames, int threads) {
+  MemorySource src(frames);
+  SequenceOptions opts;
+  opts.tracker.method = method;
+  opts.threads = threads;
+  const auto t0 = Clock::now();
+  const SequenceResult r = TrackSequence(src, opts);
+  return double(r.frames.size()) / Seconds(t0);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int n = argc > 1 ? std::atoi(argv[1]) : 2000;
+  const int cores = int(std::thread::hardware_concurrency());
+  const double crb = CramerRao(0.68 * 255, std::sqrt(kSigma * kSigma + 1.0 / 12));
+  std::printf("tracking benchmark: 512x256 8-bit, spheres %.1f px across, sigma %.0f, %d cores\n",
+              2 * kRadius, kSigma, cores);
+  std::printf("Cramer-Rao bound (disc, per axis): %.4f px\n\n", crb);
+  const std::vector<cv::Mat> frames = Frames(n, Lighting::kDisc);
+  std::printf("| method | disc RMS (px) | disc RMS / (sqrt2 CRB) | locking p-p (px) | reflect scatter (px) | frames/s 1 core | frames/s %d cores |\n", cores);
+  std::printf("|---|---|---|---|---|---|---|\n");
+  for (Method m : {Method::kCentroid, Method::kDiscFit}) {
+    const Accuracy disc = MeasureAccuracy(m, Lighting::kDisc, std::min(n, 400));
+    const Accuracy refl = MeasureAccuracy(m, Lighting::kReflect, std::min(n, 200));
+    std::printf("| %s | %.4f | %.2f | %.4f | %.3f | %.0f | %.0f |\n", ToString(m).c_str(), disc.rms,
+                disc.rms / (std::sqrt(2.0) * crb), disc.locking, refl.scatter,
+                InMemoryRate(m, frames, 1), InMemoryRate(m, frames, cores));
+  }
+  // End to end from PNG files against decode only, both on all cores.
+  const std::string dir = (std::filesystem::temp_directory_path() / "bench_tracking_png").string();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  for (int i = 0; i < n; ++i) {
+    char name[64];
+    std::snprintf(name, sizeof name, "/frame_%06d.png", i);
+    cv::imwrite(dir + name, frames[i]);
+  }
+  auto src = FrameSource::Open(dir);
+  std::atomic<size_t> next{0};
+  auto t0 = Clock::now();
+  std::vector<std::thread> pool;
+  for (int k = 0; k < cores; ++k) {
+    pool.emplace_back([&] {
+      for (size_t i = next++; i < src->size(); i = next++) (void)src->Read(i);
+    });
+  }
+  for (auto& t : pool) t.join();
+  const double decode = double(src->size()) / Seconds(t0);
+  SequenceOptions opts;
+  t0 = Clock::now();
+  const SequenceResult r = TrackSequence(*src, opts);
+  const double e2e = double(r.frames.size()) / Seconds(t0);
+  std::printf("\nPNG folder (%d frames): decode only %.0f frames/s, decode + centroid tracking %.0f frames/s (%.0f %%)\n",
+              n, decode, e2e, 100 * e2e / decode);
+  std::filesystem::remove_all(dir);
+  return 0;
+}
