@@ -155,8 +155,24 @@ ContactRun IntegrateContact(const Model& m, const ContactConfig& cfg, double t0,
     auto at = [&](double tau) { return Project(m, cfg, DormandPrince(m, cfg, t, y0, tau).y); };
     for (int k = 0; k < 4; ++k) {
       double f0 = ev0.v[k], f1 = ev1.v[k];
-      double hi = hs;
-      if (!(f0 > 0)) continue;
+      double lo = 0, hi = hs;
+      if (!(f0 > 0) && ev1.kind[k] == ContactEvent::kSlipStops && f1 < 0) {
+        // A slide that starts from U = 0 may dip the right way and come back within this
+        // step (a slip reversal at the start of the step): find a point where sigma U > 0;
+        // the event is where it returns to zero. Without one, the slip went the wrong way
+        // at once: report the event at the start so that the caller chooses again.
+        double tau = hs;
+        for (int i = 0; i < 40 && !(f0 > 0); ++i) {
+          tau *= 0.5;
+          f0 = Events(m, cfg, t + tau, at(tau)).v[k];
+          lo = tau;
+        }
+        if (!(f0 > 0)) lo = 0, f0 = 0;
+      }
+      if (!(f0 > 0) && !(lo == 0 && ev1.kind[k] == ContactEvent::kSlipStops && f1 < 0 &&
+                         ev0.v[k] <= 0)) {
+        continue;
+      }
       if (f1 > 0 && ev1.kind[k] == ContactEvent::kImpact) {
         // Grazing: minimum of the Hermite cubic of the gap inside the step.
         const int s = k - 2;
@@ -174,7 +190,9 @@ ContactRun IntegrateContact(const Model& m, const ContactConfig& cfg, double t0,
       }
       if (f1 > 0) continue;
       auto fk = [&](double tau) { return Events(m, cfg, t + tau, at(tau)).v[k]; };
-      const double tau = LocateRoot(fk, f0, hi, f1);
+      const double tau = f0 > 0 ? lo + LocateRoot([&](double x) { return fk(lo + x); }, f0,
+                                                  hi - lo, f1)
+                                : 0.0;
       if (t + tau < t_ev) t_ev = t + tau, which = k;
     }
     const double t_next = which >= 0 ? t_ev : t + hs;

@@ -61,7 +61,10 @@ ImpactSearch FindFlightImpact(const Model& m, const State& q0, double t0, double
   while (out.steps < kMaxSteps) {
     ++out.steps;
     const GapDerivatives g = FlightGap(m, q0, t0, tau, sphere);
-    if (g.h <= kGapTol_m && g.hd < 0) {
+    // A sphere at the plate with a round-off-sized approach speed that is already turning
+    // away (h'' > 0) dips at most to h - h'^2 / (2 h''): within tolerance it is leaving.
+    const bool leaving = g.hdd > 0 && g.h - g.hd * g.hd / (2 * g.hdd) > -kGapTol_m;
+    if (g.h <= kGapTol_m && g.hd < 0 && !leaving) {
       // Approaching and within tolerance: Newton to h = 0 (converges from either side).
       for (int i = 0; i < kMaxNewtonIterations; ++i) {
         const GapDerivatives gi = FlightGap(m, q0, t0, tau, sphere);

@@ -1,6 +1,9 @@
 #include "sim/model.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "sim/constants.h"
 #include <sstream>
 
 namespace dimer::sim {
@@ -50,7 +53,8 @@ std::vector<std::string> SimOptions::Check() const {
   const double lift_eff = EffectiveLift();
   Require(e, std::isnan(lift) || (finite(lift) && lift >= 0), "--lift", lift,
           "a lift >= 0 (fraction of the diameter)");
-  Require(e, !(lift_eff >= ar - 1), "--lift", lift_eff,
+  const bool drift_release = init == InitKind::kDrift && !init_state;
+  Require(e, !drift_release || !(lift_eff >= ar - 1), "--lift", lift_eff,
           "lift < A_r - 1 (the lifted centre must stay below the top of the other sphere)");
   Require(e, finite(release_phase), "--release-phase", release_phase,
           "a finite fraction of a period");
@@ -96,7 +100,10 @@ Model Model::FromOptions(const SimOptions& o) {
   m.mu_hat_s = o.mu_hat_s;
   m.restitution = o.restitution;
   m.vel_scale = kGravity / o.freq_hz;
-  m.v_collapse = o.collapse_rel * m.vel_scale;
+  // Floor: a bounce slower than sqrt(2 g_max kGapTol) rises less than the gap tolerance, so its
+  // flight cannot be resolved from contact (position round-off); it is a collapse whatever v_c.
+  const double g_max = kGravity + m.amp * m.omega_p * m.omega_p;
+  m.v_collapse = std::max(o.collapse_rel * m.vel_scale, std::sqrt(2 * g_max * kGapTol_m));
   m.contact_tol = o.contact_tol;
   return m;
 }

@@ -79,7 +79,7 @@ struct Model {
   double eps, mu, mu_s, mu_hat, mu_hat_s;
   RestitutionLaw restitution;
   // Numerics.
-  double v_collapse;  // m/s
+  double v_collapse;  // m/s: collapse_rel g/f, floored at sqrt(2 g_max kGapTol_m)
   double contact_tol;
   double vel_scale;   // g/f, m/s: scale for relative velocity tolerances
 

@@ -49,6 +49,16 @@ ContactForces SolveContactForces(const Model& m, double t, const State& q,
     if ((a * x - b).norm() > 1e-9 * (1.0 + b.norm())) out.ok = false;
   }
   if (!x.allFinite()) out.ok = false;
+  if (n == 2 && cfg.slide[0] == 0 && cfg.slide[1] == 0 && std::abs(arm[0].rz - arm[1].rz) <= 1e-12 * m.R) {
+    // Flat and both sticking: only the sum of the tangential forces enters the equations, so
+    // share it in proportion to the normal forces; then a contact is inside its static cone
+    // whenever the whole dimer is (the even minimum-norm split could violate one cone).
+    const double n_sum = x(0) + x(1), f_sum = x(2) + x(3);
+    if (n_sum > 0) {
+      x(2) = f_sum * x(0) / n_sum;
+      x(3) = f_sum * x(1) / n_sum;
+    }
+  }
   for (int k = 0; k < n; ++k) {
     out.n[idx[k]] = x(k);
     out.f[idx[k]] = x(n + k);
@@ -109,22 +119,37 @@ ModeChoice ChooseContactMode(const Model& m, double t, const State& q,
 }
 
 void ProjectOnContacts(const Model& m, const ContactConfig& cfg, State* q) {
+  // Positions: the resting spheres' gaps are set to zero (both resting: flat, theta = k pi).
   if (cfg.Count() == 2) {
-    // Both on the plate: the axis is parallel to it (theta = k pi) and nothing moves but x.
     q->th = std::round(q->th / M_PI) * M_PI;
     q->z = m.R;
-    q->v = 0;
-    q->w = 0;
-    if (cfg.slide[0] == 0 || cfg.slide[1] == 0) q->u = 0;
-    return;
+  } else {
+    for (int s = 0; s < 2; ++s) {
+      if (cfg.resting[s]) q->z = -ContactArm(m, q->th, s).rz;
+    }
   }
+  // Velocities: the projection that is orthogonal in the mass metric, i.e. the result of the
+  // smallest impulses that zero V (and U when sticking). It removes kinetic energy, never
+  // adds it (a plain assignment v = -w r_x can).
+  Eigen::Matrix<double, 4, 3> J;
+  int rows = 0;
   for (int s = 0; s < 2; ++s) {
     if (!cfg.resting[s]) continue;
     const Arm r = ContactArm(m, q->th, s);
-    q->z = -r.rz;
-    q->v = -q->w * r.rx;
-    if (cfg.slide[s] == 0) q->u = q->w * r.rz;
+    J.row(rows++) << 0.0, 1.0, r.rx;
+    if (cfg.slide[s] == 0) J.row(rows++) << 1.0, 0.0, -r.rz;
   }
+  if (rows == 0) return;
+  const Eigen::MatrixXd Jr = J.topRows(rows);
+  const Eigen::Vector3d minv(1.0, 1.0, m.inv_I);
+  const Eigen::MatrixXd JMinv = Jr * minv.asDiagonal();
+  const Eigen::MatrixXd A = JMinv * Jr.transpose();
+  Eigen::Vector3d vel(q->u, q->v, q->w);
+  const Eigen::VectorXd impulse = A.completeOrthogonalDecomposition().solve(-(Jr * vel));
+  vel += JMinv.transpose() * impulse;
+  q->u = vel(0);
+  q->v = vel(1);
+  q->w = vel(2);
 }
 
 }  // namespace dimer::sim

@@ -104,6 +104,12 @@ std::array<bool, 2> Runner::RestingAmong(std::array<bool, 2> touching) const {
 
 void Runner::Settle(std::array<bool, 2> candidates, int force_slide_sphere) {
   for (int iter = 0; iter < 4; ++iter) {
+    // Normal constraints first (gaps and V of the candidates): the mass-metric projection also
+    // moves U, and the stick/slide choice must see the slip that the contact will actually have.
+    ContactConfig normal_only;
+    normal_only.resting = candidates;
+    normal_only.slide = {1, 1};
+    ProjectOnContacts(m_, normal_only, &q_);
     ModeChoice mc = ChooseContactMode(m_, t_, q_, candidates);
     if (mc.painleve_sphere < 0) {
       const int s = force_slide_sphere;
@@ -270,8 +276,19 @@ SimResult Runner::Run() {
   for (int s = 0; s < 2; ++s) touching[s] = Gap(m_, q_, s) < kTouchTol_m;
   Settle(RestingAmong(touching));
   const double total = o_.Duration() / m_.period;
+  long stages_in_period = 0;
   while (t_ < res_.t_end) {
     const double t_lim = std::min(res_.t_end, period_end_);
+    if (++stages_in_period > 10 * o_.max_events_per_period + 1000) {
+      // Stages that log no event (an impact that transfers nothing, a zero-length contact
+      // phase) must still end: treat a period that never finishes like an event storm.
+      std::ostringstream msg;
+      msg << "no progress: " << stages_in_period << " stages in the period at t = " << t_
+          << " s (resting " << cfg_.resting[0] << cfg_.resting[1] << ", z " << q_.z << ", theta "
+          << q_.th << ", v " << q_.v << ", w " << q_.w << ")";
+      res_.error = msg.str();
+      break;
+    }
     try {
       if (cfg_.Count() == 0) {
         FlightStage(t_lim);
@@ -283,6 +300,7 @@ SimResult Runner::Run() {
       break;
     }
     if (t_ >= period_end_) {
+      stages_in_period = 0;
       res_.periods.push_back(cur_);
       res_.diag.max_events_in_period = std::max(res_.diag.max_events_in_period, cur_.events);
       StartPeriod();

@@ -1,0 +1,227 @@
+#include "sim/simulator.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "common/error.h"
+#include "sim/frames.h"
+#include "sim/initial_conditions.h"
+#include "tests/sim/test_models.h"
+
+namespace dimer::sim {
+namespace {
+
+using testing::Scaled;
+
+SimOptions EventsOnly(SimOptions o) {
+  o.fps = 0;
+  return o;
+}
+
+// MODEL.md check 1: a flat, non-rotating dimer hitting with both spheres at once is a bouncing
+// ball; on the period-1 orbit every impact is at the same plate phase and leaves at gT/2.
+TEST(Simulator, JumpModeFollowsTheBouncingBallPeriodOneOrbit) {
+  SimOptions o = EventsOnly({});
+  o.init = InitKind::kJump;
+  o.cycles = static_cast<double>(Scaled(1000));
+  const SimResult r = RunSimulation(o);
+  const Model& m = r.model;
+  const double phase_star = PeriodOneImpactPhase(m);
+  const double takeoff = kGravity * m.period / 2;
+  ASSERT_GE(r.events.size(), static_cast<size_t>(o.cycles) - 1);
+  for (const EventRecord& e : r.events) {
+    ASSERT_EQ(e.kind, EventKind::kDoubleImpact);
+    const double phase = std::remainder(m.omega_p * e.t + m.phi0 - phase_star, 2 * M_PI);
+    EXPECT_NEAR(phase, 0.0, 1e-9 * 2 * M_PI) << "impact at t = " << e.t;
+    const State lab = LabFromPlate(m, e.t, e.after);
+    EXPECT_NEAR(lab.v, takeoff, 1e-9 * takeoff) << "impact at t = " << e.t;
+    EXPECT_NEAR(lab.w, 0.0, 1e-9);
+    // Lab-frame identity of MODEL.md: w - V_p = eps g T / (1 + eps).
+    EXPECT_NEAR(lab.v - m.PlateV(e.t), m.eps * kGravity * m.period / (1 + m.eps), 1e-9 * takeoff);
+  }
+  EXPECT_EQ(r.mode.label, "jump");
+}
+
+double TotalEnergy(const Model& m, const State& q) { return Energy(m, q); }
+
+// MODEL.md check 3: with a still plate, eps = 1 and no friction, kinetic + potential energy is
+// the same after any number of impacts; with dissipation it never increases.
+struct EnergyRun {
+  double eps, mu_hat, mu;
+  bool conserved;
+};
+class SimulatorEnergy : public ::testing::TestWithParam<EnergyRun> {};
+
+TEST_P(SimulatorEnergy, ConservedOrNeverCreatedOverRandomFlights) {
+  const EnergyRun c = GetParam();
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> uni(0, 1);
+  long impacts = 0;
+  const long wanted = Scaled(100000);
+  for (int run = 0; impacts < wanted && run < 5000; ++run) {
+    SimOptions o = EventsOnly({});
+    o.gamma = 0;
+    o.ar = 1.05 + 9 * uni(rng);
+    o.eps = c.eps;
+    o.mu_hat = o.mu_hat_s = c.mu_hat;
+    o.mu = o.mu_s = c.mu;
+    o.collapse_rel = 1e-9;
+    o.contact_tol = 1e-12;  // integration error far below the energy bounds checked here
+    o.cycles = 200;
+    o.max_events_per_period = 1e4;
+    const Model m = Model::FromOptions(o);
+    const double th = M_PI * (uni(rng) - 0.5);
+    const double z = m.R + m.A * m.R * std::abs(std::sin(th)) + 0.01 * uni(rng);
+    o.init_state = std::array<double, 6>{0, z, th, uni(rng) - 0.5, uni(rng) - 0.5,
+                                         40 * (uni(rng) - 0.5)};
+    const SimResult r = RunSimulation(o);
+    ASSERT_TRUE(r.error.empty()) << r.error;
+    const double e0 = TotalEnergy(m, PlateFromLab(m, 0, State{0, z, th, (*o.init_state)[3],
+                                                               (*o.init_state)[4],
+                                                               (*o.init_state)[5]}));
+    double last = e0;
+    for (const EventRecord& e : r.events) {
+      const double eb = TotalEnergy(m, e.before), ea = TotalEnergy(m, e.after);
+      const double scale = std::abs(e0) + 1e-3;
+      if (c.conserved) {
+        ASSERT_NEAR(ea, e0, 1e-9 * scale) << "run " << run << " t " << e.t;
+      } else {
+        ASSERT_LE(eb, last + 1e-9 * scale)
+            << "run " << run << " created " << eb - last << " in flight/contact before t " << e.t;
+        ASSERT_LE(ea, eb + 1e-12 * scale) << "run " << run << " impact created energy";
+      }
+      last = ea;
+      impacts += e.kind == EventKind::kImpact || e.kind == EventKind::kDoubleImpact ||
+                 e.kind == EventKind::kCollapse;
+    }
+  }
+  EXPECT_GE(impacts, wanted);
+}
+
+INSTANTIATE_TEST_SUITE_P(Laws, SimulatorEnergy,
+                         ::testing::Values(EnergyRun{1.0, 0.0, 0.0, true},
+                                           EnergyRun{0.65, 0.1, 0.2, false},
+                                           EnergyRun{0.99, 0.5, 0.5, false}));
+
+// MODEL.md check 4: a flat dimer stays on a plate with Gamma < 1, and does not slide on a
+// still plate tilted below the friction angle.
+TEST(Simulator, FlatDimerRestsBelowGammaOne) {
+  for (double gamma : {0.0, 0.5, 0.9, 0.999}) {
+    SimOptions o;
+    o.init = InitKind::kRest;
+    o.gamma = gamma;
+    o.cycles = 50;
+    o.fps = 500;
+    const SimResult r = RunSimulation(o);
+    EXPECT_TRUE(r.events.empty()) << "Gamma " << gamma;
+    for (size_t i = 0; i < r.t.size(); ++i) {
+      const State q = PlateFromLab(r.model, r.t[i], r.lab[i]);
+      ASSERT_NEAR(q.z, r.model.R, 1e-15);
+      ASSERT_NEAR(q.x, 0.0, 1e-15);
+      ASSERT_NEAR(q.th, 0.0, 1e-15);
+    }
+    EXPECT_EQ(r.mode.label, "rest");
+  }
+}
+
+TEST(Simulator, NoSlideOnATiltBelowTheFrictionAngleAndCoulombSlideAbove) {
+  for (double factor : {0.5, 0.95, 1.05, 1.5}) {
+    SimOptions o;
+    o.init = InitKind::kRest;
+    o.gamma = 0;
+    o.tilt_deg = std::atan(factor * o.mu_s) * 180 / M_PI;
+    o.duration_s = 0.2;
+    o.fps = 100;
+    const SimResult r = RunSimulation(o);
+    const Model& m = r.model;
+    const State end = PlateFromLab(m, r.t.back(), r.lab.back());
+    const double elapsed = r.t.back() - r.t.front();
+    if (factor < 1) {
+      EXPECT_NEAR(end.x, 0.0, 1e-15) << "factor " << factor;
+    } else {
+      const double acc = -kGravity * (m.sin_a - m.mu * m.cos_a);  // down the slope (-x)
+      EXPECT_NEAR(end.x, 0.5 * acc * elapsed * elapsed, 1e-9) << "factor " << factor;
+    }
+  }
+}
+
+// The paper's drift mode (its Fig. 3 and 4): stable, toward the bouncing end at A_r = 3.9,
+// backward at A_r = 6.1, and <u> f / g independent of f.
+TEST(Simulator, DriftModeIsStableAndDriftsTowardTheBouncingEnd) {
+  SimOptions o = EventsOnly({});
+  o.cycles = static_cast<double>(std::max(200L, Scaled(1000)));
+  const SimResult r = RunSimulation(o);
+  ASSERT_EQ(r.mode.label, "drift");
+  EXPECT_EQ(r.mode.bouncing_sphere, kRight);  // the lifted end keeps bouncing
+  EXPECT_GT(r.mode.drift_speed, 0.0);
+  EXPECT_LT(r.mode.drift_speed_err, 0.01 * r.mode.drift_speed);
+  // Stable over the whole run, not only at its end: every period after the transient is drift.
+  int bad = 0;
+  for (size_t k = 20; k < r.periods.size(); ++k) {
+    bad += r.periods[k].impacts[kRight] != 1 || r.periods[k].rest_time[kLeft] < 0.2 * r.model.period;
+  }
+  EXPECT_EQ(bad, 0);
+}
+
+TEST(Simulator, LongDimerDriftsBackward) {
+  SimOptions o = EventsOnly({});
+  o.ar = 6.1;
+  o.cycles = 300;
+  const SimResult r = RunSimulation(o);
+  ASSERT_EQ(r.mode.label, "drift");
+  EXPECT_LT(r.mode.drift_speed, 0.0);
+}
+
+TEST(Simulator, ScaledDriftSpeedDoesNotDependOnFrequency) {
+  double scaled[2];
+  const double freqs[2] = {25, 75};
+  for (int i = 0; i < 2; ++i) {
+    SimOptions o = EventsOnly({});
+    o.freq_hz = freqs[i];
+    o.cycles = 300;
+    const SimResult r = RunSimulation(o);
+    ASSERT_EQ(r.mode.label, "drift") << freqs[i] << " Hz";
+    scaled[i] = r.mode.drift_speed * freqs[i] / kGravity;
+  }
+  RecordProperty("drift_scaled_25", std::to_string(scaled[0]));
+  RecordProperty("drift_scaled_75", std::to_string(scaled[1]));
+  EXPECT_NEAR(scaled[1], scaled[0], 0.05 * std::abs(scaled[0]));
+}
+
+TEST(Simulator, InvalidParametersAreReportedTogether) {
+  SimOptions o;
+  o.gamma = -1;
+  o.ar = 0.5;
+  o.eps = 1.5;
+  o.mu = -0.1;
+  try {
+    RunSimulation(o);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    for (const char* flag : {"--gamma", "--ar", "--eps", "--mu"}) {
+      EXPECT_NE(msg.find(flag), std::string::npos) << msg;
+    }
+  }
+  SimOptions jump;
+  jump.init = InitKind::kJump;
+  jump.eps = 0.0;  // needs Gamma >= pi
+  EXPECT_THROW(RunSimulation(jump), InputError);
+}
+
+TEST(Simulator, SameInputsGiveBitIdenticalResults) {
+  SimOptions o;
+  o.cycles = 30;
+  const SimResult a = RunSimulation(o), b = RunSimulation(o);
+  ASSERT_EQ(a.t.size(), b.t.size());
+  ASSERT_EQ(a.events.size(), b.events.size());
+  for (size_t i = 0; i < a.lab.size(); ++i) {
+    ASSERT_EQ(a.lab[i].x, b.lab[i].x);
+    ASSERT_EQ(a.lab[i].th, b.lab[i].th);
+  }
+}
+
+}  // namespace
+}  // namespace dimer::sim
