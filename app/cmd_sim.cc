@@ -3,6 +3,7 @@
 #include <map>
 
 #include "app/commands.h"
+#include "app/scene_file.h"
 #include "sim/run_sim.h"
 
 namespace dimer::app {
@@ -13,6 +14,7 @@ struct SimCli {
   std::string init = "drift";
   std::string restitution = "capped";
   std::string init_state;
+  std::string scene;
   bool quiet = false;
 };
 
@@ -58,6 +60,9 @@ void AddSimOptions(CLI::App* c, SimCli* a) {
       ->capture_default_str();
   c->add_option("--contact-tol", o.contact_tol, "persistent-contact integration tolerance")
       ->capture_default_str();
+  c->add_option("--gap-tol", o.gap_tol,
+                "impact-location tolerance: deepest allowed penetration, m")
+      ->capture_default_str();
   c->add_option("--max-events-per-period", o.max_events_per_period,
                 "stop with an error above this many events in one period")
       ->capture_default_str();
@@ -71,9 +76,11 @@ void AddSimOptions(CLI::App* c, SimCli* a) {
 void RegisterSim(CLI::App& app) {
   auto* cli = new SimCli;  // lives as long as the process
   CLI::App* c = app.add_subcommand("sim", "event-driven simulation of the dimer -> sim.h5");
-  c->set_config("--scene", "", "scene file: the same options, one `name = value` per line");
+  c->add_option("--scene", cli->scene,
+                 "scene file: the same options, one `name = value` per line (see samples/)");
   AddSimOptions(c, cli);
-  c->callback([cli] {
+  c->callback([cli, c] {
+    if (!cli->scene.empty()) ApplySceneFile(c, cli->scene);
     for (const auto& [name, kind] : sim::InitKindNames()) {
       if (name == cli->init) cli->args.options.init = kind;
     }

@@ -4,10 +4,11 @@
 // options (SimOptions); these are the fixed ones, derived from a few base values.
 namespace dimer::sim {
 
-// Gap (m) a sphere may penetrate before an impact is declared: the impact finder steps so that
-// no root of h(t) + kGapTol can be skipped, then refines to the exact root of h(t) = 0.
-// Penetration is therefore never deeper than this. Warning: 1e-13 m is ~2e-11 sphere radii;
-// much smaller values meet the round-off of z (~1e-18 m) only at extreme tolerances.
+// Default gap (m) a sphere may penetrate before an impact is declared (SimOptions::gap_tol, the
+// impact-location tolerance): the impact finder steps so that no root of h(t) + gap_tol can be
+// skipped, then refines to the exact root of h(t) = 0. Penetration is therefore never deeper
+// than gap_tol. Warning: 1e-13 m is ~2e-11 sphere radii; far smaller values reach the
+// round-off of z (~1e-18 m) and only slow the search down.
 inline constexpr double kGapTol_m = 1e-13;
 // Time accuracy of impact-time refinement (s): Newton stops below this step.
 inline constexpr double kRootTimeTol_s = 1e-14;

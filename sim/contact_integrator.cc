@@ -76,8 +76,8 @@ EventValues Events(const Model& m, const ContactConfig& cfg, double t, const Sta
     const Arm r = ContactArm(m, q.th, s);
     if (!cfg.resting[s]) {
       // Offset by the gap tolerance (constants.h): a sphere that starts exactly at the plate
-      // (h = 0 after a collapse nearby) is still watched, and penetration stays < kGapTol_m.
-      ev.v[2 + s] = q.z + r.rz + kGapTol_m;
+      // (h = 0 after a collapse nearby) is still watched, and penetration stays < the gap tolerance.
+      ev.v[2 + s] = q.z + r.rz + m.gap_tol;
       continue;
     }
     // Lift-off in the second slot (index 2+s is free for a resting sphere).
@@ -203,7 +203,7 @@ ContactRun IntegrateContact(const Model& m, const ContactConfig& cfg, double t0,
     if (which >= 0) {
       double tau = t_ev - t;
       if (ev1.kind[which] == ContactEvent::kImpact) {
-        // The event fired at h = -kGapTol; Newton back to h = 0 so that the sphere leaves the
+        // The event fired at h = -gap_tol; Newton back to h = 0 so that the sphere leaves the
         // impact from the plate surface and stays watched in the next phase.
         const int s = which - 2;
         for (int i = 0; i < kMaxNewtonIterations; ++i) {

@@ -63,8 +63,8 @@ ImpactSearch FindFlightImpact(const Model& m, const State& q0, double t0, double
     const GapDerivatives g = FlightGap(m, q0, t0, tau, sphere);
     // A sphere at the plate with a round-off-sized approach speed that is already turning
     // away (h'' > 0) dips at most to h - h'^2 / (2 h''): within tolerance it is leaving.
-    const bool leaving = g.hdd > 0 && g.h - g.hd * g.hd / (2 * g.hdd) > -kGapTol_m;
-    if (g.h <= kGapTol_m && g.hd < 0 && !leaving) {
+    const bool leaving = g.hdd > 0 && g.h - g.hd * g.hd / (2 * g.hdd) > -m.gap_tol;
+    if (g.h <= m.gap_tol && g.hd < 0 && !leaving) {
       // Approaching and within tolerance: Newton to h = 0 (converges from either side).
       for (int i = 0; i < kMaxNewtonIterations; ++i) {
         const GapDerivatives gi = FlightGap(m, q0, t0, tau, sphere);
@@ -78,16 +78,16 @@ ImpactSearch FindFlightImpact(const Model& m, const State& q0, double t0, double
       out.dt = tau;
       return out;
     }
-    const double c0 = g.h + kGapTol_m;
+    const double c0 = g.h + m.gap_tol;
     const double remaining = dt_max - tau;
     if (remaining <= 0) return out;
     const double quad = (g.hd + std::sqrt(g.hd * g.hd + 2.0 * M * c0)) / M;
     const double cubic = SafeCubicStep(c0, g.hd, 0.5 * std::max(-g.hdd, 0.0), J / 6.0, remaining);
     tau += std::min(std::max(quad, cubic), remaining);
     if (tau >= dt_max) {
-      // Last look at the end point (the step guarantees h > -kGapTol up to here).
+      // Last look at the end point (the step guarantees h > -gap_tol up to here).
       const GapDerivatives ge = FlightGap(m, q0, t0, dt_max, sphere);
-      if (!(ge.h <= kGapTol_m && ge.hd < 0)) return out;
+      if (!(ge.h <= m.gap_tol && ge.hd < 0)) return out;
       tau = dt_max;
     }
   }

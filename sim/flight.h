@@ -7,7 +7,7 @@
 // |h''| <= M = g cos(alpha) + a Omega^2 + A R omega^2, and the third, |h'''| <= J = a Omega^3 +
 // A R |omega|^3. From any time, both Taylor bounds h + h' tau - M tau^2/2 and
 // h + h' tau + min(h'',0) tau^2/2 - J tau^3/6 are lower bounds of h; stepping by the larger
-// interval on which one of them stays above -kGapTol means h cannot reach -kGapTol inside the
+// interval on which one of them stays above -gap_tol means h cannot reach -gap_tol inside the
 // step, grazing roots included. Near a root the steps shrink quadratically; the root of h = 0
 // is then polished by Newton's method to kRootTimeTol_s.
 #include "sim/model.h"

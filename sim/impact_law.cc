@@ -150,7 +150,7 @@ ImpactOutcome ResolveNewton(const Model& m, const State& before, std::array<bool
       slid[s] = true;
     }
   };
-  const double gap_tol = 1e-13 * m.vel_scale;
+  const double deficit_tol = 1e-13 * m.vel_scale;  // equal deficits, to round-off
   bool first = true;
   for (; out.segments < kMaxImpactSegments; ++out.segments) {
     // Active set: touching contacts at the lowest deficit (forced ones at the first segment).
@@ -158,9 +158,9 @@ ImpactOutcome ResolveNewton(const Model& m, const State& before, std::array<bool
     for (int s = 0; s < 2; ++s)
       if (touching[s]) gmin = std::min(gmin, deficit(s));
     const bool any_forced = first && (forced[0] || forced[1]);
-    if (!(gmin < -gap_tol) && !any_forced) break;
+    if (!(gmin < -deficit_tol) && !any_forced) break;
     for (int s = 0; s < 2; ++s) {
-      const bool should = touching[s] && (deficit(s) <= gmin + gap_tol || (first && forced[s]));
+      const bool should = touching[s] && (deficit(s) <= gmin + deficit_tol || (first && forced[s]));
       if (should && !c[s].active) activate(s);
       if (!should) c[s].active = false;
     }

@@ -65,6 +65,8 @@ std::vector<std::string> SimOptions::Check() const {
           collapse_rel, "0 < v_c/(g/f) < 1");
   Require(e, finite(contact_tol) && contact_tol >= 1e-14 && contact_tol <= 1e-2,
           "--contact-tol", contact_tol, "1e-14 <= tol <= 1e-2");
+  Require(e, finite(gap_tol) && gap_tol >= 1e-16 && gap_tol <= 1e-6, "--gap-tol", gap_tol,
+          "1e-16 <= gap tolerance <= 1e-6 m");
   Require(e, max_events_per_period >= 10, "--max-events-per-period", max_events_per_period,
           ">= 10");
   if (init_state) {
@@ -100,10 +102,11 @@ Model Model::FromOptions(const SimOptions& o) {
   m.mu_hat_s = o.mu_hat_s;
   m.restitution = o.restitution;
   m.vel_scale = kGravity / o.freq_hz;
-  // Floor: a bounce slower than sqrt(2 g_max kGapTol) rises less than the gap tolerance, so its
+  m.gap_tol = o.gap_tol;
+  // Floor: a bounce slower than sqrt(2 g_max gap_tol) rises less than the gap tolerance, so its
   // flight cannot be resolved from contact (position round-off); it is a collapse whatever v_c.
   const double g_max = kGravity + m.amp * m.omega_p * m.omega_p;
-  m.v_collapse = std::max(o.collapse_rel * m.vel_scale, std::sqrt(2 * g_max * kGapTol_m));
+  m.v_collapse = std::max(o.collapse_rel * m.vel_scale, std::sqrt(2 * g_max * m.gap_tol));
   m.contact_tol = o.contact_tol;
   return m;
 }

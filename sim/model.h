@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/constants.h"
+
 namespace dimer::sim {
 
 inline constexpr double kGravity = 9.81;  // m/s^2 (MODEL.md)
@@ -59,6 +61,7 @@ struct SimOptions {
   // Numerical knobs (measured in bench/bench_sim_accuracy).
   double collapse_rel = 1e-4;  // v_c / (g/f): impacts slower than v_c are plastic (collapse)
   double contact_tol = 1e-9;   // persistent-contact RK45 tolerance (relative, on g/f and R)
+  double gap_tol = kGapTol_m;  // impact-location tolerance: deepest penetration allowed, m
   double max_events_per_period = 5000;  // a run above this average stops with an error
 
   // Every invalid field at once, as "--flag: value: expected ..." lines; empty if valid.
@@ -79,8 +82,9 @@ struct Model {
   double eps, mu, mu_s, mu_hat, mu_hat_s;
   RestitutionLaw restitution;
   // Numerics.
-  double v_collapse;  // m/s: collapse_rel g/f, floored at sqrt(2 g_max kGapTol_m)
+  double v_collapse;  // m/s: collapse_rel g/f, floored at sqrt(2 g_max gap_tol)
   double contact_tol;
+  double gap_tol;     // m
   double vel_scale;   // g/f, m/s: scale for relative velocity tolerances
 
   static Model FromOptions(const SimOptions& o);  // assumes o.Check() is empty

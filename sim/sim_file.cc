@@ -32,6 +32,7 @@ AttrList SimParameters(const SimOptions& o) {
                 {"fps", o.fps},
                 {"collapse_vc", o.collapse_rel},
                 {"contact_tol", o.contact_tol},
+                {"gap_tol", o.gap_tol},
                 {"max_events_per_period", o.max_events_per_period}};
   if (o.init_state) {
     std::string s;

@@ -89,7 +89,9 @@ TEST(ImpactLaw, StickCriterionDecidesStickOrReversalBothSidesOfTheBoundary) {
       EXPECT_EQ(io.stuck[kRight], sticks) << "A_r " << ar << " factor " << factor;
       EXPECT_EQ(io.reversed[kRight], !sticks) << "A_r " << ar << " factor " << factor;
       const Arm r = ContactArm(m, 0.0, kRight);
-      if (sticks) EXPECT_NEAR(SlipU(r, io.after), 0.0, 1e-12 * 0.3);
+      if (sticks) {
+        EXPECT_NEAR(SlipU(r, io.after), 0.0, 1e-12 * 0.3);
+      }
       EXPECT_NEAR(NormalV(r, io.after), 0.65 * 0.3, 1e-12 * 0.3);
     }
   }
@@ -127,7 +129,9 @@ TEST(ImpactLaw, FlatSymmetricDoubleImpactRestitutesBothContacts) {
             << "eps " << eps << " slip " << slip;
       }
       EXPECT_NEAR(io.after.w, 0.0, 1e-12);
-      if (slip == 0.0) EXPECT_NEAR(io.pn[0], io.pn[1], 1e-14);
+      if (slip == 0.0) {
+        EXPECT_NEAR(io.pn[0], io.pn[1], 1e-14);
+      }
     }
   }
 }
