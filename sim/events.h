@@ -13,7 +13,9 @@ enum class EventKind { kImpact, kDoubleImpact, kCollapse, kLiftoff, kStick, kSli
 std::string ToString(EventKind k);
 
 struct EventRecord {
-  double t;
+  double t;            // absolute time, s
+  double t_local;      // the same instant in the simulator's re-based time (same plate phase):
+                       // use it to convert before/after to the lab frame without round-off
   EventKind kind;
   int8_t sphere;       // 0 left, 1 right, 2 both
   std::string detail;  // impacts: continuous_slide | slip_stick | slip_reversal (per sphere)

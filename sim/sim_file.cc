@@ -69,8 +69,8 @@ void WriteEvents(H5Writer& w, const Model& m, const std::vector<EventRecord>& ev
     kind.push_back(ToString(e.kind));
     detail.push_back(e.detail);
     sphere.push_back(e.sphere);
-    before.push_back(LabFromPlate(m, e.t, e.before));
-    after.push_back(LabFromPlate(m, e.t, e.after));
+    before.push_back(LabFromPlate(m, e.t_local, e.before));
+    after.push_back(LabFromPlate(m, e.t_local, e.after));
   }
   w.WriteDoubles("/events/t", t, {n}, "s");
   w.WriteStrings("/events/kind", kind);

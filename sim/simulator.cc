@@ -26,16 +26,20 @@ struct EventStorm : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Output samples at t_start + k / fps (absolute times, never accumulated). The runner works in
+// a local time that is re-based every period (see Runner), so Next() and Record() speak local
+// time and `offset` converts.
 class Sampler : public SampleSink {
  public:
-  Sampler(const Model& m, double t0, double t_end, double fps, SimResult* res)
-      : m_(&m), t0_(t0), t_end_(t_end), fps_(fps), res_(res) {
+  Sampler(const Model& m, double t0, double t_end, double fps, const double* offset,
+          SimResult* res)
+      : m_(&m), t0_(t0), t_end_(t_end), fps_(fps), offset_(offset), res_(res) {
     next_ = fps > 0 ? t0 : kInf;
   }
-  double Next() const override { return next_; }
-  void Record(double t, const State& q) override {
-    res_->t.push_back(t);
-    res_->lab.push_back(LabFromPlate(*m_, t, q));
+  double Next() const override { return next_ - *offset_; }
+  void Record(double t_local, const State& q) override {
+    res_->t.push_back(next_);
+    res_->lab.push_back(LabFromPlate(*m_, t_local, q));
     ++k_;
     next_ = t0_ + k_ / fps_;
     if (next_ > t_end_) next_ = kInf;
@@ -44,6 +48,7 @@ class Sampler : public SampleSink {
  private:
   const Model* m_;
   double t0_, t_end_, fps_;
+  const double* offset_;
   SimResult* res_;
   long k_ = 0;
   double next_;
@@ -52,7 +57,7 @@ class Sampler : public SampleSink {
 class Runner {
  public:
   Runner(const SimOptions& o, const RunControls& c)
-      : o_(o), c_(c), m_(Model::FromOptions(o)), sampler_(m_, 0, 0, 0, &res_) {}
+      : o_(o), c_(c), m_(Model::FromOptions(o)), sampler_(m_, 0, 0, 0, &offset_, &res_) {}
   SimResult Run();
 
  private:
@@ -70,7 +75,12 @@ class Runner {
   Model m_;
   SimResult res_;
   Sampler sampler_;
+  // Time: the plate's phase only needs t modulo T, and sin(omega t) loses digits as t grows
+  // (at 10^6 periods, 1e-12 s of round-off is 1e-13 m of plate position). So the stages run on
+  // a local time t_ that goes back by one period at every period boundary; absolute time is
+  // offset_ + t_ (offset_ = k T), used only for output.
   double t_ = 0;
+  double offset_ = 0;
   State q_;
   ContactConfig cfg_;
   double h_ = 0;  // contact step size carried between phases
@@ -84,11 +94,12 @@ void Runner::Log(EventKind kind, int sphere, const State& before, std::string de
   if (cur_.events > o_.max_events_per_period) {
     std::ostringstream s;
     s << "event storm: more than " << o_.max_events_per_period << " events in the period at t = "
-      << t_ << " s (last: " << ToString(kind) << "); see --max-events-per-period";
+      << offset_ + t_ << " s (last: " << ToString(kind) << "); see --max-events-per-period";
     throw EventStorm(s.str());
   }
   if (!c_.keep_events) return;
-  res_.events.push_back({t_, kind, static_cast<int8_t>(sphere), std::move(detail), before, q_});
+  res_.events.push_back(
+      {offset_ + t_, t_, kind, static_cast<int8_t>(sphere), std::move(detail), before, q_});
 }
 
 std::array<bool, 2> Runner::RestingAmong(std::array<bool, 2> touching) const {
@@ -258,8 +269,7 @@ void Runner::ContactStage(double t_lim) {
 void Runner::StartPeriod() {
   cur_ = PeriodStats{};
   cur_.x_start = LabFromPlate(m_, t_, q_).x;
-  const double k = std::floor((t_ - res_.t_start) / m_.period + 0.5);
-  period_end_ = res_.t_start + (k + 1) * m_.period;
+  period_end_ = res_.t_start + m_.period;  // local time: every period starts at t_start
 }
 
 SimResult Runner::Run() {
@@ -269,23 +279,32 @@ SimResult Runner::Run() {
   q_ = ic.q;
   res_.t_start = t_;
   res_.t_end = t_ + o_.Duration();
-  sampler_ = Sampler(m_, t_, res_.t_end, o_.fps, &res_);
+  sampler_ = Sampler(m_, t_, res_.t_end, o_.fps, &offset_, &res_);
   h_ = 1e-3 * m_.period;
   StartPeriod();
   std::array<bool, 2> touching{};
   for (int s = 0; s < 2; ++s) touching[s] = Gap(m_, q_, s) < kTouchTol_m;
   Settle(RestingAmong(touching));
   const double total = o_.Duration() / m_.period;
+  // Whole periods, then what remains of the duration (a count, so that rounding of k T can
+  // neither add nor drop a period).
+  const long whole = static_cast<long>(std::floor(total + 1e-9));
+  const double remainder = std::max(0.0, o_.Duration() - whole * m_.period);
+  auto running = [&] {
+    const long done = static_cast<long>(res_.periods.size());
+    return done < whole || (remainder > 1e-12 * m_.period && t_ < res_.t_start + remainder);
+  };
   long stages_in_period = 0;
-  while (t_ < res_.t_end) {
-    const double t_lim = std::min(res_.t_end, period_end_);
+  while (running()) {
+    const long done = static_cast<long>(res_.periods.size());
+    const double t_lim = done < whole ? period_end_ : res_.t_start + remainder;
     if (++stages_in_period > 10 * o_.max_events_per_period + 1000) {
       // Stages that log no event (an impact that transfers nothing, a zero-length contact
       // phase) must still end: treat a period that never finishes like an event storm.
       std::ostringstream msg;
-      msg << "no progress: " << stages_in_period << " stages in the period at t = " << t_
-          << " s (resting " << cfg_.resting[0] << cfg_.resting[1] << ", z " << q_.z << ", theta "
-          << q_.th << ", v " << q_.v << ", w " << q_.w << ")";
+      msg << "no progress: " << stages_in_period << " stages in the period at t = "
+          << offset_ + t_ << " s (resting " << cfg_.resting[0] << cfg_.resting[1] << ", z "
+          << q_.z << ", theta " << q_.th << ", v " << q_.v << ", w " << q_.w << ")";
       res_.error = msg.str();
       break;
     }
@@ -303,9 +322,12 @@ SimResult Runner::Run() {
       stages_in_period = 0;
       res_.periods.push_back(cur_);
       res_.diag.max_events_in_period = std::max(res_.diag.max_events_in_period, cur_.events);
+      // Re-base: the same plate phase, one period earlier in local time.
+      const long k = static_cast<long>(res_.periods.size());
+      offset_ = k * m_.period;
+      t_ = res_.t_start;
       StartPeriod();
-      const double done = static_cast<double>(res_.periods.size());
-      if (c_.progress) c_.progress(done, total);
+      if (c_.progress) c_.progress(static_cast<double>(k), total);
       if (c_.should_stop && c_.should_stop()) {
         res_.interrupted = true;
         break;
