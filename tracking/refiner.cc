@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "tracking/disc_coverage.h"
+#include "tracking/rim_fit.h"
 #include "tracking/tolerances.h"
 
 namespace dimer::tracking {
@@ -342,7 +343,31 @@ SphereMeasurement MeasureSphere(const cv::Mat& frame, const Eigen::Vector2d& gue
                                 double radius_px, const RefineContext& context, Method method) {
   CentroidState state;
   SphereMeasurement m = Centroid(frame, guess, radius_px, context, &state);
-  if (m.found() && method == Method::kDiscFit) DiscFit(frame, context, state.levels, &m);
+  if (!m.found()) return m;
+  if (!state.levels.uniform) {
+    // A mirror sphere: its centroid only starts the rim fit (rim_fit.h), whatever the method.
+    RimFitInput in;
+    in.polarity = context.polarity;
+    in.plate_row = context.plate_row;
+    in.fit_radius = context.fit_radius;
+    if (context.rod_dir.squaredNorm() > 0) {
+      in.rod_dir = context.rod_dir.normalized();
+      in.rod_half_width_px = kRodCorridorHalfWidthR * radius_px;
+    }
+    // Fitting the radius, start from the silhouette's weighted area (radius_px only sizes it).
+    const double start_r = context.fit_radius ? m.radius_px : radius_px;
+    const RimFitResult rim = FitRim(frame, guess, start_r, in);
+    if (!rim.ok) {
+      m.status = SphereMeasurement::Status::kMissing;
+      return m;
+    }
+    m.centre = rim.centre;
+    m.radius_px = rim.radius_px;
+    m.iterations += rim.iterations;
+    m.rim_fit = true;
+    return m;
+  }
+  if (method == Method::kDiscFit) DiscFit(frame, context, state.levels, &m);
   return m;
 }
 

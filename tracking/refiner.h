@@ -14,6 +14,9 @@
 //    Eigen). It is the maximum-likelihood estimate under Gaussian noise for a uniform disc, so it
 //    approaches the Cramér-Rao bound; it costs more.
 //
+// Non-uniform (mirror) spheres, recognised by their levels, end with the rim fit (rim_fit.h)
+// whichever the method: a centroid of a mirror image is not the centre of the sphere.
+//
 // A sphere whose window leaves the frame is `kClipped`; one whose weighted area is far from
 // pi R^2 (absent, or merged with something) is `kMissing`. Both are expected outcomes, not errors.
 #include <opencv2/core.hpp>
@@ -31,6 +34,7 @@ struct RefineContext {
   int polarity = 1;                   // +1: spheres brighter than background; -1: darker
   double plate_row = std::numeric_limits<double>::quiet_NaN();  // plate top surface, px
   Eigen::Vector2d rod_dir{0, 0};      // unit vector toward the other sphere; zero: no rod cut
+  bool fit_radius = false;            // mirror spheres: fit the radius too (else it is known)
 };
 
 struct SphereMeasurement {
@@ -40,6 +44,7 @@ struct SphereMeasurement {
   double radius_px = 0;          // from the weighted area (centroid) or the fit (discfit)
   double area_fraction = 0;      // weighted area / (pi radius_guess^2)
   int iterations = 0;
+  bool rim_fit = false;          // non-uniform (mirror) sphere: centre and radius from FitRim
   bool found() const { return status == Status::kFound; }
 };
 

@@ -75,10 +75,12 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
   if (std::isnan(radius_px_) && n > 0) {
     // Measure with a provisional window, then keep the larger of the two radius estimates.
     const double dt_r = *std::max_element(det.radii_px.begin(), det.radii_px.end());
-    const RefineContext ctx = Context(polarity_, det.plate_row, coarse[0], n > 1 ? &coarse[1] : nullptr);
+    RefineContext ctx = Context(polarity_, det.plate_row, coarse[0], n > 1 ? &coarse[1] : nullptr);
+    ctx.fit_radius = true;
     const SphereMeasurement m = MeasureSphere(frame, coarse[0], kProvisionalRadiusScale * dt_r,
                                               ctx, Method::kCentroid);
-    radius_px_ = std::max(dt_r, m.found() ? m.radius_px : 0.0);
+    // A mirror sphere's rim fit measures the radius itself; otherwise the silhouette area.
+    radius_px_ = m.found() && m.rim_fit ? m.radius_px : std::max(dt_r, m.found() ? m.radius_px : 0.0);
   }
   out->plate_row = PlateRow(frame, det.plate_row, coarse, n);
   std::vector<SphereMeasurement> found;

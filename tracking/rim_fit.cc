@@ -1,0 +1,297 @@
+#include "tracking/rim_fit.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include "tracking/disc_coverage.h"
+#include "tracking/tolerances.h"
+
+namespace dimer::tracking {
+namespace {
+
+// Coarse to fine: Gauss-Newton with a linear ramp edge of these widths (px) first, then the
+// exact coverage (0). The 3 px ramp has gradient wherever a start within ~2 px sees the edge.
+constexpr double kRampSchedulePx[] = {3.0, 1.5, 0.0};
+// Ramp stages stop earlier (their result only starts the next), px.
+constexpr double kRampConvergedPx = 1e-2;
+// Damping added to the level parameters' normal equations, (grey levels)^-2 scale: far below
+// any sector's information (>= 3 pixels x coverage^2), so it only pins empty sectors.
+constexpr double kLevelDamping = 1e-6;
+// Angular sectors for the interior level a(theta): 16 sectors of ~9 px of arc, each with ~20
+// ring pixels (fewer sectors: less level noise, but coarser interpolation; 12 and 24 measured
+// worse at sigma = 2).
+constexpr int kRimSectors = 16;
+// Ring of fully covered pixels for a(theta): centre distance in [R - kLevelRingOuterPx,
+// R - kLevelRingInnerPx] (a pixel is fully inside when d < R - 1/sqrt 2).
+constexpr double kLevelRingInnerPx = 0.8, kLevelRingOuterPx = 3.0;
+// A sector is fitted only when its ring holds at least this many usable pixels (a third of a
+// full sector's), so a sector mostly hidden by the rod or plate cannot trade its level against
+// the edge position.
+constexpr int kMinSectorPixels = 5;
+// Sectors fitted: ring contrast at most this multiple of the dimmest sector's (see FitRim).
+constexpr double kRimSectorContrastRatio = 2.0;
+// Pixels used by Gauss-Newton: up to kEdgeBandPx beyond the straddling ones on each side, so
+// the levels are pinned by fully inside and fully outside pixels of the same sector.
+constexpr double kEdgeBandPx = 1.5;
+// Extra window half-size beyond R for rays, rings and guesses off by up to this much, px.
+constexpr double kRimWindowMarginPx = 7.0;
+// A sector whose rim is less than this fraction of full scale above the background carries no
+// edge information worth its noise; a fit needs at least this many edge pixels.
+constexpr double kMinRimContrastFraction = 0.01;
+constexpr int kMinEdgePixels = 40;
+// The fit must stay within this of the start, px; further means a wrong blob.
+constexpr double kMaxMovePx = 4.0;
+
+struct Window {
+  int col0 = 0, row0 = 0, size = 0;
+  std::vector<float> v;
+  float at(int x, int y) const { return v[size_t(y) * size + x]; }
+  // Bilinear value at frame coordinates (col, row); NaN outside.
+  double Sample(double col, double row) const {
+    const double x = col - col0, y = row - row0;
+    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+    if (x0 < 0 || y0 < 0 || x0 + 1 >= size || y0 + 1 >= size) return std::nan("");
+    const double fx = x - x0, fy = y - y0;
+    return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
+           fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
+  }
+};
+
+template <typename T>
+void Copy(const cv::Mat& frame, int polarity, Window* w) {
+  for (int y = 0; y < w->size; ++y) {
+    const T* src = frame.ptr<T>(w->row0 + y) + w->col0;
+    float* dst = &w->v[size_t(y) * w->size];
+    for (int x = 0; x < w->size; ++x) dst[x] = float(polarity * int(src[x]));
+  }
+}
+
+bool Extract(const cv::Mat& frame, const Eigen::Vector2d& c, int half, int polarity, Window* w) {
+  w->col0 = int(std::lround(c.x())) - half;
+  w->row0 = int(std::lround(c.y())) - half;
+  w->size = 2 * half + 1;
+  if (w->col0 < 0 || w->row0 < 0 || w->col0 + w->size > frame.cols ||
+      w->row0 + w->size > frame.rows) {
+    return false;
+  }
+  w->v.resize(size_t(w->size) * w->size);
+  if (frame.depth() == CV_8U) {
+    Copy<uint8_t>(frame, polarity, w);
+  } else {
+    Copy<uint16_t>(frame, polarity, w);
+  }
+  return true;
+}
+
+// True where a point (offset d from the centre) may be the sphere's rim: not on the plate or
+// within its guard, not in the rod corridor. One-sided: the fit is a model, not a centroid.
+struct Usable {
+  const RimFitInput& in;
+  double centre_row;
+  double R;
+  bool operator()(double dx, double dy) const {
+    if (std::isfinite(in.plate_row) && centre_row + dy + 0.5 > in.plate_row - kPlateGuardPx) {
+      return false;
+    }
+    if (in.rod_half_width_px > 0) {
+      const double along = dx * in.rod_dir.x() + dy * in.rod_dir.y();
+      const double across = std::abs(dx * in.rod_dir.y() - dy * in.rod_dir.x());
+      if (along > 0 && across < in.rod_half_width_px + 1.0) return false;
+    }
+    return true;
+  }
+};
+
+// Background: median of the window's border pixels that are usable (not plate, not rod).
+double Background(const Window& w, const Eigen::Vector2d& c, const Usable& usable) {
+  std::vector<float> ring;
+  ring.reserve(4 * size_t(w.size));
+  for (int y = 0; y < w.size; ++y) {
+    for (int x = 0; x < w.size; ++x) {
+      if (x != 0 && y != 0 && x != w.size - 1 && y != w.size - 1) continue;
+      if (usable(w.col0 + x - c.x(), w.row0 + y - c.y())) ring.push_back(w.at(x, y));
+    }
+  }
+  if (ring.empty()) return std::nan("");
+  std::nth_element(ring.begin(), ring.begin() + ring.size() / 2, ring.end());
+  return ring[ring.size() / 2];
+}
+
+// Gauss-Newton parameters: centre (2), radius, background, one interior level per sector.
+constexpr int kGeomParams = 3;
+constexpr int kParams = kGeomParams + 1 + kRimSectors;
+using Vec = Eigen::Matrix<double, kParams, 1>;
+using Mat = Eigen::Matrix<double, kParams, kParams>;
+
+// Coverage of a pixel: exact (ramp_px = 0) or a linear radial ramp of that width, which has
+// gradient over a wider band and so pulls a start that is a pixel or two off toward the edge.
+PixelCoverage Cover(double col, double row, const Eigen::Vector2d& c, double R, double ramp_px) {
+  if (ramp_px <= 0) return DiscPixelCoverage(col, row, c, R);
+  const double dx = col - c.x(), dy = row - c.y(), d = std::max(1e-9, std::hypot(dx, dy));
+  PixelCoverage p;
+  const double t = 0.5 - (d - R) / ramp_px;
+  p.area = std::clamp(t, 0.0, 1.0);
+  if (t > 0 && t < 1) {
+    p.d_cx = dx / d / ramp_px;
+    p.d_cy = dy / d / ramp_px;
+    p.d_r = 1.0 / ramp_px;
+  }
+  return p;
+}
+
+// Sector index and interpolation weight of the direction (dx, dy) (levels at sector centres).
+void SectorOf(double dx, double dy, int* k0, int* k1, double* f) {
+  const double t =
+      (std::atan2(dy, dx) + std::numbers::pi) / (2 * std::numbers::pi) * kRimSectors - 0.5;
+  const int k = int(std::floor(t));
+  *f = t - k;
+  *k0 = (k + kRimSectors) % kRimSectors;
+  *k1 = (k + 1) % kRimSectors;
+}
+
+// One Gauss-Newton step on all parameters; returns the number of pixels used.
+int Step(const Window& w, const Usable& usable, double ramp_px, bool fit_radius,
+         const std::array<bool, kRimSectors>& valid, Vec* p) {
+  const Eigen::Vector2d c((*p)(0), (*p)(1));
+  const double R = (*p)(2), bg = (*p)(3);
+  const double band = std::max(0.5 * ramp_px, 0.71) + kEdgeBandPx;
+  Mat jtj = Mat::Zero();
+  Vec jtr = Vec::Zero();
+  int used = 0;
+  std::array<int, 6> idx;
+  std::array<double, 6> j;
+  for (int y = 0; y < w.size; ++y) {
+    const double row = w.row0 + y, dy = row - c.y();
+    for (int x = 0; x < w.size; ++x) {
+      const double col = w.col0 + x, dx = col - c.x();
+      if (std::abs(std::sqrt(dx * dx + dy * dy) - R) > band || !usable(dx, dy)) continue;
+      int k0, k1;
+      double f;
+      SectorOf(dx, dy, &k0, &k1, &f);
+      if (!valid[k0] || !valid[k1]) continue;
+      const double a = (1 - f) * (*p)(4 + k0) + f * (*p)(4 + k1);
+      const PixelCoverage cov = Cover(col, row, c, R, ramp_px);
+      idx = {0, 1, 2, 3, 4 + k0, 4 + k1};
+      j = {(a - bg) * cov.d_cx, (a - bg) * cov.d_cy, (a - bg) * cov.d_r, 1 - cov.area,
+           (1 - f) * cov.area, f * cov.area};
+      const double r = w.at(x, y) - (bg + (a - bg) * cov.area);
+      for (int u = 0; u < 6; ++u) {
+        jtr(idx[u]) += j[u] * r;
+        for (int v = 0; v < 6; ++v) jtj(idx[u], idx[v]) += j[u] * j[v];
+      }
+      ++used;
+    }
+  }
+  // Sectors hidden by the rod or the plate have no data: a tiny damping keeps them (and only
+  // them, in effect) at their current level.
+  for (int k = kGeomParams; k < kParams; ++k) jtj(k, k) += kLevelDamping;
+  if (!fit_radius) {  // radius known: keep it (row and column of R decoupled, step 0)
+    jtj.row(2).setZero();
+    jtj.col(2).setZero();
+    jtj(2, 2) = 1.0;
+    jtr(2) = 0.0;
+  }
+  const Vec step = jtj.ldlt().solve(jtr);
+  if (!step.allFinite()) return -1;
+  *p += step;
+  return used;
+}
+
+// Starting sector levels: the mean of the ring of fully covered pixels just inside the rim;
+// NaN for sectors without data.
+void SectorLevels(const Window& w, const Eigen::Vector2d& c, double R, const Usable& usable,
+                  std::array<double, kRimSectors>* level) {
+  std::array<double, kRimSectors> sum{};
+  std::array<int, kRimSectors> n{};
+  const double lo2 = std::pow(R - kLevelRingOuterPx, 2), hi2 = std::pow(R - kLevelRingInnerPx, 2);
+  for (int y = 0; y < w.size; ++y) {
+    const double dy = w.row0 + y - c.y();
+    for (int x = 0; x < w.size; ++x) {
+      const double dx = w.col0 + x - c.x(), d2 = dx * dx + dy * dy;
+      if (d2 < lo2 || d2 > hi2 || !usable(dx, dy)) continue;
+      int k0, k1;
+      double f;
+      SectorOf(dx, dy, &k0, &k1, &f);
+      const int k = f < 0.5 ? k0 : k1;
+      sum[k] += w.at(x, y);
+      ++n[k];
+    }
+  }
+  for (int k = 0; k < kRimSectors; ++k) {
+    (*level)[k] = n[k] >= kMinSectorPixels ? sum[k] / n[k] : std::nan("");
+  }
+}
+
+// Sector levels around the current estimate and which sectors are fitted. The grazing rim
+// reflects the backdrop behind the sphere, the dimmest part of its image; sectors whose ring is
+// much brighter (the plate reflected within a pixel of the rim) hold an unresolved sliver of
+// backdrop at the very edge, which the model has no term for, and are left out. Reference: the
+// lower quartile of the sector contrasts (the minimum would be a sector half hidden by the rod
+// or plate, or half outside a start that is off). False when no sector has contrast.
+bool SelectSectors(const Window& w, const Usable& usable, double min_contrast,
+                   std::array<bool, kRimSectors>* valid, Vec* p) {
+  std::array<double, kRimSectors> level;
+  SectorLevels(w, p->head<2>(), (*p)(2), usable, &level);
+  std::array<double, kRimSectors> contrasts;
+  int n = 0;
+  for (int k = 0; k < kRimSectors; ++k) {
+    if (std::isfinite(level[k]) && level[k] - (*p)(3) > min_contrast) {
+      contrasts[n++] = level[k] - (*p)(3);
+    }
+  }
+  if (n == 0) return false;
+  std::nth_element(contrasts.begin(), contrasts.begin() + n / 4, contrasts.begin() + n);
+  const double rim = contrasts[n / 4];
+  for (int k = 0; k < kRimSectors; ++k) {
+    const double contrast = level[k] - (*p)(3);
+    (*valid)[k] = std::isfinite(level[k]) && contrast > min_contrast &&
+                  contrast <= kRimSectorContrastRatio * rim;
+    (*p)(4 + k) = (*valid)[k] ? level[k] : (*p)(3);
+  }
+  return true;
+}
+
+}  // namespace
+
+RimFitResult FitRim(const cv::Mat& frame, const Eigen::Vector2d& centre, double radius_px,
+                    const RimFitInput& input) {
+  RimFitResult out;
+  const int half = int(std::ceil(radius_px + kRimWindowMarginPx));
+  const double min_contrast = kMinRimContrastFraction * (frame.depth() == CV_8U ? 255.0 : 65535.0);
+  thread_local Window w;
+  if (!Extract(frame, centre, half, input.polarity, &w)) return out;
+  Usable usable{input, centre.y(), radius_px};
+  Vec p = Vec::Zero();
+  p.head<3>() << centre.x(), centre.y(), radius_px;
+  p(3) = Background(w, centre, usable);
+  if (!std::isfinite(p(3))) return out;
+  std::array<bool, kRimSectors> valid;
+  for (const double ramp : kRampSchedulePx) {
+    // The coarse ramp stages fit the radius too (more forgiving of a poor start); a known
+    // radius is restored for the exact stage.
+    const bool fit_radius = input.fit_radius || ramp > 0;
+    if (!fit_radius) p(2) = radius_px;
+    usable.centre_row = p(1);
+    if (!SelectSectors(w, usable, min_contrast, &valid, &p)) return out;
+    for (int i = 0; i < kFitMaxIter; ++i) {
+      usable.centre_row = p(1);
+      const Eigen::Vector2d before = p.head<2>();
+      const int used = Step(w, usable, ramp, fit_radius, valid, &p);
+      ++out.iterations;
+      out.edge_pixels = used;
+      if (used < kMinEdgePixels || (p.head<2>() - centre).norm() > kMaxMovePx) return out;
+      if ((p.head<2>() - before).norm() < (ramp > 0 ? kRampConvergedPx : kFitConvergedPx)) break;
+    }
+  }
+  out.ok = true;
+  out.centre = p.head<2>();
+  out.radius_px = p(2);
+  return out;
+}
+
+}  // namespace dimer::tracking
