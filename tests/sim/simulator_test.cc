@@ -225,3 +225,27 @@ TEST(Simulator, SameInputsGiveBitIdenticalResults) {
 
 }  // namespace
 }  // namespace dimer::sim
+
+namespace dimer::sim {
+namespace {
+
+// Ctrl-C: the run stops at a period boundary with everything before it intact.
+TEST(Simulator, StopRequestEndsTheRunCleanlyAtAPeriodBoundary) {
+  SimOptions o;
+  o.cycles = 100;
+  RunControls c;
+  int polls = 0;
+  c.should_stop = [&] { return ++polls >= 7; };
+  const SimResult r = RunSimulation(o, c);
+  EXPECT_TRUE(r.interrupted);
+  EXPECT_EQ(r.periods.size(), 7u);
+  ASSERT_FALSE(r.t.empty());
+  // The last sample is the last grid point at or before the boundary (one interval at most).
+  EXPECT_LE(r.t.back(), r.t_start + 7 * r.model.period + 1e-12);
+  EXPECT_GT(r.t.back(), r.t_start + 7 * r.model.period - 1.0 / o.fps - 1e-12);
+  const SimResult full = RunSimulation(o);
+  for (size_t i = 0; i < r.t.size(); ++i) ASSERT_EQ(r.lab[i].x, full.lab[i].x);
+}
+
+}  // namespace
+}  // namespace dimer::sim

@@ -67,7 +67,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Extreme{"ar20", [](SimOptions& o) { o.ar = 20; }},
                       Extreme{"tilt10", [](SimOptions& o) { o.tilt_deg = 10; }},
                       Extreme{"tilt_minus30", [](SimOptions& o) { o.tilt_deg = -30; }}),
-    [](const ::testing::TestParamInfo<Extreme>& info) { return std::string(info.param.name); });
+    [](const ::testing::TestParamInfo<Extreme>& p) { return std::string(p.param.name); });
 
 // An exactly flat dimer dropped flat: both spheres hit at the same instant, every time.
 TEST(Stability, FlatDimerDroppedFlatStaysFlat) {
