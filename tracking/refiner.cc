@@ -31,6 +31,14 @@ constexpr double kUniformLevelFraction = 0.15;
 // Body level passes: stop when the level moves less than this fraction of the contrast.
 constexpr double kLevelSettledFraction = 0.01;
 constexpr int kMaxLevelPasses = 5;
+// Largest contraction ratio trusted for the centroid's extrapolation (1: no limit, unstable).
+constexpr double kMaxContraction = 0.5;
+// The window is re-read when the estimate leaves its centre pixel by more than this, px; the
+// window circle (radius half - 1) stays inside the window up to 1 px.
+// Plain (mirror) iterations re-read at half a pixel, which keeps their start independent of
+// where the guess fell within its pixel.
+constexpr double kRecentreWindowPx = 0.75;
+constexpr double kRecentrePlainPx = 0.5;
 
 const std::pair<Method, const char*> kMethodNames[] = {{Method::kCentroid, "centroid"},
                                                        {Method::kDiscFit, "discfit"}};
@@ -134,8 +142,10 @@ struct SymmetricMask {
     double m = 1.0;
     if (rod_half_width > 0) {
       const double along = std::abs(dx * rod_dir.x() + dy * rod_dir.y());
-      const double across = std::abs(dx * rod_dir.y() - dy * rod_dir.x());
-      m *= 1.0 - Ramp(rod_half_width - across) * Ramp(along - rod_inset);
+      if (along > rod_inset - 0.5 * kMaskRampPx) {  // else short of the rod cut: Ramp is 0
+        const double across = std::abs(dx * rod_dir.y() - dy * rod_dir.x());
+        m *= 1.0 - Ramp(rod_half_width - across) * Ramp(along - rod_inset);
+      }
     }
     if (std::isfinite(plate_cut)) {  // plate_cut is relative to the centre: dy < plate_cut
       m *= Ramp(plate_cut - dy) * Ramp(plate_cut + dy);
@@ -158,36 +168,57 @@ SymmetricMask MakeMask(const RefineContext& ctx, double radius, const Eigen::Vec
   return m;
 }
 
+// Pixels of positive weight, gathered once per window: the centroid iterations revisit only
+// these (the sphere, not the background around it) and need no per-pixel branching on weight.
+struct ActivePixels {
+  std::vector<float> x, y, w;  // column and row offsets from the window origin, weight
+  void clear() { x.clear(), y.clear(), w.clear(); }
+};
+
 struct CentroidState {
   Window window;
   Levels levels;
-  std::vector<float> weight;  // clamped level fraction per window pixel
+  ActivePixels active;
 };
 
 void ComputeWeights(CentroidState* s) {
   const double span = s->levels.sphere - s->levels.background;
-  s->weight.resize(s->window.v.size());
-  for (size_t i = 0; i < s->weight.size(); ++i) {
-    s->weight[i] = float(std::clamp((s->window.v[i] - s->levels.background) / span, 0.0, 1.0));
+  const float bg = float(s->levels.background), inv = float(1.0 / span);
+  const Window& w = s->window;
+  s->active.clear();
+  for (int y = 0; y < w.size; ++y) {
+    const float* row = &w.v[size_t(y) * w.size];
+    for (int x = 0; x < w.size; ++x) {
+      const float wt = std::min(1.0f, (row[x] - bg) * inv);
+      if (!(wt > 0)) continue;
+      s->active.x.push_back(float(x));
+      s->active.y.push_back(float(y));
+      s->active.w.push_back(wt);
+    }
   }
+}
+
+// Window-circle weight: 1 inside win_r - 1, a linear edge of one pixel, 0 beyond.
+inline double CircleWeight(double d2, double win_r) {
+  if (d2 <= (win_r - 1) * (win_r - 1)) return 1.0;
+  return std::clamp(win_r - std::sqrt(d2), 0.0, 1.0);
 }
 
 // One centroid step under the symmetric mask centred at c; returns the new centre.
 Eigen::Vector2d CentroidStep(const CentroidState& s, const Eigen::Vector2d& c, double win_r,
                              const SymmetricMask& mask) {
   double sw = 0, sx = 0, sy = 0;
-  const Window& w = s.window;
-  for (int y = 0; y < w.size; ++y) {
-    const double dy = w.row0 + y - c.y();
-    for (int x = 0; x < w.size; ++x) {
-      const float wt = s.weight[size_t(y) * w.size + x];
-      if (wt <= 0) continue;
-      const double dx = w.col0 + x - c.x();
-      const double m = std::clamp(win_r - std::sqrt(dx * dx + dy * dy), 0.0, 1.0) * mask(dx, dy);
-      sw += wt * m;
-      sx += wt * m * dx;
-      sy += wt * m * dy;
-    }
+  const ActivePixels& a = s.active;
+  const double bx = s.window.col0 - c.x(), by = s.window.row0 - c.y();
+  const bool masked = mask.rod_half_width > 0 || std::isfinite(mask.plate_cut);
+  for (size_t i = 0; i < a.w.size(); ++i) {
+    const double dx = bx + a.x[i], dy = by + a.y[i];
+    double m = CircleWeight(dx * dx + dy * dy, win_r);
+    if (masked) m *= mask(dx, dy);
+    const double wm = a.w[i] * m;
+    sw += wm;
+    sx += wm * dx;
+    sy += wm * dy;
   }
   if (sw <= 0) return c;
   return c + Eigen::Vector2d(sx / sw, sy / sw);
@@ -197,15 +228,14 @@ Eigen::Vector2d CentroidStep(const CentroidState& s, const Eigen::Vector2d& c, d
 double WeightedArea(const CentroidState& s, const Eigen::Vector2d& c, double win_r,
                     double plate_row) {
   double area = 0;
-  const Window& w = s.window;
-  for (int y = 0; y < w.size; ++y) {
-    const double row = w.row0 + y;
-    if (std::isfinite(plate_row) && row > plate_row - kPlateGuardPx) break;
-    for (int x = 0; x < w.size; ++x) {
-      const double dx = w.col0 + x - c.x(), dy = row - c.y();
-      area += s.weight[size_t(y) * w.size + x] *
-              std::clamp(win_r - std::sqrt(dx * dx + dy * dy), 0.0, 1.0);
-    }
+  const ActivePixels& a = s.active;
+  const double bx = s.window.col0 - c.x(), by = s.window.row0 - c.y();
+  const double last_row = std::isfinite(plate_row) ? plate_row - kPlateGuardPx - s.window.row0
+                                                   : std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < a.w.size(); ++i) {
+    if (a.y[i] > last_row) continue;
+    const double dx = bx + a.x[i], dy = by + a.y[i];
+    area += a.w[i] * CircleWeight(dx * dx + dy * dy, win_r);
   }
   return area;
 }
@@ -213,17 +243,29 @@ double WeightedArea(const CentroidState& s, const Eigen::Vector2d& c, double win
 // Centroid iterations from *centre until converged, keeping the window centred on the
 // estimate. False (status kClipped) when the window would leave the frame.
 bool Iterate(const cv::Mat& frame, const RefineContext& ctx, double radius, int half,
-             CentroidState* s, Eigen::Vector2d* centre, SphereMeasurement* out) {
+             bool extrapolate, CentroidState* s, Eigen::Vector2d* centre,
+             SphereMeasurement* out) {
   const double win_r = half - 1.0;  // stays inside the window while |c - centre| <= 1 px
   Eigen::Vector2d& c = *centre;
   Eigen::Vector2d window_centre(s->window.col0 + half, s->window.row0 + half);
+  Eigen::Vector2d last_step(0, 0);
   for (int it = 0; it < kCentroidMaxIter; ++it) {
     ++out->iterations;
-    const Eigen::Vector2d next = CentroidStep(*s, c, win_r, MakeMask(ctx, radius, c));
-    const double moved = (next - c).norm();
-    c = next;
-    if ((c - window_centre).cwiseAbs().maxCoeff() > 0.5) {  // keep the window centred
+    const Eigen::Vector2d step = CentroidStep(*s, c, win_r, MakeMask(ctx, radius, c)) - c;
+    const double moved = step.norm();
+    // The masked centroid is a linear contraction near its fixed point (each step ~0.35 of the
+    // last): extrapolate the geometric series with the measured ratio (Aitken), so two or three
+    // steps reach the tolerance instead of six or seven.
+    double ratio = 0;
+    if (extrapolate && last_step.squaredNorm() > 0) {
+      ratio = std::clamp(step.dot(last_step) / last_step.squaredNorm(), 0.0, kMaxContraction);
+    }
+    c += step / (1.0 - ratio);
+    last_step = step;
+    const double recentre = extrapolate ? kRecentreWindowPx : kRecentrePlainPx;
+    if ((c - window_centre).cwiseAbs().maxCoeff() > recentre) {  // keep the window centred
       window_centre = c;
+      last_step.setZero();
       if (!Extract(frame, c, half, ctx.polarity, &s->window)) {
         out->status = SphereMeasurement::Status::kClipped;
         return false;
@@ -250,7 +292,11 @@ SphereMeasurement Centroid(const cv::Mat& frame, const Eigen::Vector2d& guess, d
   const double full = frame.depth() == CV_8U ? 255.0 : 65535.0;
   if (s->levels.sphere - s->levels.background < kMinContrastFraction * full) return out;
   ComputeWeights(s);
-  if (!Iterate(frame, ctx, radius, half, s, &c, &out)) return out;
+  // Extrapolated steps only where the sphere already looks uniform at the guess (its body
+  // level agrees with its median): a mirror sphere's weights make the steps irregular.
+  const bool looks_uniform = std::abs(BodyLevel(s->window, c, radius) - s->levels.sphere) <=
+                             kUniformLevelFraction * (s->levels.sphere - s->levels.background);
+  if (!Iterate(frame, ctx, radius, half, looks_uniform, s, &c, &out)) return out;
   // Non-uniform spheres: normalise by the body level, measured again around each new centre
   // until it settles (the first centre can be pixels off, pulled by bright reflections).
   const double contrast = s->levels.sphere - s->levels.background;
@@ -264,7 +310,9 @@ SphereMeasurement Centroid(const cv::Mat& frame, const Eigen::Vector2d& guess, d
     s->levels.sphere = body;
     s->levels.uniform = false;
     ComputeWeights(s);
-    if (!Iterate(frame, ctx, radius, half, s, &c, &out)) return out;
+    // Plain steps: a mirror sphere's centroid only starts the rim fit, and with its weights
+    // renormalised each pass the contraction ratio is not steady enough to extrapolate.
+    if (!Iterate(frame, ctx, radius, half, false, s, &c, &out)) return out;
   }
   const double area = WeightedArea(*s, c, win_r, ctx.plate_row);
   out.area_fraction = area / (std::numbers::pi * radius * radius);
