@@ -39,6 +39,9 @@ constexpr double kMaxContraction = 0.5;
 // where the guess fell within its pixel.
 constexpr double kRecentreWindowPx = 0.75;
 constexpr double kRecentrePlainPx = 0.5;
+// How far an estimate can be from its window's centre pixel while iterating, px: at most
+// kRecentreWindowPx per axis (sqrt 2 x 0.75 = 1.06), with a margin.
+constexpr double kCoreShiftPx = 1.25;
 
 const std::pair<Method, const char*> kMethodNames[] = {{Method::kCentroid, "centroid"},
                                                        {Method::kDiscFit, "discfit"}};
@@ -175,22 +178,49 @@ struct ActivePixels {
   void clear() { x.clear(), y.clear(), w.clear(); }
 };
 
+// The core: window pixels that every mask keeps at weight 1 for any estimate within
+// kCoreShiftPx of the window centre (the window is re-read before the estimate gets further).
+// Their moments are summed once per window; iterations revisit only the pixels outside it.
 struct CentroidState {
   Window window;
   Levels levels;
-  ActivePixels active;
+  ActivePixels active;                  // positive-weight pixels outside the core
+  double core_w = 0, core_x = 0, core_y = 0;  // sum of w, w x, w y over the core (window coords)
 };
 
-void ComputeWeights(CentroidState* s) {
+// Largest distance of a pixel from the window centre at which the masks are 1 for every
+// estimate within kCoreShiftPx of it (see the conditions in SymmetricMask and CircleWeight).
+double CoreRadius(const RefineContext& ctx, double radius, int half, double window_row) {
+  const double win_r = half - 1.0;
+  double r = win_r - 1.0 - kCoreShiftPx;
+  if (ctx.rod_dir.squaredNorm() > 0) r = std::min(r, radius - kRodCutInsetPx - 0.5 * kMaskRampPx - kCoreShiftPx);
+  if (std::isfinite(ctx.plate_row)) {
+    // The plate cut's mirror image moves twice as fast as the estimate.
+    const double cut = ctx.plate_row - kPlateGuardPx - 0.5 * kMaskRampPx - window_row;
+    r = std::min(r, cut - 0.5 * kMaskRampPx - 2.0 * kCoreShiftPx);
+  }
+  return std::max(0.0, r);
+}
+
+void ComputeWeights(CentroidState* s, double core_radius) {
   const double span = s->levels.sphere - s->levels.background;
   const float bg = float(s->levels.background), inv = float(1.0 / span);
   const Window& w = s->window;
+  const int half = w.size / 2;
+  const double core_r2 = core_radius * core_radius;
   s->active.clear();
+  s->core_w = s->core_x = s->core_y = 0;
   for (int y = 0; y < w.size; ++y) {
     const float* row = &w.v[size_t(y) * w.size];
     for (int x = 0; x < w.size; ++x) {
       const float wt = std::min(1.0f, (row[x] - bg) * inv);
       if (!(wt > 0)) continue;
+      if (double((x - half) * (x - half) + (y - half) * (y - half)) < core_r2) {
+        s->core_w += wt;
+        s->core_x += double(wt) * x;
+        s->core_y += double(wt) * y;
+        continue;
+      }
       s->active.x.push_back(float(x));
       s->active.y.push_back(float(y));
       s->active.w.push_back(wt);
@@ -207,9 +237,9 @@ inline double CircleWeight(double d2, double win_r) {
 // One centroid step under the symmetric mask centred at c; returns the new centre.
 Eigen::Vector2d CentroidStep(const CentroidState& s, const Eigen::Vector2d& c, double win_r,
                              const SymmetricMask& mask) {
-  double sw = 0, sx = 0, sy = 0;
   const ActivePixels& a = s.active;
   const double bx = s.window.col0 - c.x(), by = s.window.row0 - c.y();
+  double sw = s.core_w, sx = bx * s.core_w + s.core_x, sy = by * s.core_w + s.core_y;
   const bool masked = mask.rod_half_width > 0 || std::isfinite(mask.plate_cut);
   for (size_t i = 0; i < a.w.size(); ++i) {
     const double dx = bx + a.x[i], dy = by + a.y[i];
@@ -227,7 +257,7 @@ Eigen::Vector2d CentroidStep(const CentroidState& s, const Eigen::Vector2d& c, d
 // Weighted area inside the window circle and above the plate guard (no symmetric cuts).
 double WeightedArea(const CentroidState& s, const Eigen::Vector2d& c, double win_r,
                     double plate_row) {
-  double area = 0;
+  double area = s.core_w;
   const ActivePixels& a = s.active;
   const double bx = s.window.col0 - c.x(), by = s.window.row0 - c.y();
   const double last_row = std::isfinite(plate_row) ? plate_row - kPlateGuardPx - s.window.row0
@@ -264,13 +294,13 @@ bool Iterate(const cv::Mat& frame, const RefineContext& ctx, double radius, int 
     last_step = step;
     const double recentre = extrapolate ? kRecentreWindowPx : kRecentrePlainPx;
     if ((c - window_centre).cwiseAbs().maxCoeff() > recentre) {  // keep the window centred
-      window_centre = c;
       last_step.setZero();
       if (!Extract(frame, c, half, ctx.polarity, &s->window)) {
         out->status = SphereMeasurement::Status::kClipped;
         return false;
       }
-      ComputeWeights(s);
+      window_centre = {s->window.col0 + half, s->window.row0 + half};
+      ComputeWeights(s, CoreRadius(ctx, radius, half, s->window.row0 + half));
     } else if (moved < kCentroidConvergedPx) {
       break;
     }
@@ -291,7 +321,7 @@ SphereMeasurement Centroid(const cv::Mat& frame, const Eigen::Vector2d& guess, d
   s->levels = MeasureLevels(s->window, c, radius);
   const double full = frame.depth() == CV_8U ? 255.0 : 65535.0;
   if (s->levels.sphere - s->levels.background < kMinContrastFraction * full) return out;
-  ComputeWeights(s);
+  ComputeWeights(s, CoreRadius(ctx, radius, half, s->window.row0 + half));
   // Extrapolated steps only where the sphere already looks uniform at the guess (its body
   // level agrees with its median): a mirror sphere's weights make the steps irregular.
   const bool looks_uniform = std::abs(BodyLevel(s->window, c, radius) - s->levels.sphere) <=
@@ -300,7 +330,7 @@ SphereMeasurement Centroid(const cv::Mat& frame, const Eigen::Vector2d& guess, d
   // Non-uniform spheres: normalise by the body level, measured again around each new centre
   // until it settles (the first centre can be pixels off, pulled by bright reflections).
   const double contrast = s->levels.sphere - s->levels.background;
-  for (int pass = 0; pass < kMaxLevelPasses; ++pass) {
+  for (int pass = 0; pass < kMaxLevelPasses && !looks_uniform; ++pass) {
     const double body = BodyLevel(s->window, c, radius);
     const double change = std::abs(body - s->levels.sphere);
     if (change <= (pass == 0 ? kUniformLevelFraction : kLevelSettledFraction) * contrast ||
@@ -309,7 +339,7 @@ SphereMeasurement Centroid(const cv::Mat& frame, const Eigen::Vector2d& guess, d
     }
     s->levels.sphere = body;
     s->levels.uniform = false;
-    ComputeWeights(s);
+    ComputeWeights(s, CoreRadius(ctx, radius, half, s->window.row0 + half));
     // Plain steps: a mirror sphere's centroid only starts the rim fit, and with its weights
     // renormalised each pass the contraction ratio is not steady enough to extrapolate.
     if (!Iterate(frame, ctx, radius, half, false, s, &c, &out)) return out;
