@@ -1,6 +1,7 @@
 // `dimerlab sim`: flags of FORMATS.md, registered once; a scene file (--scene) holds the same
 // options in CLI11's config format and the command line overrides it.
 #include <map>
+#include <memory>
 
 #include "app/commands.h"
 #include "app/scene_file.h"
@@ -74,11 +75,12 @@ void AddSimOptions(CLI::App* c, SimCli* a) {
 }  // namespace
 
 void RegisterSim(CLI::App& app) {
-  auto* cli = new SimCli;  // lives as long as the process
+  // Owned by the callback (and so by the app), as the options are bound to its fields.
+  auto cli = std::make_shared<SimCli>();
   CLI::App* c = app.add_subcommand("sim", "event-driven simulation of the dimer -> sim.h5");
   c->add_option("--scene", cli->scene,
                  "scene file: the same options, one `name = value` per line (see samples/)");
-  AddSimOptions(c, cli);
+  AddSimOptions(c, cli.get());
   c->callback([cli, c] {
     if (!cli->scene.empty()) ApplySceneFile(c, cli->scene);
     for (const auto& [name, kind] : sim::InitKindNames()) {
