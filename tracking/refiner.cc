@@ -22,23 +22,20 @@ constexpr double kInnerLevelRadiusR = 0.5;
 // of the body weigh 1 too, but not the minimum (noise, the small dark reflection of the lens).
 constexpr double kBodyLevelRadiusR = 0.8;
 constexpr double kBodyQuantile = 0.04;
+// The sphere's median level is read from every second pixel both ways (a quarter of them,
+// ~110, plenty for a median); the body quantile, a low tail, from every pixel.
+constexpr int kLevelStride = 2;
 // Width of the linear ramp of the symmetric cuts (rod, plate), px: a smooth mask is sampled by
 // the pixels with less error than a sharp one (less pixel locking).
 constexpr double kMaskRampPx = 2.0;
-// Rim and interior levels closer than this fraction of the contrast: a uniform sphere, the
-// first estimate stands (no second pass).
+// Body level (low quantile) and median level closer than this fraction of the contrast: a
+// uniform sphere (centroid iterations); farther: a mirror (rim fit).
 constexpr double kUniformLevelFraction = 0.15;
-// Body level passes: stop when the level moves less than this fraction of the contrast.
-constexpr double kLevelSettledFraction = 0.01;
-constexpr int kMaxLevelPasses = 5;
 // Largest contraction ratio trusted for the centroid's extrapolation (1: no limit, unstable).
 constexpr double kMaxContraction = 0.5;
 // The window is re-read when the estimate leaves its centre pixel by more than this, px; the
 // window circle (radius half - 1) stays inside the window up to 1 px.
-// Plain (mirror) iterations re-read at half a pixel, which keeps their start independent of
-// where the guess fell within its pixel.
 constexpr double kRecentreWindowPx = 0.75;
-constexpr double kRecentrePlainPx = 0.5;
 // How far an estimate can be from its window's centre pixel while iterating, px: at most
 // kRecentreWindowPx per axis (sqrt 2 x 0.75 = 1.06), with a margin.
 constexpr double kCoreShiftPx = 1.25;
@@ -99,18 +96,33 @@ double Quantile(std::vector<float>& v, double q) {
   return *it;
 }
 
+// Every stride-th pixel (both ways) of the window within `r` of c.
+void DiscSample(const Window& w, const Eigen::Vector2d& c, double r, int stride,
+                std::vector<float>* out) {
+  out->clear();
+  const double r2 = r * r;
+  for (int y = 0; y < w.size; y += stride) {
+    const double dy = w.row0 + y - c.y();
+    if (dy * dy > r2) continue;
+    for (int x = 0; x < w.size; x += stride) {
+      const double dx = w.col0 + x - c.x();
+      if (dx * dx + dy * dy <= r2) out->push_back(w.at(x, y));
+    }
+  }
+}
+
 // Background: median of the window's outer ring (the rod and plate cross it, but cover less
 // than half). Sphere: median of the inner part of the disc (highlights are a small minority).
 Levels MeasureLevels(const Window& w, const Eigen::Vector2d& c, double radius) {
-  std::vector<float> ring, inner;
-  const double inner_r2 = std::pow(kInnerLevelRadiusR * radius, 2);
-  for (int y = 0; y < w.size; ++y) {
-    for (int x = 0; x < w.size; ++x) {
-      if (x == 0 || y == 0 || x == w.size - 1 || y == w.size - 1) ring.push_back(w.at(x, y));
-      const double dx = w.col0 + x - c.x(), dy = w.row0 + y - c.y();
-      if (dx * dx + dy * dy < inner_r2) inner.push_back(w.at(x, y));
-    }
+  thread_local std::vector<float> ring, inner;  // reused: no allocation per frame
+  ring.clear();
+  for (int i = 0; i + 1 < w.size; ++i) {
+    ring.push_back(w.at(i, 0));
+    ring.push_back(w.at(w.size - 1, i));
+    ring.push_back(w.at(w.size - 1 - i, w.size - 1));
+    ring.push_back(w.at(0, w.size - 1 - i));
   }
+  DiscSample(w, c, kInnerLevelRadiusR * radius, kLevelStride, &inner);
   return {Median(ring), Median(inner)};
 }
 
@@ -121,14 +133,8 @@ Levels MeasureLevels(const Window& w, const Eigen::Vector2d& c, double radius) {
 // silhouette, not pulled toward the bright reflections. The inner disc (kBodyLevelRadiusR) stays
 // inside the sphere even when the first estimate is off by several pixels.
 double BodyLevel(const Window& w, const Eigen::Vector2d& c, double radius) {
-  std::vector<float> body;
-  const double r2 = std::pow(kBodyLevelRadiusR * radius, 2);
-  for (int y = 0; y < w.size; ++y) {
-    for (int x = 0; x < w.size; ++x) {
-      const double dx = w.col0 + x - c.x(), dy = w.row0 + y - c.y();
-      if (dx * dx + dy * dy <= r2) body.push_back(w.at(x, y));
-    }
-  }
+  thread_local std::vector<float> body;
+  DiscSample(w, c, kBodyLevelRadiusR * radius, 1, &body);
   return Quantile(body, kBodyQuantile);
 }
 
@@ -273,8 +279,7 @@ double WeightedArea(const CentroidState& s, const Eigen::Vector2d& c, double win
 // Centroid iterations from *centre until converged, keeping the window centred on the
 // estimate. False (status kClipped) when the window would leave the frame.
 bool Iterate(const cv::Mat& frame, const RefineContext& ctx, double radius, int half,
-             bool extrapolate, CentroidState* s, Eigen::Vector2d* centre,
-             SphereMeasurement* out) {
+             CentroidState* s, Eigen::Vector2d* centre, SphereMeasurement* out) {
   const double win_r = half - 1.0;  // stays inside the window while |c - centre| <= 1 px
   Eigen::Vector2d& c = *centre;
   Eigen::Vector2d window_centre(s->window.col0 + half, s->window.row0 + half);
@@ -287,13 +292,12 @@ bool Iterate(const cv::Mat& frame, const RefineContext& ctx, double radius, int 
     // last): extrapolate the geometric series with the measured ratio (Aitken), so two or three
     // steps reach the tolerance instead of six or seven.
     double ratio = 0;
-    if (extrapolate && last_step.squaredNorm() > 0) {
+    if (last_step.squaredNorm() > 0) {
       ratio = std::clamp(step.dot(last_step) / last_step.squaredNorm(), 0.0, kMaxContraction);
     }
     c += step / (1.0 - ratio);
     last_step = step;
-    const double recentre = extrapolate ? kRecentreWindowPx : kRecentrePlainPx;
-    if ((c - window_centre).cwiseAbs().maxCoeff() > recentre) {  // keep the window centred
+    if ((c - window_centre).cwiseAbs().maxCoeff() > kRecentreWindowPx) {  // keep it centred
       last_step.setZero();
       if (!Extract(frame, c, half, ctx.polarity, &s->window)) {
         out->status = SphereMeasurement::Status::kClipped;
@@ -321,28 +325,20 @@ SphereMeasurement Centroid(const cv::Mat& frame, const Eigen::Vector2d& guess, d
   s->levels = MeasureLevels(s->window, c, radius);
   const double full = frame.depth() == CV_8U ? 255.0 : 65535.0;
   if (s->levels.sphere - s->levels.background < kMinContrastFraction * full) return out;
-  ComputeWeights(s, CoreRadius(ctx, radius, half, s->window.row0 + half));
-  // Extrapolated steps only where the sphere already looks uniform at the guess (its body
-  // level agrees with its median): a mirror sphere's weights make the steps irregular.
-  const bool looks_uniform = std::abs(BodyLevel(s->window, c, radius) - s->levels.sphere) <=
-                             kUniformLevelFraction * (s->levels.sphere - s->levels.background);
-  if (!Iterate(frame, ctx, radius, half, looks_uniform, s, &c, &out)) return out;
-  // Non-uniform spheres: normalise by the body level, measured again around each new centre
-  // until it settles (the first centre can be pixels off, pulled by bright reflections).
+  // A sphere whose body level (a low quantile) is far below its median is not uniform: a
+  // mirror. Its centroid is not its centre (MeasureSphere ends with the rim fit, started from
+  // the guess), so it is not iterated: the body-level weights at the guess only give the
+  // silhouette's area (found or not) and radius.
+  const double body = BodyLevel(s->window, c, radius);
   const double contrast = s->levels.sphere - s->levels.background;
-  for (int pass = 0; pass < kMaxLevelPasses && !looks_uniform; ++pass) {
-    const double body = BodyLevel(s->window, c, radius);
-    const double change = std::abs(body - s->levels.sphere);
-    if (change <= (pass == 0 ? kUniformLevelFraction : kLevelSettledFraction) * contrast ||
-        body - s->levels.background < kMinContrastFraction * full) {
-      break;
-    }
+  if (std::abs(body - s->levels.sphere) > kUniformLevelFraction * contrast &&
+      body - s->levels.background >= kMinContrastFraction * full) {
     s->levels.sphere = body;
     s->levels.uniform = false;
     ComputeWeights(s, CoreRadius(ctx, radius, half, s->window.row0 + half));
-    // Plain steps: a mirror sphere's centroid only starts the rim fit, and with its weights
-    // renormalised each pass the contraction ratio is not steady enough to extrapolate.
-    if (!Iterate(frame, ctx, radius, half, false, s, &c, &out)) return out;
+  } else {
+    ComputeWeights(s, CoreRadius(ctx, radius, half, s->window.row0 + half));
+    if (!Iterate(frame, ctx, radius, half, s, &c, &out)) return out;
   }
   const double area = WeightedArea(*s, c, win_r, ctx.plate_row);
   out.area_fraction = area / (std::numbers::pi * radius * radius);
