@@ -141,7 +141,9 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
     if (source.random_access() && next >= source.size()) exhausted = true;
   };
   while (true) {
-    while (!exhausted && !InterruptRequested() && int(inflight.size()) < threads + 1) launch();
+    // Exactly `threads` chunks run at once (each on its own std::thread via std::async): more
+    // would oversubscribe the cores; results do not depend on it (chunks are joined in order).
+    while (!exhausted && !InterruptRequested() && int(inflight.size()) < threads) launch();
     if (inflight.empty()) break;
     ChunkResult chunk = inflight.front().get();
     inflight.pop_front();

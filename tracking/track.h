@@ -6,7 +6,7 @@
 // frames; each chunk is decoded and tracked by its own worker with its own SequenceTracker
 // (which acquires at the chunk start), and chunks are joined in order, identities stitched by
 // nearest position across the boundary. Results depend on the chunk size, never on the number
-// of threads or on scheduling. Memory: at most `threads + 1` chunks of results in flight, and
+// of threads or on scheduling. Memory: at most `threads` chunks of results in flight, and
 // frames are decoded one at a time per worker (sequential sources such as video decode ahead
 // one chunk per worker).
 #include <cstddef>
