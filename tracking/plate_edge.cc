@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "tracking/tolerances.h"
@@ -17,6 +18,15 @@ constexpr int kCoarseColumnStride = 4;
 
 double PixelAt(const cv::Mat& img, int row, int col) {
   return img.depth() == CV_8U ? img.at<uint8_t>(row, col) : img.at<uint16_t>(row, col);
+}
+
+// Sum of a row's pixels where use[col] (integer: exact, and no conversion per pixel).
+template <typename T>
+int64_t MaskedRowSum(const cv::Mat& frame, int row, const std::vector<uint8_t>& use) {
+  const T* p = frame.ptr<T>(row);
+  int64_t sum = 0;
+  for (int col = 0; col < frame.cols; ++col) sum += use[col] ? p[col] : 0;
+  return sum;
 }
 
 double FullScale(const cv::Mat& img) { return img.depth() == CV_8U ? 255.0 : 65535.0; }
@@ -87,11 +97,9 @@ double RefinePlateRow(const cv::Mat& frame, double row_guess,
   if (n_cols < 8) return kNaN;  // too few clear columns for a trustworthy profile
   std::vector<double> profile;
   for (int row = r0; row <= r1; ++row) {
-    double sum = 0;
-    for (int col = 0; col < frame.cols; ++col) {
-      if (use[col]) sum += PixelAt(frame, row, col);
-    }
-    profile.push_back(sum / n_cols);
+    profile.push_back(double(frame.depth() == CV_8U ? MaskedRowSum<uint8_t>(frame, row, use)
+                                                     : MaskedRowSum<uint16_t>(frame, row, use)) /
+                      n_cols);
   }
   return EdgeRowInProfile(profile, r0, kPlateMinStepFraction * 0.25 * FullScale(frame));
 }

@@ -213,25 +213,41 @@ void ComputeWeights(CentroidState* s, double core_radius) {
   const float bg = float(s->levels.background), inv = float(1.0 / span);
   const Window& w = s->window;
   const int half = w.size / 2;
-  const double core_r2 = core_radius * core_radius;
-  s->active.clear();
-  s->core_w = s->core_x = s->core_y = 0;
+  const int core_r2 = int(std::floor(core_radius * core_radius));
+  // Pixels beyond the window circle for every estimate within kCoreShiftPx never count.
+  const double outer = half - 1.0 + kCoreShiftPx;
+  const int outer_r2 = int(std::ceil(outer * outer));
+  ActivePixels& a = s->active;
+  a.x.resize(w.v.size());
+  a.y.resize(w.v.size());
+  a.w.resize(w.v.size());
+  size_t n = 0;
+  double cw = 0, cx = 0, cy = 0;
   for (int y = 0; y < w.size; ++y) {
     const float* row = &w.v[size_t(y) * w.size];
+    const int dy2 = (y - half) * (y - half);
     for (int x = 0; x < w.size; ++x) {
       const float wt = std::min(1.0f, (row[x] - bg) * inv);
       if (!(wt > 0)) continue;
-      if (double((x - half) * (x - half) + (y - half) * (y - half)) < core_r2) {
-        s->core_w += wt;
-        s->core_x += double(wt) * x;
-        s->core_y += double(wt) * y;
-        continue;
+      const int d2 = (x - half) * (x - half) + dy2;
+      if (d2 < core_r2) {
+        cw += wt;
+        cx += double(wt) * x;
+        cy += double(wt) * y;
+      } else if (d2 <= outer_r2) {
+        a.x[n] = float(x);
+        a.y[n] = float(y);
+        a.w[n] = wt;
+        ++n;
       }
-      s->active.x.push_back(float(x));
-      s->active.y.push_back(float(y));
-      s->active.w.push_back(wt);
     }
   }
+  a.x.resize(n);
+  a.y.resize(n);
+  a.w.resize(n);
+  s->core_w = cw;
+  s->core_x = cx;
+  s->core_y = cy;
 }
 
 // Window-circle weight: 1 inside win_r - 1, a linear edge of one pixel, 0 beyond.
