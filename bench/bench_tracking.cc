@@ -2,16 +2,23 @@
 //   bench_tracking [frames]   (default 2000 frames per case)
 // Prints, per method: RMS error and pixel locking on uniform discs at sigma = 2 with the
 // Cramér-Rao bound computed from the exact disc model; scatter about the bias on reflect-lit
-// spheres; in-memory tracking rate on both cores; and PNG decode-only vs end-to-end rates.
+// spheres (both methods end with the rim fit on mirror spheres); in-memory tracking rate on 1
+// and all cores for uniform and mirror spheres; and PNG decode-only vs end-to-end rates. It also
+// prints the load average and how many cores a busy loop really gets, since the machine may be
+// shared.
 #include <opencv2/imgcodecs.hpp>
 
 #include <Eigen/Dense>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <random>
+#include <fstream>
+#include <string>
+#include <sys/resource.h>
 #include <thread>
 
 #include "tracking/disc_coverage.h"
@@ -114,14 +121,45 @@ std::vector<cv::Mat> Frames(int n, Lighting l) {
   return out;
 }
 
+// Best of three runs (the machine is shared: the best run is the least disturbed one).
 double InMemoryRate(Method method, const std::vector<cv::Mat>& frames, int threads) {
-  MemorySource src(frames);
-  SequenceOptions opts;
-  opts.tracker.method = method;
-  opts.threads = threads;
+  double best = 0;
+  for (int rep = 0; rep < 3; ++rep) {
+    MemorySource src(frames);
+    SequenceOptions opts;
+    opts.tracker.method = method;
+    opts.threads = threads;
+    const auto t0 = Clock::now();
+    const SequenceResult r = TrackSequence(src, opts);
+    best = std::max(best, double(r.frames.size()) / Seconds(t0));
+  }
+  return best;
+}
+
+// How many cores this process really gets right now: CPU time over wall time of `threads`
+// busy loops (2.0 on an idle 2-core machine; less when another job competes).
+double AvailableCores(int threads) {
+  rusage before, after;
+  getrusage(RUSAGE_SELF, &before);
   const auto t0 = Clock::now();
-  const SequenceResult r = TrackSequence(src, opts);
-  return double(r.frames.size()) / Seconds(t0);
+  std::vector<std::thread> pool;
+  for (int k = 0; k < threads; ++k) {
+    pool.emplace_back([] {
+      volatile double x = 0;
+      for (long i = 0; i < 200000000; ++i) x = x + 1e-9;
+    });
+  }
+  for (auto& t : pool) t.join();
+  getrusage(RUSAGE_SELF, &after);
+  auto cpu = [](const rusage& u) { return u.ru_utime.tv_sec + 1e-6 * u.ru_utime.tv_usec; };
+  return (cpu(after) - cpu(before)) / Seconds(t0);
+}
+
+std::string LoadAverage() {
+  std::ifstream in("/proc/loadavg");
+  std::string a;
+  in >> a;
+  return a.empty() ? "?" : a;
 }
 
 }  // namespace
@@ -134,14 +172,18 @@ int main(int argc, char** argv) {
               2 * kRadius, kSigma, cores);
   std::printf("Cramer-Rao bound (disc, per axis): %.4f px\n\n", crb);
   const std::vector<cv::Mat> frames = Frames(n, Lighting::kDisc);
-  std::printf("| method | disc RMS (px) | disc RMS / (sqrt2 CRB) | locking p-p (px) | reflect scatter (px) | frames/s 1 core | frames/s %d cores |\n", cores);
-  std::printf("|---|---|---|---|---|---|---|\n");
+  const std::vector<cv::Mat> mirror = Frames(n, Lighting::kReflect);
+  std::printf("load average %s; cores available to a 2-thread busy loop: %.2f\n\n",
+              LoadAverage().c_str(), AvailableCores(cores));
+  std::printf("| method | disc RMS (px) | disc RMS / (sqrt2 CRB) | locking p-p (px) | reflect scatter (px) | frames/s 1 thread | frames/s %d threads | reflect frames/s %d threads |\n", cores, cores);
+  std::printf("|---|---|---|---|---|---|---|---|\n");
   for (Method m : {Method::kCentroid, Method::kDiscFit}) {
     const Accuracy disc = MeasureAccuracy(m, Lighting::kDisc, std::min(n, 400));
     const Accuracy refl = MeasureAccuracy(m, Lighting::kReflect, std::min(n, 200));
-    std::printf("| %s | %.4f | %.2f | %.4f | %.3f | %.0f | %.0f |\n", ToString(m).c_str(), disc.rms,
-                disc.rms / (std::sqrt(2.0) * crb), disc.locking, refl.scatter,
-                InMemoryRate(m, frames, 1), InMemoryRate(m, frames, cores));
+    std::printf("| %s | %.4f | %.2f | %.4f | %.3f | %.0f | %.0f | %.0f |\n", ToString(m).c_str(),
+                disc.rms, disc.rms / (std::sqrt(2.0) * crb), disc.locking, refl.scatter,
+                InMemoryRate(m, frames, 1), InMemoryRate(m, frames, cores),
+                InMemoryRate(m, mirror, cores));
   }
   // End to end from PNG files against decode only, both on all cores.
   const std::string dir = (std::filesystem::temp_directory_path() / "bench_tracking_png").string();
@@ -153,20 +195,23 @@ int main(int argc, char** argv) {
     cv::imwrite(dir + name, frames[i]);
   }
   auto src = FrameSource::Open(dir);
-  std::atomic<size_t> next{0};
-  auto t0 = Clock::now();
-  std::vector<std::thread> pool;
-  for (int k = 0; k < cores; ++k) {
-    pool.emplace_back([&] {
-      for (size_t i = next++; i < src->size(); i = next++) (void)src->Read(i);
-    });
+  double decode = 0, e2e = 0;
+  for (int rep = 0; rep < 2; ++rep) {  // alternated, best of two each (shared machine)
+    std::atomic<size_t> next{0};
+    auto t0 = Clock::now();
+    std::vector<std::thread> pool;
+    for (int k = 0; k < cores; ++k) {
+      pool.emplace_back([&] {
+        for (size_t i = next++; i < src->size(); i = next++) (void)src->Read(i);
+      });
+    }
+    for (auto& t : pool) t.join();
+    decode = std::max(decode, double(src->size()) / Seconds(t0));
+    SequenceOptions opts;
+    t0 = Clock::now();
+    const SequenceResult r = TrackSequence(*src, opts);
+    e2e = std::max(e2e, double(r.frames.size()) / Seconds(t0));
   }
-  for (auto& t : pool) t.join();
-  const double decode = double(src->size()) / Seconds(t0);
-  SequenceOptions opts;
-  t0 = Clock::now();
-  const SequenceResult r = TrackSequence(*src, opts);
-  const double e2e = double(r.frames.size()) / Seconds(t0);
   std::printf("\nPNG folder (%d frames): decode only %.0f frames/s, decode + centroid tracking %.0f frames/s (%.0f %%)\n",
               n, decode, e2e, 100 * e2e / decode);
   std::filesystem::remove_all(dir);

@@ -194,12 +194,18 @@ Frame DecodeImageFile(const std::string& path, size_t index, const std::string& 
   Frame f;
   f.index = index;
   f.name = name;
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) {
     f.error = "cannot open file for reading";
     return f;
   }
-  std::vector<uchar> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // One read of the whole file into a buffer reused by this thread (no per-byte iteration,
+  // no allocation per frame once the buffer has grown).
+  thread_local std::vector<uchar> bytes;
+  const std::streamoff size = in.tellg();
+  bytes.resize(size > 0 ? size_t(size) : 0);
+  in.seekg(0);
+  if (!bytes.empty() && !in.read(reinterpret_cast<char*>(bytes.data()), size)) bytes.clear();
   if (bytes.empty()) {
     f.error = "empty file (0 bytes)";
     return f;
