@@ -288,7 +288,11 @@ void RunTrack(const TrackArgs& args) {
   auto source = FrameSource::Open(args.input);
   ProgressMeter progress("track", "frames", double(source->size()), !args.quiet);
   const SequenceResult r = TrackSequence(
-      *source, seq, [&](size_t done) { progress.Update(double(done)); },
+      *source, seq,
+      [&](size_t done) {
+        progress.Update(double(done));
+        if (args.on_progress) args.on_progress(done);
+      },
       [&](const SkippedFrame& s) {
         std::fprintf(stderr, "%sdimerlab: warning: %s: %s; skipped\n", args.quiet ? "" : "\n",
                      s.name.c_str(), s.reason.c_str());

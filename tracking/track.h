@@ -60,6 +60,9 @@ struct TrackArgs {
   std::string polarity = "auto";  // auto | bright | dark
   SequenceOptions sequence;
   bool quiet = false;           // no progress on stderr
+  // Called from the calling thread with the frames done so far, after each joined chunk
+  // (tests use it to interrupt at a known point); may be empty.
+  std::function<void(size_t)> on_progress;
   void Check() const;           // InputError listing every invalid field
 };
 

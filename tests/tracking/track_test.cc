@@ -3,6 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <optional>
 
 #include <filesystem>
 #include <fstream>
@@ -210,6 +215,107 @@ TEST(TrackSequence, DeterministicAcrossThreadCountsAndPartialOnInterrupt) {
   EXPECT_FALSE(cut.complete);
   EXPECT_LT(cut.frames.size(), 40u);
   for (size_t i = 0; i < cut.frames.size(); ++i) EXPECT_EQ(cut.frames[i].index, i);
+}
+
+}  // namespace
+}  // namespace dimer::tracking
+
+namespace dimer::tracking {
+namespace {
+
+// Copies every PNG frame of `from` into `to` re-encoded as `ext` (".bmp", ".jpg").
+void Reencode(const std::string& from, const std::string& to, const std::string& ext) {
+  std::filesystem::create_directories(to);
+  for (const auto& e : std::filesystem::directory_iterator(from)) {
+    if (e.path().extension() != ".png") continue;
+    const cv::Mat img = cv::imread(e.path().string(), cv::IMREAD_UNCHANGED);
+    ASSERT_TRUE(cv::imwrite(to + "/" + e.path().stem().string() + ext, img));
+  }
+}
+
+std::vector<double> Pixels(const std::string& track, const char* which) {
+  return H5Reader(track).ReadDoubles(which);
+}
+
+TEST(RunTrack, BmpFramesGiveTheSameTrackAsPngAndJpegClose) {
+  dimer::testing::TempDir dir;
+  RenderDrift(dir, 10, Lighting::kBacklit);
+  TrackArgs t = Track(dir);
+  RunTrack(t);
+  const auto png_left = Pixels(t.output, "/pixels/left");
+  const auto png_right = Pixels(t.output, "/pixels/right");
+  // BMP is lossless: bit-identical pixels, bit-identical track.
+  Reencode(dir / "frames", dir / "bmp", ".bmp");
+  t.input = dir / "bmp";
+  t.output = dir / "bmp.h5";
+  RunTrack(t);
+  EXPECT_EQ(Pixels(t.output, "/pixels/left"), png_left);
+  EXPECT_EQ(H5Reader(t.output).ReadStrings("/frame_files")[2], "frame_000002.bmp");
+  // JPEG (OpenCV's default quality 95) is lossy: ringing of a few grey levels at the edges,
+  // spread over ~150 edge pixels, moves a centre by far less than the 0.05 px reflect target;
+  // bound 0.05 px against the PNG track.
+  Reencode(dir / "frames", dir / "jpg", ".jpg");
+  t.input = dir / "jpg";
+  t.output = dir / "jpg.h5";
+  RunTrack(t);
+  const auto jl = Pixels(t.output, "/pixels/left"), jr = Pixels(t.output, "/pixels/right");
+  ASSERT_EQ(jl.size(), png_left.size());
+  double worst = 0;
+  for (size_t i = 0; i < jl.size(); ++i) {
+    worst = std::max({worst, std::abs(jl[i] - png_left[i]), std::abs(jr[i] - png_right[i])});
+  }
+  std::printf("[ stats    ] JPEG vs PNG: max centre difference %.4f px\n", worst);
+  EXPECT_LE(worst, 0.05);
+}
+
+TEST(RunTrack, VideoFileIsTrackedInOrder) {
+  dimer::testing::TempDir dir;
+  RenderDrift(dir, 12, Lighting::kBacklit);
+  TrackArgs t = Track(dir);
+  RunTrack(t);
+  const auto png_left = Pixels(t.output, "/pixels/left");
+  // Motion JPEG in AVI: OpenCV's built-in writer, so no external codec is needed.
+  const std::string video = dir / "clip.avi";
+  {
+    cv::VideoWriter writer(video, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 25.0,
+                           cv::Size(512, 256), false);
+    if (!writer.isOpened()) GTEST_SKIP() << "no MJPG/AVI writer in this OpenCV build";
+    for (int i = 0; i < 12; ++i) {
+      char name[40];
+      std::snprintf(name, sizeof name, "/frame_%06d.png", i);
+      writer.write(cv::imread(std::string(dir / "frames") + name, cv::IMREAD_GRAYSCALE));
+    }
+  }
+  t.input = video;
+  t.output = dir / "video.h5";
+  RunTrack(t);
+  H5Reader h(t.output);
+  EXPECT_EQ(h.ReadInt64("/frame_index"), (std::vector<int64_t>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}));
+  EXPECT_EQ(h.ReadStrings("/frame_files")[3], "clip.avi#3");
+  const auto left = h.ReadDoubles("/pixels/left");
+  ASSERT_EQ(left.size(), png_left.size());
+  // MJPEG is lossy like JPEG (same bound and reason as above).
+  for (size_t i = 0; i < left.size(); ++i) EXPECT_NEAR(left[i], png_left[i], 0.05) << i;
+}
+
+TEST(RunTrack, CtrlCLeavesAValidPartialFileAndNoTemporary) {
+  dimer::testing::TempDir dir;
+  RenderDrift(dir, 40, Lighting::kBacklit);
+  TrackArgs t = Track(dir);  // chunks of 8 frames
+  t.sequence.threads = 2;
+  t.on_progress = [](size_t) { SetInterruptRequested(true); };  // Ctrl-C after the first chunk
+  EXPECT_THROW(RunTrack(t), Interrupted);
+  SetInterruptRequested(false);
+  H5Reader h(t.output);  // under its final name
+  EXPECT_EQ(h.AttrDouble("/", "complete"), std::optional<double>(0.0));
+  const auto index = h.ReadInt64("/frame_index");
+  ASSERT_FALSE(index.empty());
+  EXPECT_LT(index.size(), 40u);
+  for (size_t i = 0; i < index.size(); ++i) EXPECT_EQ(index[i], int64_t(i));  // a prefix
+  EXPECT_EQ(ReadTrajectory(h).size(), index.size());
+  for (const auto& e : std::filesystem::directory_iterator(dir.path())) {
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+  }
 }
 
 }  // namespace
