@@ -80,7 +80,8 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
     const SphereMeasurement m = MeasureSphere(frame, coarse[0], kProvisionalRadiusScale * dt_r,
                                               ctx, Method::kCentroid);
     // A mirror sphere's rim fit measures the radius itself; otherwise the silhouette area.
-    radius_px_ = m.found() && m.rim_fit ? m.radius_px : std::max(dt_r, m.found() ? m.radius_px : 0.0);
+    radius_px_ = m.found() && m.rim_fit ? m.radius_px
+                                        : std::max(dt_r, m.found() ? m.radius_px : 0.0);
   }
   out->plate_row = PlateRow(frame, det.plate_row, coarse, n);
   std::vector<SphereMeasurement> found;

@@ -159,10 +159,10 @@ TEST_P(PixelLocking, FreeSphereMeetsTheTarget) {
 
 TEST_P(PixelLocking, SphereRestingOnThePlate) {
   // The plate mask and its mirror cut the disc where its edge runs along pixel rows, the worst
-  // case for sampling: measured 0.023 px for the centroid (0.001 for discfit). Bound 0.03 px,
-  // above the 0.01 target, which the centroid misses for a sphere in contact (a known weakness,
-  // reported in BENCHMARKS_tracking.md).
-  EXPECT_LE(LockingPeakToPeak(GetParam(), 0.0), 0.03);
+  // case for sampling: measured 0.014 px for the centroid (8 px plate ramp; 0.023 with the
+  // former 2 px) and 0.001 for discfit. Bound 0.02 px, still above the 0.01 target, which the
+  // centroid misses for a sphere in contact (reported in BENCHMARKS_tracking.md).
+  EXPECT_LE(LockingPeakToPeak(GetParam(), 0.0), 0.02);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllMethods, PixelLocking,

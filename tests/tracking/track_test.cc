@@ -290,7 +290,8 @@ TEST(RunTrack, VideoFileIsTrackedInOrder) {
   t.output = dir / "video.h5";
   RunTrack(t);
   H5Reader h(t.output);
-  EXPECT_EQ(h.ReadInt64("/frame_index"), (std::vector<int64_t>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}));
+  EXPECT_EQ(h.ReadInt64("/frame_index"),
+            (std::vector<int64_t>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}));
   EXPECT_EQ(h.ReadStrings("/frame_files")[3], "clip.avi#3");
   const auto left = h.ReadDoubles("/pixels/left");
   ASSERT_EQ(left.size(), png_left.size());
