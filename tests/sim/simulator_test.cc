@@ -276,3 +276,20 @@ TEST(Simulator, DriftIsDynamicallySimilarWhenTheDiameterScalesAsOneOverFSquared)
 
 }  // namespace
 }  // namespace dimer::sim
+
+namespace dimer::sim {
+namespace {
+
+// The paper's Fig. 3(b): on a plate rising toward the bouncing end the drift can go uphill.
+TEST(Simulator, DriftGoesUphillOnASmallTilt) {
+  SimOptions o = EventsOnly({});
+  o.tilt_deg = 2.0;  // rising toward +x, where the bouncing (right) end points
+  o.cycles = 300;
+  const SimResult r = RunSimulation(o);
+  ASSERT_EQ(r.mode.label, "drift");
+  EXPECT_EQ(r.mode.bouncing_sphere, kRight);
+  EXPECT_GT(r.mode.drift_speed, 0.0);
+}
+
+}  // namespace
+}  // namespace dimer::sim
