@@ -122,8 +122,87 @@ double LocateRoot(F&& f, double f0, double h, double fh) {
   return b;  // the event has happened at b (f <= 0)
 }
 
+// One accepted step [t, t + hs] from y0; states inside it come from a single RK step of the
+// same method from y0 (no error control needed: tau <= hs was accepted).
+struct StepView {
+  const Model& m;
+  const ContactConfig& cfg;
+  double t;
+  Vec6 y0;
+  double hs;
+  State At(double tau) const { return Project(m, cfg, DormandPrince(m, cfg, t, y0, tau).y); }
+  double Event(int k, double tau) const { return Events(m, cfg, t + tau, At(tau)).v[k]; }
+};
+
+// A slide that starts from U = 0 (sigma U = 0 at the start) may dip the right way and come back
+// within the step (a slip reversal right after the start): find a point where sigma U > 0 by
+// halving toward the start. Returns it (with its value in *f), or 0 if the slip went the wrong
+// way at once, in which case the event is reported at the start and the caller chooses again.
+double SlipRestartPoint(const StepView& st, int k, double* f) {
+  double tau = st.hs;
+  for (int i = 0; i < 40; ++i) {
+    tau *= 0.5;
+    *f = st.Event(k, tau);
+    if (*f > 0) return tau;
+  }
+  *f = 0;
+  return 0;
+}
+
+// A gap that is positive at both ends may still dip below zero inside the step (grazing):
+// look at the minimum of the cubic Hermite interpolant of (h, h'). Returns the point where the
+// gap event is <= 0 (and its value in *f), or hs if there is none.
+double GrazingPoint(const StepView& st, int k, const State& q0, const State& q1, double f0,
+                    double f1, double* f) {
+  const int s = k - 2;
+  const double d0 = NormalV(ContactArm(st.m, q0.th, s), q0) * st.hs;
+  const double d1 = NormalV(ContactArm(st.m, q1.th, s), q1) * st.hs;
+  const double c3 = 2 * f0 - 2 * f1 + d0 + d1, c2 = -3 * f0 + 3 * f1 - 2 * d0 - d1;
+  const double disc = c2 * c2 - 3 * c3 * d0;
+  *f = f1;
+  if (!(d0 < 0 && d1 > 0 && disc >= 0 && c3 != 0)) return st.hs;
+  const double xm = (-c2 + std::sqrt(disc)) / (3 * c3);
+  if (!(xm > 0 && xm < 1)) return st.hs;
+  const double fm = st.Event(k, xm * st.hs);
+  if (fm > 0) return st.hs;
+  *f = fm;
+  return xm * st.hs;
+}
+
+// Time from the step start of event k inside the step, or +inf.
+double EventTime(const StepView& st, int k, ContactEvent kind, double f0, double f1,
+                 const State& q0, const State& q1) {
+  double lo = 0, hi = st.hs;
+  if (!(f0 > 0)) {
+    if (kind != ContactEvent::kSlipStops || !(f1 < 0)) return kInf;
+    lo = SlipRestartPoint(st, k, &f0);
+    if (!(f0 > 0)) return 0.0;
+  }
+  if (f1 > 0 && kind == ContactEvent::kImpact) hi = GrazingPoint(st, k, q0, q1, f0, f1, &f1);
+  if (f1 > 0) return kInf;
+  return lo + LocateRoot([&](double x) { return st.Event(k, lo + x); }, f0, hi - lo, f1);
+}
+
+// The gap event fires at h = -gap_tol; Newton back to h = 0 so that the sphere leaves the
+// impact from the plate surface and stays watched in the next phase.
+double RefineImpactToSurface(const StepView& st, int sphere, double tau) {
+  for (int i = 0; i < kMaxNewtonIterations; ++i) {
+    const State qs = st.At(tau);
+    const Arm r = ContactArm(st.m, qs.th, sphere);
+    const double vn = NormalV(r, qs), gap = qs.z + r.rz;
+    if (!(vn < 0)) break;
+    const double step = std::clamp(-gap / vn, -tau, st.hs - tau);
+    tau += step;
+    if (std::abs(step) < kRootTimeTol_s) break;
+  }
+  return tau;
+}
+
 }  // namespace
 
+// Stages of each step: (1) an adaptive RK5(4) step, retried smaller until its error is within
+// tolerance; (2) projection onto the contact constraints; (3) the earliest event inside the
+// step; (4) output samples up to the event or the step end; (5) stop at the event or go on.
 ContactRun IntegrateContact(const Model& m, const ContactConfig& cfg, double t0, const State& q0,
                             double t_end, double* h, SampleSink* sink) {
   ContactRun run;
@@ -136,10 +215,10 @@ ContactRun IntegrateContact(const Model& m, const ContactConfig& cfg, double t0,
   *h = std::clamp(*h, h_min, h_max);
   while (t < t_end) {
     const double hs = std::min(*h, t_end - t);
-    const Vec6 y0 = ToVec(q);
-    const RkStep st = DormandPrince(m, cfg, t, y0, hs);
+    const StepView st{m, cfg, t, ToVec(q), hs};
+    const RkStep step = DormandPrince(m, cfg, t, st.y0, hs);
     double err = 0;
-    for (int i = 0; i < 6; ++i) err = std::max(err, std::abs(st.err[i]) / (tol * scale[i]));
+    for (int i = 0; i < 6; ++i) err = std::max(err, std::abs(step.err[i]) / (tol * scale[i]));
     if (!(err <= 1.0) && hs > h_min) {
       ++run.rejected;
       *h = std::max(h_min, hs * std::clamp(0.9 * std::pow(err, -0.2), 0.1, 0.5));
@@ -147,78 +226,25 @@ ContactRun IntegrateContact(const Model& m, const ContactConfig& cfg, double t0,
     }
     ++run.steps;
     if (!(err <= 1.0)) run.ok = false;  // accepted at h_min: tolerance could not be met
-    const State q1 = Project(m, cfg, st.y);
+    const State q1 = Project(m, cfg, step.y);
     const EventValues ev1 = Events(m, cfg, t + hs, q1);
-    // Earliest event inside the step.
-    double t_ev = kInf;
+    double tau_ev = kInf;
     int which = -1;
-    auto at = [&](double tau) { return Project(m, cfg, DormandPrince(m, cfg, t, y0, tau).y); };
     for (int k = 0; k < 4; ++k) {
-      double f0 = ev0.v[k], f1 = ev1.v[k];
-      double lo = 0, hi = hs;
-      if (!(f0 > 0) && ev1.kind[k] == ContactEvent::kSlipStops && f1 < 0) {
-        // A slide that starts from U = 0 may dip the right way and come back within this
-        // step (a slip reversal at the start of the step): find a point where sigma U > 0;
-        // the event is where it returns to zero. Without one, the slip went the wrong way
-        // at once: report the event at the start so that the caller chooses again.
-        double tau = hs;
-        for (int i = 0; i < 40 && !(f0 > 0); ++i) {
-          tau *= 0.5;
-          f0 = Events(m, cfg, t + tau, at(tau)).v[k];
-          lo = tau;
-        }
-        if (!(f0 > 0)) lo = 0, f0 = 0;
-      }
-      if (!(f0 > 0) && !(lo == 0 && ev1.kind[k] == ContactEvent::kSlipStops && f1 < 0 &&
-                         ev0.v[k] <= 0)) {
-        continue;
-      }
-      if (f1 > 0 && ev1.kind[k] == ContactEvent::kImpact) {
-        // Grazing: minimum of the Hermite cubic of the gap inside the step.
-        const int s = k - 2;
-        const double d0 = NormalV(ContactArm(m, q.th, s), q) * hs;
-        const double d1 = NormalV(ContactArm(m, q1.th, s), q1) * hs;
-        const double c3 = 2 * f0 - 2 * f1 + d0 + d1, c2 = -3 * f0 + 3 * f1 - 2 * d0 - d1;
-        const double disc = c2 * c2 - 3 * c3 * d0;
-        if (d0 < 0 && d1 > 0 && disc >= 0 && c3 != 0) {
-          const double xm = (-c2 + std::sqrt(disc)) / (3 * c3);
-          if (xm > 0 && xm < 1) {
-            const double fm = Events(m, cfg, t + xm * hs, at(xm * hs)).v[k];
-            if (fm <= 0) f1 = fm, hi = xm * hs;
-          }
-        }
-      }
-      if (f1 > 0) continue;
-      auto fk = [&](double tau) { return Events(m, cfg, t + tau, at(tau)).v[k]; };
-      const double tau = f0 > 0 ? lo + LocateRoot([&](double x) { return fk(lo + x); }, f0,
-                                                  hi - lo, f1)
-                                : 0.0;
-      if (t + tau < t_ev) t_ev = t + tau, which = k;
+      const double tau = EventTime(st, k, ev1.kind[k], ev0.v[k], ev1.v[k], q, q1);
+      if (tau < tau_ev) tau_ev = tau, which = k;
     }
-    const double t_next = which >= 0 ? t_ev : t + hs;
+    if (which >= 0 && ev1.kind[which] == ContactEvent::kImpact) {
+      tau_ev = RefineImpactToSurface(st, which - 2, tau_ev);
+    }
+    const double t_next = which >= 0 ? t + tau_ev : t + hs;
     while (sink && sink->Next() <= t_next) {
       const double ts = sink->Next();
-      sink->Record(ts, ts == t ? q : at(ts - t));
+      sink->Record(ts, ts == t ? q : st.At(ts - t));
     }
     if (which >= 0) {
-      double tau = t_ev - t;
-      if (ev1.kind[which] == ContactEvent::kImpact) {
-        // The event fired at h = -gap_tol; Newton back to h = 0 so that the sphere leaves the
-        // impact from the plate surface and stays watched in the next phase.
-        const int s = which - 2;
-        for (int i = 0; i < kMaxNewtonIterations; ++i) {
-          const State qs = at(tau);
-          const Arm r = ContactArm(m, qs.th, s);
-          const double vn = NormalV(r, qs), gap = qs.z + r.rz;
-          if (!(vn < 0)) break;
-          const double step = std::clamp(-gap / vn, -tau, hs - tau);
-          tau += step;
-          if (std::abs(step) < kRootTimeTol_s) break;
-        }
-        t_ev = t + tau;
-      }
-      run.t = t_ev;
-      run.q = at(tau);
+      run.t = t + tau_ev;
+      run.q = st.At(tau_ev);
       run.event = ev1.kind[which];
       run.sphere = which % 2;
       return run;
