@@ -21,6 +21,17 @@ struct ContactRow {
   Friction mode = Friction::kSlide;
   double sigma = 0;  // slip direction while sliding
   bool active = false;
+  // Slip history, for the outcome: did it slide, in which direction first, did it reverse.
+  bool slid = false, reversed = false;
+  double first_sigma = 0;
+
+  void Slide(double direction) {
+    mode = Friction::kSlide;
+    sigma = direction;
+    if (slid && first_sigma != sigma) reversed = true;
+    if (!slid) first_sigma = sigma;
+    slid = true;
+  }
 };
 
 // Generalized velocity change per unit impulse along direction j: M^-1 j^T.
@@ -84,26 +95,93 @@ Rates SolveRates(const Model& m, const std::array<ContactRow, 2>& c) {
   return r;
 }
 
+// Routh's integration of one impact (header), as a sequence of linear segments. Each segment
+// is: (1) the active set (contacts at the lowest deficit); (2) admissible impulse rates;
+// (3) the first event along the total normal impulse P, in closed form; (4) the advance.
+class RouthImpact {
+ public:
+  RouthImpact(const Model& m, const State& before, std::array<bool, 2> touching,
+              std::array<bool, 2> forced, double lambda);
+  ImpactOutcome Run();
+
+ private:
+  double Deficit(int s) const { return c_[s].jn.dot(vel_) - c_[s].target; }
+  double Slip(int s) const { return c_[s].jt.dot(vel_); }
+  bool SelectActive(bool first);
+  void Activate(int s);
+  Rates AdmissibleRates();
+  double NextEvent(const Rates& r, bool* ends) const;
+  void Advance(const Rates& r, double dp);
+
+  const Model& m_;
+  const State before_;
+  std::array<bool, 2> touching_, forced_;
+  std::array<ContactRow, 2> c_;
+  Vec3 vel_;
+  ImpactOutcome out_;
+  double zero_u_;
+  double deficit_tol_;  // deficits equal to round-off
+};
+
+RouthImpact::RouthImpact(const Model& m, const State& before, std::array<bool, 2> touching,
+                         std::array<bool, 2> forced, double lambda)
+    : m_(m), before_(before), touching_(touching), forced_(forced),
+      vel_(before.u, before.v, before.w), zero_u_(kSlipZeroRel * m.vel_scale),
+      deficit_tol_(1e-13 * m.vel_scale) {
+  for (int s = 0; s < 2; ++s) {
+    const Arm r = ContactArm(m, before.th, s);
+    c_[s].jt = Vec3(1.0, 0.0, -r.rz);
+    c_[s].jn = Vec3(0.0, 1.0, r.rx);
+    const double vb = c_[s].jn.dot(vel_);
+    out_.v_before[s] = vb;
+    const bool slow = std::abs(vb) < m.v_collapse;  // collapse: plastic
+    c_[s].target = -(slow ? 0.0 : lambda * m.eps) * std::min(vb, 0.0);
+    out_.collapsed[s] = touching[s] && slow && vb < 0;
+  }
+}
+
+void RouthImpact::Activate(int s) {
+  c_[s].active = true;
+  const double u = Slip(s);
+  if (std::abs(u) <= zero_u_) {
+    c_[s].mode = Friction::kStick;
+  } else {
+    c_[s].Slide(u > 0 ? 1.0 : -1.0);
+  }
+}
+
+// Touching contacts at the lowest deficit (and forced ones at the first segment). False when
+// no deficit is negative: the impact is over.
+bool RouthImpact::SelectActive(bool first) {
+  double gmin = kInf;
+  for (int s = 0; s < 2; ++s)
+    if (touching_[s]) gmin = std::min(gmin, Deficit(s));
+  const bool any_forced = first && (forced_[0] || forced_[1]);
+  if (!(gmin < -deficit_tol_) && !any_forced) return false;
+  for (int s = 0; s < 2; ++s) {
+    const bool lowest = Deficit(s) <= gmin + deficit_tol_;
+    const bool should = touching_[s] && (lowest || (first && forced_[s]));
+    if (should && !c_[s].active) Activate(s);
+    if (!should) c_[s].active = false;
+  }
+  return true;
+}
+
 // Adjust the active set and friction modes until the rates are admissible: no negative normal
 // share, stick only inside the impact friction cone.
-Rates AdmissibleRates(const Model& m, std::array<ContactRow, 2>& c, std::array<bool, 2>& slid,
-                      std::array<double, 2>& first_sigma, std::array<bool, 2>& reversed) {
+Rates RouthImpact::AdmissibleRates() {
   Rates r;
   for (int iter = 0; iter < 8; ++iter) {
-    r = SolveRates(m, c);
+    r = SolveRates(m_, c_);
     bool changed = false;
     for (int i = 0; i < 2 && !changed; ++i) {
-      if (!c[i].active) continue;
-      if (c[i].active && c[0].active && c[1].active && r.dn[i] < 0) {
-        c[i].active = false;  // its deficit rises faster alone: it leaves the active set
+      if (!c_[i].active) continue;
+      if (c_[0].active && c_[1].active && r.dn[i] < 0) {
+        c_[i].active = false;  // its deficit rises faster alone: it leaves the active set
         changed = true;
-      } else if (c[i].mode == Friction::kStick &&
-                 std::abs(r.dt[i]) > m.mu_hat_s * r.dn[i] * (1 + 1e-12)) {
-        c[i].mode = Friction::kSlide;  // slip develops against the friction it would need
-        c[i].sigma = r.dt[i] > 0 ? -1.0 : 1.0;
-        if (slid[i] && first_sigma[i] != c[i].sigma) reversed[i] = true;
-        if (!slid[i]) first_sigma[i] = c[i].sigma;
-        slid[i] = true;
+      } else if (c_[i].mode == Friction::kStick &&
+                 std::abs(r.dt[i]) > m_.mu_hat_s * r.dn[i] * (1 + 1e-12)) {
+        c_[i].Slide(r.dt[i] > 0 ? -1.0 : 1.0);  // slip develops against the needed friction
         changed = true;
       }
     }
@@ -113,120 +191,86 @@ Rates AdmissibleRates(const Model& m, std::array<ContactRow, 2>& c, std::array<b
   return r;
 }
 
-}  // namespace
+// Increment of P to the next event: the lead deficit reaching zero (the end), another deficit
+// catching up with it (joins), or a sliding contact's slip reaching zero.
+double RouthImpact::NextEvent(const Rates& r, bool* ends) const {
+  double dp = kInf;
+  *ends = false;
+  const int lead = c_[0].active ? 0 : 1;
+  const double g_lead = Deficit(lead), gd_lead = c_[lead].jn.dot(r.dvel);
+  if (gd_lead > 0 && g_lead < 0) {
+    dp = -g_lead / gd_lead;
+    *ends = true;
+  }
+  for (int s = 0; s < 2; ++s) {
+    if (!touching_[s]) continue;
+    if (!c_[s].active) {
+      const double gd = c_[s].jn.dot(r.dvel);
+      if (gd_lead > gd) {
+        const double d = (Deficit(s) - g_lead) / (gd_lead - gd);
+        if (d < dp) dp = std::max(d, 0.0), *ends = false;
+      }
+    } else if (c_[s].mode == Friction::kSlide) {
+      const double u = Slip(s), ud = c_[s].jt.dot(r.dvel);
+      // A slip that has just started from rest is at round-off size with either sign:
+      // it cannot "stop" again before it has grown.
+      if (u * ud < 0 && std::abs(u) > zero_u_ && -u / ud < dp) dp = -u / ud, *ends = false;
+    }
+  }
+  return dp;
+}
 
-namespace {
+void RouthImpact::Advance(const Rates& r, double dp) {
+  vel_ += r.dvel * dp;
+  for (int s = 0; s < 2; ++s) {
+    out_.pn[s] += r.dn[s] * dp;
+    out_.pt[s] += r.dt[s] * dp;
+  }
+  // Slip that just stopped sticks from now on (checked against mu_hat_s at the next solve).
+  for (int s = 0; s < 2; ++s) {
+    if (c_[s].active && c_[s].mode == Friction::kSlide &&
+        std::abs(Slip(s)) <= zero_u_ + 1e-12 * std::abs(c_[s].jt.dot(r.dvel) * dp)) {
+      c_[s].mode = Friction::kStick;
+    }
+  }
+}
+
+ImpactOutcome RouthImpact::Run() {
+  bool first = true;
+  for (; out_.segments < kMaxImpactSegments; ++out_.segments) {
+    if (!SelectActive(first)) break;
+    first = false;
+    const Rates r = AdmissibleRates();
+    bool ends = false;
+    const double dp = r.ok ? NextEvent(r, &ends) : kInf;
+    if (!std::isfinite(dp)) {
+      out_.ok = false;
+      break;
+    }
+    Advance(r, dp);
+    if (ends) {
+      ++out_.segments;
+      break;
+    }
+  }
+  if (out_.segments >= kMaxImpactSegments) out_.ok = false;
+  out_.after = before_;
+  out_.after.u = vel_(0);
+  out_.after.v = vel_(1);
+  out_.after.w = vel_(2);
+  for (int s = 0; s < 2; ++s) {
+    out_.took_part[s] = out_.pn[s] > 0;
+    out_.stuck[s] = out_.took_part[s] && c_[s].mode == Friction::kStick;
+    out_.reversed[s] = c_[s].reversed;
+    out_.collapsed[s] = out_.collapsed[s] && out_.took_part[s];
+  }
+  return out_;
+}
 
 // Newton's law with every restitution target scaled by `lambda` (1: the plain law).
 ImpactOutcome ResolveNewton(const Model& m, const State& before, std::array<bool, 2> touching,
                             std::array<bool, 2> forced, double lambda) {
-  ImpactOutcome out;
-  Vec3 vel(before.u, before.v, before.w);
-  const double zero_u = kSlipZeroRel * m.vel_scale;
-  std::array<ContactRow, 2> c;
-  std::array<bool, 2> slid{}, reversed{};
-  std::array<double, 2> first_sigma{};
-  for (int s = 0; s < 2; ++s) {
-    const Arm r = ContactArm(m, before.th, s);
-    c[s].jt = Vec3(1.0, 0.0, -r.rz);
-    c[s].jn = Vec3(0.0, 1.0, r.rx);
-    const double vb = c[s].jn.dot(vel);
-    out.v_before[s] = vb;
-    const bool slow = std::abs(vb) < m.v_collapse;
-    c[s].target = -(slow ? 0.0 : lambda * m.eps) * std::min(vb, 0.0);
-    out.collapsed[s] = touching[s] && slow && vb < 0;
-  }
-  auto deficit = [&](int s) { return c[s].jn.dot(vel) - c[s].target; };
-  auto activate = [&](int s) {
-    c[s].active = true;
-    const double u = c[s].jt.dot(vel);
-    if (std::abs(u) <= zero_u) {
-      c[s].mode = Friction::kStick;
-    } else {
-      c[s].mode = Friction::kSlide;
-      c[s].sigma = u > 0 ? 1.0 : -1.0;
-      if (slid[s] && first_sigma[s] != c[s].sigma) reversed[s] = true;
-      if (!slid[s]) first_sigma[s] = c[s].sigma;
-      slid[s] = true;
-    }
-  };
-  const double deficit_tol = 1e-13 * m.vel_scale;  // equal deficits, to round-off
-  bool first = true;
-  for (; out.segments < kMaxImpactSegments; ++out.segments) {
-    // Active set: touching contacts at the lowest deficit (forced ones at the first segment).
-    double gmin = kInf;
-    for (int s = 0; s < 2; ++s)
-      if (touching[s]) gmin = std::min(gmin, deficit(s));
-    const bool any_forced = first && (forced[0] || forced[1]);
-    if (!(gmin < -deficit_tol) && !any_forced) break;
-    for (int s = 0; s < 2; ++s) {
-      const bool should = touching[s] && (deficit(s) <= gmin + deficit_tol || (first && forced[s]));
-      if (should && !c[s].active) activate(s);
-      if (!should) c[s].active = false;
-    }
-    first = false;
-    Rates r = AdmissibleRates(m, c, slid, first_sigma, reversed);
-    if (!r.ok) {
-      out.ok = false;
-      break;
-    }
-    // The next event along P (total normal impulse), all in closed form.
-    double dp = kInf;
-    bool ends = false;
-    int lead = c[0].active ? 0 : 1;
-    const double g_lead = deficit(lead), gd_lead = c[lead].jn.dot(r.dvel);
-    if (gd_lead > 0 && g_lead < 0) {
-      dp = -g_lead / gd_lead;
-      ends = true;
-    }
-    for (int s = 0; s < 2; ++s) {
-      if (!touching[s]) continue;
-      if (!c[s].active) {
-        const double gd = c[s].jn.dot(r.dvel);
-        if (gd_lead > gd) {
-          const double d = (deficit(s) - g_lead) / (gd_lead - gd);
-          if (d < dp) dp = std::max(d, 0.0), ends = false;
-        }
-      } else if (c[s].mode == Friction::kSlide) {
-        const double u = c[s].jt.dot(vel), ud = c[s].jt.dot(r.dvel);
-        // A slip that has just started from rest is at round-off size with either sign:
-        // it cannot "stop" again before it has grown.
-        if (u * ud < 0 && std::abs(u) > zero_u && -u / ud < dp) dp = -u / ud, ends = false;
-      }
-    }
-    if (!std::isfinite(dp)) {
-      out.ok = false;
-      break;
-    }
-    vel += r.dvel * dp;
-    for (int s = 0; s < 2; ++s) {
-      out.pn[s] += r.dn[s] * dp;
-      out.pt[s] += r.dt[s] * dp;
-    }
-    // Slip that just stopped sticks from now on (checked against mu_hat_s at the next solve).
-    for (int s = 0; s < 2; ++s) {
-      if (c[s].active && c[s].mode == Friction::kSlide &&
-          std::abs(c[s].jt.dot(vel)) <= zero_u + 1e-12 * std::abs(c[s].jt.dot(r.dvel) * dp)) {
-        c[s].mode = Friction::kStick;
-      }
-    }
-    if (ends) {
-      ++out.segments;
-      break;
-    }
-  }
-  if (out.segments >= kMaxImpactSegments) out.ok = false;
-  out.after = before;
-  out.after.u = vel(0);
-  out.after.v = vel(1);
-  out.after.w = vel(2);
-  for (int s = 0; s < 2; ++s) {
-    out.took_part[s] = out.pn[s] > 0;
-    out.stuck[s] = out.took_part[s] && c[s].mode == Friction::kStick;
-    out.reversed[s] = reversed[s];
-    out.collapsed[s] = out.collapsed[s] && out.took_part[s];
-  }
-  return out;
+  return RouthImpact(m, before, touching, forced, lambda).Run();
 }
 
 double Kinetic(const Model& m, const State& q) {
