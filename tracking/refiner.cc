@@ -451,6 +451,7 @@ SphereMeasurement MeasureSphere(const cv::Mat& frame, const Eigen::Vector2d& gue
     in.polarity = context.polarity;
     in.plate_row = context.plate_row;
     in.fit_radius = context.fit_radius;
+    in.coarse_start = !context.precise_guess;
     if (context.rod_dir.squaredNorm() > 0) {
       in.rod_dir = context.rod_dir.normalized();
       in.rod_half_width_px = kRodCorridorHalfWidthR * radius_px;

@@ -46,6 +46,8 @@ struct RimFitInput {
   Eigen::Vector2d rod_dir{0, 0};    // unit vector toward the other sphere; zero: no rod
   double rod_half_width_px = 0;     // half-width of the corridor left out along the rod
   bool fit_radius = false;          // false: the radius is known and kept (see below)
+  bool coarse_start = true;         // false: the start is within ~0.5 px (a tracker's
+                                    // prediction), the coarse ramp stages are skipped
 };
 
 struct RimFitResult {

@@ -55,7 +55,8 @@ bool SequenceTracker::Follow(const cv::Mat& frame, FrameTrack* out) {
   out->plate_row = PlateRow(frame, plate_row_, predicted, 2);
   if (!std::isfinite(out->plate_row)) return false;
   for (int k = 0; k < 2; ++k) {
-    const RefineContext ctx = Context(polarity_, out->plate_row, predicted[k], &predicted[1 - k]);
+    RefineContext ctx = Context(polarity_, out->plate_row, predicted[k], &predicted[1 - k]);
+    ctx.precise_guess = true;  // constant-velocity prediction, < 1 px per frame at 2000 frames/s
     const SphereMeasurement m = MeasureSphere(frame, predicted[k], radius_px_, ctx, options_.method);
     if (!m.found()) return false;
     out->found[k] = true;
