@@ -15,6 +15,33 @@ namespace {
 constexpr int kPolarityStride = 4;
 // Smallest sphere radius the detector accepts, px (smaller blobs are noise or debris).
 constexpr double kMinRadiusPx = 3.0;
+// Silhouette threshold above the background: noise sigmas (4: ~3e-5 of the background pixels
+// pass, isolated specks with no distance-transform peak) and a floor, fraction of full scale.
+constexpr double kSilhouetteNoiseSigmas = 4.0;
+constexpr double kSilhouetteMinStepFraction = 0.02;
+
+double FullScale(const cv::Mat& frame) { return frame.depth() == CV_8U ? 255.0 : 65535.0; }
+
+// Silhouette threshold: the background (median) plus kSilhouetteNoiseSigmas noise sigmas
+// (from the median absolute deviation), at least kSilhouetteMinStepFraction of full scale.
+// Not Otsu: a mirror sphere's rim is only ~12 grey levels above the background while its
+// lower half reflects the bright plate, and Otsu's split between those leaves the dim upper
+// part out, which moves the distance-transform peak by several pixels.
+double SilhouetteThreshold(const cv::Mat& region, double full) {
+  std::vector<float> v;
+  for (int r = 0; r < region.rows; r += kPolarityStride) {
+    const float* p = region.ptr<float>(r);
+    for (int c = 0; c < region.cols; c += kPolarityStride) v.push_back(p[c]);
+  }
+  auto median = [](std::vector<float>& x) {
+    std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
+    return double(x[x.size() / 2]);
+  };
+  const double m = median(v);
+  for (float& x : v) x = std::abs(x - float(m));
+  const double sigma = 1.4826 * median(v);
+  return m + std::max(kSilhouetteNoiseSigmas * sigma, kSilhouetteMinStepFraction * full);
+}
 
 }  // namespace
 
@@ -43,10 +70,10 @@ Detection DetectSpheres(const cv::Mat& frame, int polarity) {
   if (rows < 2 * kMinRadiusPx) return out;
   cv::Mat region;
   frame.rowRange(0, rows).convertTo(region, CV_32F, polarity);
-  cv::Mat norm8, silhouette;
-  cv::normalize(region, region, 0, 255, cv::NORM_MINMAX);
-  region.convertTo(norm8, CV_8U);
-  cv::threshold(norm8, silhouette, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
+  cv::Mat silhouette;
+  cv::threshold(region, silhouette, SilhouetteThreshold(region, FullScale(frame)), 255,
+                cv::THRESH_BINARY);
+  silhouette.convertTo(silhouette, CV_8U);
   std::vector<std::vector<cv::Point>> contours;
   cv::findContours(silhouette, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
   silhouette.setTo(0);

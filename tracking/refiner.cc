@@ -41,6 +41,10 @@ constexpr double kMaxContraction = 0.5;
 // The window is re-read when the estimate leaves its centre pixel by more than this, px; the
 // window circle (radius half - 1) stays inside the window up to 1 px.
 constexpr double kRecentreWindowPx = 0.75;
+// Rim fit with the radius unknown: starts at the first guess and this many steps outward (the
+// fit reaches ~1.5 px from its start, so 2 px steps cover a guess up to ~7 px small).
+constexpr int kRadiusStarts = 4;
+constexpr double kRadiusStartStepPx = 2.0;
 // How far an estimate can be from its window's centre pixel while iterating, px: at most
 // kRecentreWindowPx per axis (sqrt 2 x 0.75 = 1.06), with a margin.
 constexpr double kCoreShiftPx = 1.25;
@@ -305,7 +309,8 @@ double WeightedArea(const CentroidState& s, const Eigen::Vector2d& c, double win
 // Centroid iterations from *centre until converged, keeping the window centred on the
 // estimate. False (status kClipped) when the window would leave the frame.
 bool Iterate(const cv::Mat& frame, const RefineContext& ctx, double radius, int half,
-             CentroidState* s, Eigen::Vector2d* centre, SphereMeasurement* out) {
+             bool extrapolate, CentroidState* s, Eigen::Vector2d* centre,
+             SphereMeasurement* out) {
   const double win_r = half - 1.0;  // stays inside the window while |c - centre| <= 1 px
   Eigen::Vector2d& c = *centre;
   Eigen::Vector2d window_centre(s->window.col0 + half, s->window.row0 + half);
@@ -319,7 +324,7 @@ bool Iterate(const cv::Mat& frame, const RefineContext& ctx, double radius, int 
     // last): extrapolate the geometric series with the measured ratio (Aitken), so two or three
     // steps reach the tolerance instead of six or seven.
     double ratio = 0;
-    if (last_step.squaredNorm() > 0) {
+    if (extrapolate && last_step.squaredNorm() > 0) {
       ratio = std::clamp(step.dot(last_step) / last_step.squaredNorm(), 0.0, kMaxContraction);
     }
     c += step / (1.0 - ratio);
@@ -363,9 +368,13 @@ SphereMeasurement Centroid(const cv::Mat& frame, const Eigen::Vector2d& guess, d
     s->levels.sphere = body;
     s->levels.uniform = false;
     ComputeWeights(s, CoreRadius(ctx, radius, half, s->window.row0 + half));
+    // From a coarse guess (acquisition: a distance-transform peak can be pixels off) the
+    // body-weighted centroid, biased by the reflections but within ~2 px, is a second start
+    // for the rim fit. Plain steps: these weights make the contraction irregular.
+    if (!ctx.precise_guess && !Iterate(frame, ctx, radius, half, false, s, &c, &out)) return out;
   } else {
     ComputeWeights(s, CoreRadius(ctx, radius, half, s->window.row0 + half));
-    if (!Iterate(frame, ctx, radius, half, s, &c, &out)) return out;
+    if (!Iterate(frame, ctx, radius, half, true, s, &c, &out)) return out;
   }
   const double area = WeightedArea(*s, c, win_r, ctx.plate_row);
   out.area_fraction = area / (std::numbers::pi * radius * radius);
@@ -456,9 +465,22 @@ SphereMeasurement MeasureSphere(const cv::Mat& frame, const Eigen::Vector2d& gue
       in.rod_dir = context.rod_dir.normalized();
       in.rod_half_width_px = kRodCorridorHalfWidthR * radius_px;
     }
-    // Fitting the radius, start from the silhouette's weighted area (radius_px only sizes it).
-    const double start_r = context.fit_radius ? m.radius_px : radius_px;
-    const RimFitResult rim = FitRim(frame, guess, start_r, in);
+    // Starts: the guess, and the body-weighted centroid unless the guess is a prediction;
+    // radius: known, or (acquisition) from the first guess outward, since the thresholded
+    // silhouette of a mirror sphere can be a few pixels small (its rim is only ~12 grey levels
+    // above the background). The smallest residual wins.
+    const double r0 = !context.fit_radius                      ? radius_px
+                      : std::isfinite(context.radius_start_px) ? context.radius_start_px
+                                                               : m.radius_px;
+    const int radius_starts = context.fit_radius ? kRadiusStarts : 1;
+    RimFitResult rim;
+    for (int s = 0; s < (context.precise_guess ? 1 : 2); ++s) {
+      for (int k = 0; k < radius_starts; ++k) {
+        const RimFitResult r =
+            FitRim(frame, s == 0 ? guess : m.centre, r0 + k * kRadiusStartStepPx, in);
+        if (r.ok && (!rim.ok || r.rms < rim.rms)) rim = r;
+      }
+    }
     if (!rim.ok) {
       m.status = SphereMeasurement::Status::kMissing;
       return m;

@@ -35,6 +35,7 @@ struct RefineContext {
   double plate_row = std::numeric_limits<double>::quiet_NaN();  // plate top surface, px
   Eigen::Vector2d rod_dir{0, 0};      // unit vector toward the other sphere; zero: no rod cut
   bool fit_radius = false;            // mirror spheres: fit the radius too (else it is known)
+  double radius_start_px = std::numeric_limits<double>::quiet_NaN();  // fit_radius: first guess
   bool precise_guess = false;         // the guess is a tracker's prediction (within ~0.5 px)
 };
 

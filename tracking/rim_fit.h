@@ -9,8 +9,10 @@
 // plate masks at every tilt, so its bias changes from frame to frame (0.1-0.4 px noise-free).
 // The silhouette edge, on the other hand, is where the sphere ends whatever it reflects.
 //
-// Model. A pixel near the edge holds bg + (a(theta) - bg) * cover(c, R), where cover is the exact
-// disc coverage (disc_coverage.h), bg the background and a(theta) the sphere's level just inside
+// Model. A pixel near the edge holds bg + (a(theta) - bg) * cover(c, R), where cover is the
+// pixel's coverage by the disc with its edge taken as straight across the pixel (closed form,
+// no transcendental function; the arc's departure, <= 1/(8R) ~ 0.005 px, is the same all
+// round, so a constant offset), bg the background and a(theta) the sphere's level just inside
 // the rim in the direction theta: it varies around the circumference (12 grey levels above the
 // background at the top, ~100 at the bottom where the plate is reflected), so it is measured per
 // angular sector on the ring of fully covered pixels just inside the edge and interpolated in
@@ -56,6 +58,7 @@ struct RimFitResult {
   double radius_px = 0;
   int iterations = 0;
   int edge_pixels = 0;              // pixels in the last Gauss-Newton pass
+  double rms = 0;                   // RMS residual of the last pass, grey levels
 };
 
 // Fits the rim of the sphere near (`centre`, `radius_px`) in `frame` (CV_8U or CV_16U).

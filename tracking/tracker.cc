@@ -78,6 +78,7 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
     const double dt_r = *std::max_element(det.radii_px.begin(), det.radii_px.end());
     RefineContext ctx = Context(polarity_, det.plate_row, coarse[0], n > 1 ? &coarse[1] : nullptr);
     ctx.fit_radius = true;
+    ctx.radius_start_px = dt_r;  // a filled silhouette's inscribed radius: close for a mirror
     const SphereMeasurement m = MeasureSphere(frame, coarse[0], kProvisionalRadiusScale * dt_r,
                                               ctx, Method::kCentroid);
     // A mirror sphere's rim fit measures the radius itself; otherwise the silhouette area.
