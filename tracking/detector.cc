@@ -79,7 +79,7 @@ Detection DetectSpheres(const cv::Mat& frame, int polarity) {
   silhouette.setTo(0);
   cv::drawContours(silhouette, contours, -1, cv::Scalar(255), cv::FILLED);
   cv::Mat dist;
-  cv::distanceTransform(silhouette, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+  cv::distanceTransform(silhouette, dist, cv::DIST_L2, cv::DIST_MASK_5);  // coarse is enough
   double first_peak = 0;
   for (int k = 0; k < 2; ++k) {
     double peak = 0;

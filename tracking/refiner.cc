@@ -193,7 +193,10 @@ SymmetricMask MakeMask(const RefineContext& ctx, double radius, const Eigen::Vec
 // these (the sphere, not the background around it) and need no per-pixel branching on weight.
 struct ActivePixels {
   std::vector<float> x, y, w;  // column and row offsets from the window origin, weight
-  void clear() { x.clear(), y.clear(), w.clear(); }
+  size_t n = 0;                // entries in use (the vectors only grow: no refill per frame)
+  void Reserve(size_t size) {
+    if (x.size() < size) x.resize(size), y.resize(size), w.resize(size);
+  }
 };
 
 // The core: window pixels that every mask keeps at weight 1 for any estimate within
@@ -232,9 +235,7 @@ void ComputeWeights(CentroidState* s, double core_radius) {
   const double outer = half - 1.0 + kCoreShiftPx;
   const int outer_r2 = int(std::ceil(outer * outer));
   ActivePixels& a = s->active;
-  a.x.resize(w.v.size());
-  a.y.resize(w.v.size());
-  a.w.resize(w.v.size());
+  a.Reserve(w.v.size());
   size_t n = 0;
   double cw = 0, cx = 0, cy = 0;
   for (int y = 0; y < w.size; ++y) {
@@ -256,9 +257,7 @@ void ComputeWeights(CentroidState* s, double core_radius) {
       }
     }
   }
-  a.x.resize(n);
-  a.y.resize(n);
-  a.w.resize(n);
+  a.n = n;
   s->core_w = cw;
   s->core_x = cx;
   s->core_y = cy;
@@ -277,7 +276,7 @@ Eigen::Vector2d CentroidStep(const CentroidState& s, const Eigen::Vector2d& c, d
   const double bx = s.window.col0 - c.x(), by = s.window.row0 - c.y();
   double sw = s.core_w, sx = bx * s.core_w + s.core_x, sy = by * s.core_w + s.core_y;
   const bool masked = mask.rod_half_width > 0 || std::isfinite(mask.plate_cut);
-  for (size_t i = 0; i < a.w.size(); ++i) {
+  for (size_t i = 0; i < a.n; ++i) {
     const double dx = bx + a.x[i], dy = by + a.y[i];
     double m = CircleWeight(dx * dx + dy * dy, win_r);
     if (masked) m *= mask(dx, dy);
@@ -298,7 +297,7 @@ double WeightedArea(const CentroidState& s, const Eigen::Vector2d& c, double win
   const double bx = s.window.col0 - c.x(), by = s.window.row0 - c.y();
   const double last_row = std::isfinite(plate_row) ? plate_row - kPlateGuardPx - s.window.row0
                                                    : std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < a.w.size(); ++i) {
+  for (size_t i = 0; i < a.n; ++i) {
     if (a.y[i] > last_row) continue;
     const double dx = bx + a.x[i], dy = by + a.y[i];
     area += a.w[i] * CircleWeight(dx * dx + dy * dy, win_r);
@@ -451,7 +450,7 @@ Method ParseMethod(const std::string& name, const std::string& option) {
 
 SphereMeasurement MeasureSphere(const cv::Mat& frame, const Eigen::Vector2d& guess,
                                 double radius_px, const RefineContext& context, Method method) {
-  CentroidState state;
+  thread_local CentroidState state;  // buffers reused across calls: no allocation per frame
   SphereMeasurement m = Centroid(frame, guess, radius_px, context, &state);
   if (!m.found()) return m;
   if (!state.levels.uniform) {
