@@ -4,7 +4,7 @@
 // only looks at windows around its predictions (tracker.h).
 //
 // Spheres are separated from the rod without knowing the geometry: above the plate, the frame
-// is thresholded (Otsu) into a silhouette, holes are filled (a mirror sphere's dark reflections),
+// is thresholded a few noise sigmas above its background into a silhouette, holes are filled (a mirror sphere's dark reflections),
 // and the distance transform peaks at a sphere centre with the value ~R, while the rod, thin,
 // never gets far from its edge. The two highest peaks, separated by more than a radius, are the
 // spheres.

@@ -15,7 +15,7 @@ namespace dimer::tracking {
 namespace {
 
 // Coarse to fine: Gauss-Newton with a linear ramp edge of these widths (px) first, then the
-// exact coverage (0). The 3 px ramp has gradient wherever a start within ~2 px sees the edge.
+// straight-edge pixel coverage (0). The 3 px ramp has gradient wherever a start within ~2 px sees the edge.
 constexpr double kRampSchedulePx[] = {3.0, 1.5, 0.0};
 // Ramp stages stop earlier (their result only starts the next), px.
 constexpr double kRampConvergedPx = 1e-2;
@@ -33,16 +33,17 @@ constexpr int kRimSectors = 16;
 // Ring of fully covered pixels for a(theta): centre distance in [R - kLevelRingOuterPx,
 // R - kLevelRingInnerPx] (a pixel is fully inside when d < R - 1/sqrt 2).
 constexpr double kLevelRingInnerPx = 0.8, kLevelRingOuterPx = 3.0;
-// A sector is fitted only when its ring holds at least this many usable pixels (a third of a
-// full sector's), so a sector mostly hidden by the rod or plate cannot trade its level against
+// A sector is fitted only when its ring holds at least this many usable pixels (a quarter of
+// a full sector's ~20), so a sector mostly hidden by the rod or plate cannot trade its level against
 // the edge position.
 constexpr int kMinSectorPixels = 5;
-// Sectors fitted: ring contrast at most this multiple of the dimmest sector's (see FitRim).
+// Sectors fitted: ring contrast at most this multiple of the lower-quartile sector's (see
+// SelectSectors).
 constexpr double kRimSectorContrastRatio = 2.0;
 // Pixels used by Gauss-Newton: up to kEdgeBandPx beyond the straddling ones on each side, so
 // the levels are pinned by fully inside and fully outside pixels of the same sector.
 constexpr double kEdgeBandPx = 1.5;
-// Extra window half-size beyond R for rays, rings and guesses off by up to this much, px.
+// Extra window half-size beyond R for the edge band and starts off by up to kMaxMovePx, px.
 constexpr double kRimWindowMarginPx = 7.0;
 // A sector whose rim is less than this fraction of full scale above the background carries no
 // edge information worth its noise; a fit needs at least this many edge pixels.

@@ -21,10 +21,11 @@
 // mask). Unweighted least squares is the maximum-likelihood fit under Gaussian noise: pixels of
 // the bright lower rim dominate, as they should.
 //
-// Start. The fit needs its start within ~1 px of the edge; a mirror sphere's centroid can be
-// further off. Coarse circle first: along kRimRays rays, the edge by the coverage sum of the
-// profile (exact for a step, no threshold), and an algebraic (Kasa) circle fit weighted by each
-// ray's contrast squared.
+// Start. Gauss-Newton on the exact edge sees only pixels straddling its current edge, so from
+// an uncertain start (acquisition, coarse_start) it first fits a linear radial ramp of 3 px,
+// then 1.5 px, which has gradient over a wider band; from a tracker's prediction it goes
+// straight to the edge model. With the radius unknown, the caller tries several starting radii
+// and keeps the smallest residual (refiner.cc).
 //
 // Known radius. Where the plate is reflected within a pixel of the rim (most of the lower
 // half) the edge cannot be modelled, so only sectors whose ring is as dim as the dimmest one
