@@ -56,15 +56,6 @@ struct Window {
   int col0 = 0, row0 = 0, size = 0;
   std::vector<float> v;
   float at(int x, int y) const { return v[size_t(y) * size + x]; }
-  // Bilinear value at frame coordinates (col, row); NaN outside.
-  double Sample(double col, double row) const {
-    const double x = col - col0, y = row - row0;
-    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-    if (x0 < 0 || y0 < 0 || x0 + 1 >= size || y0 + 1 >= size) return std::nan("");
-    const double fx = x - x0, fy = y - y0;
-    return (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x0 + 1, y0)) +
-           fy * ((1 - fx) * at(x0, y0 + 1) + fx * at(x0 + 1, y0 + 1));
-  }
 };
 
 template <typename T>
