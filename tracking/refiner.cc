@@ -28,11 +28,6 @@ constexpr int kLevelStride = 2;
 // Width of the linear ramp of the symmetric cuts (rod, plate), px: a smooth mask is sampled by
 // the pixels with less error than a sharp one (less pixel locking).
 constexpr double kMaskRampPx = 2.0;
-// The centroid's plate cut ramps over 8 px: the cut crosses the disc where its edge runs along
-// pixel rows, and a wider ramp samples it more smoothly (pixel locking of a resting sphere
-// 0.023 px p-p with 2 px, 0.017 with 6, 0.014 with 8). The disc fit only leaves out pixels
-// under its mask (a model is not biased by a cut), so it keeps the narrow one.
-constexpr double kPlateRampPx = 8.0;
 // Body level (low quantile) and median level closer than this fraction of the contrast: a
 // uniform sphere (centroid iterations); farther: a mirror (rim fit).
 constexpr double kUniformLevelFraction = 0.15;
@@ -189,6 +184,68 @@ SymmetricMask MakeMask(const RefineContext& ctx, double radius, const Eigen::Vec
   return m;
 }
 
+// The centroid's plate cut (CentroidMask). A cut along pixel rows crosses the disc's edge where
+// the edge runs nearly along the rows; there the mask's gradient meets edge pixels, whose
+// coverage tells how much of the pixel is inside but not where, and that sampling error locked
+// a resting sphere to the pixel grid (0.014 px p-p with an 8 px horizontal ramp). This cut is a
+// double wedge about the vertical through the estimate instead: inside the wedge the mask falls
+// with the distance from the estimate (a ramp in the sphere's interior, where every pixel is
+// fully covered), and across the wedge's sides with the angle, i.e. along the edge, never
+// across it. Smoothstep ramps (C1), so the sampled sums carry no kink error either.
+// Angular ramp width beyond theta_p, where the plate guard row meets the window circle, rad.
+constexpr double kWedgeRampRad = 0.3;
+// Radial ramp inside the wedge: from kWedgeRadialRampPx short of the plate guard row to it, px.
+constexpr double kWedgeRadialRampPx = 6.0;
+// Least span of the angular ramp in cos(angle) (the plate cut reaching the horizontal).
+constexpr double kMinWedgeCosSpan = 1e-3;
+
+double SmoothStep(double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+// Mask about the estimate for the centroid, symmetric in both axes: the rod corridor of
+// SymmetricMask and the plate's double wedge. Zero at every point of the window circle at or
+// beyond the plate guard row (and at its mirror image above).
+struct CentroidMask {
+  SymmetricMask rod;  // rod cut only (its plate_cut stays infinite)
+  double plate_dist = std::numeric_limits<double>::infinity();  // guard row - estimate row, px
+  double cos_in = 1, cos_out = 1;  // wedge: cos of the angle from the vertical, full / no cut
+  bool active() const { return rod.rod_half_width > 0 || std::isfinite(plate_dist); }
+  double operator()(double dx, double dy) const {
+    double m = rod(dx, dy);
+    if (std::isfinite(plate_dist)) {
+      const double r2 = dx * dx + dy * dy;
+      const double inner = plate_dist - kWedgeRadialRampPx;
+      if (inner <= 0 || r2 > inner * inner) {
+        const double r = std::sqrt(r2);
+        const double radial = SmoothStep((r - inner) / kWedgeRadialRampPx);
+        const double u = r > 0 ? std::abs(dy) / r : 1.0;
+        m *= 1.0 - radial * SmoothStep((u - cos_out) / (cos_in - cos_out));
+      }
+    }
+    return m;
+  }
+};
+
+CentroidMask MakeCentroidMask(const RefineContext& ctx, double radius, const Eigen::Vector2d& c,
+                              double win_r) {
+  CentroidMask m;
+  m.rod = MakeMask(ctx, radius, c, kMaskRampPx);
+  m.rod.plate_cut = std::numeric_limits<double>::infinity();
+  if (std::isfinite(ctx.plate_row)) {
+    const double dist = ctx.plate_row - kPlateGuardPx - c.y();
+    if (dist < win_r) {
+      const double theta_p = std::acos(std::clamp(dist / win_r, 0.0, 1.0));
+      m.plate_dist = dist;
+      m.cos_in = std::cos(theta_p);
+      m.cos_out = std::cos(std::min(theta_p + kWedgeRampRad, 0.5 * std::numbers::pi));
+      m.cos_out = std::min(m.cos_out, m.cos_in - kMinWedgeCosSpan);
+    }
+  }
+  return m;
+}
+
 // Pixels of positive weight, gathered once per window: the centroid iterations revisit only
 // these (the sphere, not the background around it) and need no per-pixel branching on weight.
 struct ActivePixels {
@@ -218,9 +275,10 @@ double CoreRadius(const RefineContext& ctx, double radius, int half, double wind
     r = std::min(r, radius - kRodCutInsetPx - 0.5 * kMaskRampPx - kCoreShiftPx);
   }
   if (std::isfinite(ctx.plate_row)) {
-    // The plate cut's mirror image moves twice as fast as the estimate.
-    const double cut = ctx.plate_row - kPlateGuardPx - 0.5 * kPlateRampPx - window_row;
-    r = std::min(r, cut - 0.5 * kPlateRampPx - 2.0 * kCoreShiftPx);
+    // The plate wedge's radial ramp starts kWedgeRadialRampPx short of the guard row, measured
+    // from the estimate (up to kCoreShiftPx away both in the cut's row and in the distance).
+    const double dist = ctx.plate_row - kPlateGuardPx - window_row;
+    r = std::min(r, dist - kWedgeRadialRampPx - 2.0 * kCoreShiftPx);
   }
   return std::max(0.0, r);
 }
@@ -271,11 +329,11 @@ inline double CircleWeight(double d2, double win_r) {
 
 // One centroid step under the symmetric mask centred at c; returns the new centre.
 Eigen::Vector2d CentroidStep(const CentroidState& s, const Eigen::Vector2d& c, double win_r,
-                             const SymmetricMask& mask) {
+                             const CentroidMask& mask) {
   const ActivePixels& a = s.active;
   const double bx = s.window.col0 - c.x(), by = s.window.row0 - c.y();
   double sw = s.core_w, sx = bx * s.core_w + s.core_x, sy = by * s.core_w + s.core_y;
-  const bool masked = mask.rod_half_width > 0 || std::isfinite(mask.plate_cut);
+  const bool masked = mask.active();
   for (size_t i = 0; i < a.n; ++i) {
     const double dx = bx + a.x[i], dy = by + a.y[i];
     double m = CircleWeight(dx * dx + dy * dy, win_r);
@@ -317,7 +375,7 @@ bool Iterate(const cv::Mat& frame, const RefineContext& ctx, double radius, int 
   for (int it = 0; it < kCentroidMaxIter; ++it) {
     ++out->iterations;
     const Eigen::Vector2d step =
-        CentroidStep(*s, c, win_r, MakeMask(ctx, radius, c, kPlateRampPx)) - c;
+        CentroidStep(*s, c, win_r, MakeCentroidMask(ctx, radius, c, win_r)) - c;
     const double moved = step.norm();
     // The masked centroid is a linear contraction near its fixed point (each step ~0.35 of the
     // last): extrapolate the geometric series with the measured ratio (Aitken), so two or three
