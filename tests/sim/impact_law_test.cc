@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <ostream>
 #include <random>
 
 #include "tests/sim/test_models.h"
@@ -45,6 +46,10 @@ struct ReversalCase {
   double ar, mu_hat, mu_hat_s, eps, ub, vb, w;
 };
 
+void PrintTo(const ReversalCase& c, std::ostream* os) {
+  *os << "A_r " << c.ar << " mu_hat " << c.mu_hat << " eps " << c.eps << " U_b " << c.ub;
+}
+
 class SlipReversalTable : public ::testing::TestWithParam<ReversalCase> {};
 
 TEST_P(SlipReversalTable, MatchesThePapersFormulaTo1e12) {
@@ -73,7 +78,8 @@ INSTANTIATE_TEST_SUITE_P(
                       ReversalCase{4.5, 0.05, 0.2, 0.3, -0.001, -0.2, 11.0},
                       ReversalCase{3.9, 0.1, 0.2, 0.0, -0.01, -0.3, 0.0},
                       ReversalCase{3.9, 0.1, 0.2, 1.0, -0.01, -0.3, 2.0},
-                      ReversalCase{2.0, 0.2, 0.3, 0.65, -0.02, -1.0, 0.0}));
+                      ReversalCase{2.0, 0.2, 0.3, 0.65, -0.02, -1.0, 0.0}),
+    [](const ::testing::TestParamInfo<ReversalCase>& p) { return "case" + std::to_string(p.index); });
 
 TEST(ImpactLaw, StickCriterionDecidesStickOrReversalBothSidesOfTheBoundary) {
   for (double ar : {2.0, 3.0, 3.9, 5.0, 6.1, 8.0, 10.0}) {
@@ -166,6 +172,9 @@ struct EnergyCase {
   double eps, mu_hat, mu_hat_s;
   bool conserved;  // eps = 1 and no friction: conserved to round-off
 };
+void PrintTo(const EnergyCase& c, std::ostream* os) {
+  *os << "eps " << c.eps << " mu_hat " << c.mu_hat;
+}
 class ImpactEnergy : public ::testing::TestWithParam<EnergyCase> {};
 
 TEST_P(ImpactEnergy, NeverCreatedAndConservedWhenElasticAndFrictionless) {
@@ -213,7 +222,12 @@ INSTANTIATE_TEST_SUITE_P(Laws, ImpactEnergy,
                                            EnergyCase{0.65, 0.1, 0.2, false},
                                            EnergyCase{1.0, 0.1, 0.2, false},
                                            EnergyCase{0.0, 0.5, 0.5, false},
-                                           EnergyCase{0.99, 10.0, 10.0, false}));
+                                           EnergyCase{0.99, 10.0, 10.0, false}),
+                         [](const ::testing::TestParamInfo<EnergyCase>& p) {
+                           const EnergyCase& c = p.param;
+                           return "eps" + std::to_string(int(c.eps * 100)) + "_muhat" +
+                                  std::to_string(int(c.mu_hat * 100));
+                         });
 
 }  // namespace
 }  // namespace dimer::sim

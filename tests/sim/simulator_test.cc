@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <ostream>
 #include <random>
 
 #include "common/error.h"
@@ -52,6 +53,7 @@ struct EnergyRun {
   double eps, mu_hat, mu;
   bool conserved;
 };
+void PrintTo(const EnergyRun& c, std::ostream* os) { *os << "eps " << c.eps << " mu " << c.mu; }
 class SimulatorEnergy : public ::testing::TestWithParam<EnergyRun> {};
 
 TEST_P(SimulatorEnergy, ConservedOrNeverCreatedOverRandomFlights) {
@@ -103,7 +105,11 @@ TEST_P(SimulatorEnergy, ConservedOrNeverCreatedOverRandomFlights) {
 INSTANTIATE_TEST_SUITE_P(Laws, SimulatorEnergy,
                          ::testing::Values(EnergyRun{1.0, 0.0, 0.0, true},
                                            EnergyRun{0.65, 0.1, 0.2, false},
-                                           EnergyRun{0.99, 0.5, 0.5, false}));
+                                           EnergyRun{0.99, 0.5, 0.5, false}),
+                         [](const ::testing::TestParamInfo<EnergyRun>& p) {
+                           return "eps" + std::to_string(int(p.param.eps * 100)) + "_mu" +
+                                  std::to_string(int(p.param.mu * 100));
+                         });
 
 // MODEL.md check 4: a flat dimer stays on a plate with Gamma < 1, and does not slide on a
 // still plate tilted below the friction angle.

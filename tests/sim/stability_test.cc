@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <ostream>
 #include <sstream>
 
 #include "sim/frames.h"
@@ -32,6 +33,7 @@ void ExpectHealthy(const SimOptions& o, const SimResult& r, const std::string& w
   EXPECT_LE(r.diag.max_events_in_period, 200) << what << ": event storm";
 }
 
+void PrintTo(const Extreme& e, std::ostream* os) { *os << e.name; }
 class Extremes : public ::testing::TestWithParam<Extreme> {};
 
 TEST_P(Extremes, NoNaNNoPenetrationNoEventStorm) {
