@@ -90,10 +90,10 @@ struct Usable {
   const RimFitInput& in;
   double centre_row;
   double R;
-  bool operator()(double dx, double dy) const {
-    if (std::isfinite(in.plate_row) && centre_row + dy + 0.5 > in.plate_row - kPlateGuardPx) {
-      return false;
-    }
+  bool RowUsable(double dy) const {
+    return !(std::isfinite(in.plate_row) && centre_row + dy + 0.5 > in.plate_row - kPlateGuardPx);
+  }
+  bool OffRod(double dx, double dy) const {
     if (in.rod_half_width_px > 0) {
       const double along = dx * in.rod_dir.x() + dy * in.rod_dir.y();
       const double across = std::abs(dx * in.rod_dir.y() - dy * in.rod_dir.x());
@@ -101,18 +101,19 @@ struct Usable {
     }
     return true;
   }
+  bool operator()(double dx, double dy) const { return RowUsable(dy) && OffRod(dx, dy); }
 };
 
 // Background: median of the window's border pixels that are usable (not plate, not rod).
 double Background(const Window& w, const Eigen::Vector2d& c, const Usable& usable) {
-  std::vector<float> ring;
-  ring.reserve(4 * size_t(w.size));
-  for (int y = 0; y < w.size; ++y) {
-    for (int x = 0; x < w.size; ++x) {
-      if (x != 0 && y != 0 && x != w.size - 1 && y != w.size - 1) continue;
-      if (usable(w.col0 + x - c.x(), w.row0 + y - c.y())) ring.push_back(w.at(x, y));
-    }
-  }
+  thread_local std::vector<float> ring;  // reused: no allocation per call
+  ring.clear();
+  const auto add = [&](int x, int y) {
+    if (usable(w.col0 + x - c.x(), w.row0 + y - c.y())) ring.push_back(w.at(x, y));
+  };
+  for (int i = 0; i < w.size; ++i) add(i, 0), add(i, w.size - 1);  // top and bottom rows
+  for (int i = 1; i + 1 < w.size; ++i) add(0, i), add(w.size - 1, i);  // side columns
+
   if (ring.empty()) return std::nan("");
   std::nth_element(ring.begin(), ring.begin() + ring.size() / 2, ring.end());
   return ring[ring.size() / 2];
@@ -137,11 +138,12 @@ void SectorOf(double dx, double dy, int* k0, int* k1, double* f) {
       diamond = dx < 0 ? 2 - dy / s : 3 + dx / s;
     }
   }
-  const double t = diamond / 4.0 * kRimSectors - 0.5;
-  const int k = int(std::floor(t));
+  // t >= -0.5, so truncating t + 1 is floor(t) + 1 (std::floor is a libm call without SSE4.1).
+  const double t = diamond * (kRimSectors / 4.0) - 0.5;
+  const int k = int(t + 1.0) - 1;
   *f = t - k;
-  *k0 = (k + kRimSectors) % kRimSectors;
-  *k1 = (k + 1) % kRimSectors;
+  *k0 = k < 0 ? k + kRimSectors : k;
+  *k1 = k + 1 < kRimSectors ? k + 1 : k + 1 - kRimSectors;
 }
 
 // Coverage of the unit pixel at offset (dx, dy) from the centre by the disc of radius R, with
@@ -194,18 +196,62 @@ PixelCoverage Cover(double col, double row, const Eigen::Vector2d& c, double R, 
   return p;
 }
 
+// Normal equations of one Gauss-Newton pass, accumulated in the structure of the Jacobian: a
+// pixel's row is (g0, g1, g2, e) on the geometry and the background, dense, plus two adjacent
+// sector levels (k0, k1 = k0 + 1 mod kRimSectors) with weights (h0, h1). So per pixel: the
+// dense 4x4 block, each sector's diagonal and its cross terms with the dense block, and the
+// coupling of the two adjacent sectors; straight-line code, assembled into the full matrix once
+// per pass.
+struct NormalEquations {
+  std::array<double, 10> dense{};                      // lower triangle of the 4x4 block
+  std::array<double, 4> dense_rhs{};
+  std::array<double, kRimSectors> diag{}, rhs{}, next{};  // next[k]: sector k with k + 1
+  std::array<std::array<double, 4>, kRimSectors> cross{};
+
+  void Add(const std::array<double, 4>& g, int k0, int k1, double h0, double h1, double r) {
+    int n = 0;
+    for (int u = 0; u < 4; ++u) {
+      dense_rhs[u] += g[u] * r;
+      for (int v = 0; v <= u; ++v) dense[n++] += g[u] * g[v];
+      cross[k0][u] += h0 * g[u];
+      cross[k1][u] += h1 * g[u];
+    }
+    diag[k0] += h0 * h0;
+    diag[k1] += h1 * h1;
+    next[k0] += h0 * h1;
+    rhs[k0] += h0 * r;
+    rhs[k1] += h1 * r;
+  }
+
+  // Lower triangle of J^T J and J^T r over (cx, cy, R, background, sector levels).
+  void Assemble(Mat* jtj, Vec* jtr) const {
+    jtj->setZero();
+    int n = 0;
+    for (int u = 0; u < 4; ++u) {
+      (*jtr)(u) = dense_rhs[u];
+      for (int v = 0; v <= u; ++v) (*jtj)(u, v) = dense[n++];
+    }
+    for (int k = 0; k < kRimSectors; ++k) {
+      const int row = kGeomParams + 1 + k;
+      (*jtr)(row) = rhs[k];
+      (*jtj)(row, row) = diag[k];
+      for (int u = 0; u < 4; ++u) (*jtj)(row, u) = cross[k][u];
+      const int other = kGeomParams + 1 + (k + 1) % kRimSectors;
+      (*jtj)(std::max(row, other), std::min(row, other)) += next[k];
+    }
+  }
+};
+
 // One Gauss-Newton step on all parameters; returns the number of pixels used.
 int Step(const Window& w, const Usable& usable, double ramp_px, bool fit_radius,
          const std::array<bool, kRimSectors>& valid, Vec* p, double* sum_r2) {
   const Eigen::Vector2d c((*p)(0), (*p)(1));
   const double R = (*p)(2), bg = (*p)(3);
   const double band = std::max(0.5 * ramp_px, 0.71) + kEdgeBandPx;
-  Mat jtj = Mat::Zero();
-  Vec jtr = Vec::Zero();
+  thread_local NormalEquations ne;
+  ne = NormalEquations();
   int used = 0;
   *sum_r2 = 0;
-  std::array<int, 6> idx;
-  std::array<double, 6> j;
   // Only the annulus R +- band is visited: per row, the columns between its outer and inner
   // circles on each side (no scan of the whole window).
   const double outer2 = (R + band) * (R + band), inner2 = std::max(0.0, R - band) * (R - band);
@@ -213,6 +259,7 @@ int Step(const Window& w, const Usable& usable, double ramp_px, bool fit_radius,
   const int y1 = std::min(w.size - 1, int(std::floor(c.y() + R + band)) - w.row0);
   for (int y = y0; y <= y1; ++y) {
     const double row = w.row0 + y, dy = row - c.y();
+    if (!usable.RowUsable(dy)) continue;
     const double half_outer = std::sqrt(std::max(0.0, outer2 - dy * dy));
     const double half_inner = dy * dy < inner2 ? std::sqrt(inner2 - dy * dy) : -1.0;
     const int x0 = std::max(0, int(std::ceil(c.x() - half_outer)) - w.col0);
@@ -224,27 +271,23 @@ int Step(const Window& w, const Usable& usable, double ramp_px, bool fit_radius,
         continue;
       }
       const double d2 = dx * dx + dy * dy;
-      if (d2 > outer2 || d2 < inner2 || !usable(dx, dy)) continue;
+      if (d2 > outer2 || d2 < inner2 || !usable.OffRod(dx, dy)) continue;
       int k0, k1;
       double f;
       SectorOf(dx, dy, &k0, &k1, &f);
       if (!valid[k0] || !valid[k1]) continue;
       const double a = (1 - f) * (*p)(4 + k0) + f * (*p)(4 + k1);
       const PixelCoverage cov = Cover(col, row, c, R, ramp_px);
-      idx = {0, 1, 2, 3, 4 + k0, 4 + k1};
-      j = {(a - bg) * cov.d_cx, (a - bg) * cov.d_cy, (a - bg) * cov.d_r, 1 - cov.area,
-           (1 - f) * cov.area, f * cov.area};
       const double r = w.at(x, y) - (bg + (a - bg) * cov.area);
       *sum_r2 += r * r;
-      for (int u = 0; u < 6; ++u) {  // lower triangle only (LDLT reads no more)
-        jtr(idx[u]) += j[u] * r;
-        for (int v = 0; v < 6; ++v) {
-          if (idx[v] <= idx[u]) jtj(idx[u], idx[v]) += j[u] * j[v];
-        }
-      }
+      ne.Add({(a - bg) * cov.d_cx, (a - bg) * cov.d_cy, (a - bg) * cov.d_r, 1 - cov.area}, k0, k1,
+             (1 - f) * cov.area, f * cov.area, r);
       ++used;
     }
   }
+  Mat jtj;
+  Vec jtr;
+  ne.Assemble(&jtj, &jtr);
   // Sectors hidden by the rod or the plate have no data: a tiny damping keeps them (and only
   // them, in effect) at their current level.
   for (int k = kGeomParams; k < kParams; ++k) jtj(k, k) += kLevelDamping;
@@ -267,10 +310,22 @@ void SectorLevels(const Window& w, const Eigen::Vector2d& c, double R, const Usa
   std::array<double, kRimSectors> sum{};
   std::array<int, kRimSectors> n{};
   const double lo2 = std::pow(R - kLevelRingOuterPx, 2), hi2 = std::pow(R - kLevelRingInnerPx, 2);
-  for (int y = 0; y < w.size; ++y) {
+  // Only the ring's rows, and in each the columns within its outer circle.
+  const double hi = R - kLevelRingInnerPx;
+  const int y0 = std::max(0, int(std::ceil(c.y() - hi)) - w.row0);
+  const int y1 = std::min(w.size - 1, int(std::floor(c.y() + hi)) - w.row0);
+  for (int y = y0; y <= y1; ++y) {
     const double dy = w.row0 + y - c.y();
-    for (int x = 0; x < w.size; ++x) {
+    const double half = std::sqrt(std::max(0.0, hi2 - dy * dy));
+    const int x0 = std::max(0, int(std::ceil(c.x() - half)) - w.col0);
+    const int x1 = std::min(w.size - 1, int(std::floor(c.x() + half)) - w.col0);
+    const double half_inner = dy * dy < lo2 ? std::sqrt(lo2 - dy * dy) : -1.0;
+    for (int x = x0; x <= x1; ++x) {
       const double dx = w.col0 + x - c.x(), d2 = dx * dx + dy * dy;
+      if (std::abs(dx) < half_inner) {  // inside the ring: jump to its far side
+        x = std::max(x, int(std::floor(c.x() + half_inner)) - w.col0);
+        continue;
+      }
       if (d2 < lo2 || d2 > hi2 || !usable(dx, dy)) continue;
       int k0, k1;
       double f;
