@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "sim/constants.h"
+#include "sim/flat_contacts.h"
 
 namespace dimer::sim {
 namespace {
@@ -79,13 +80,7 @@ Rates SolveRates(const Model& m, const std::array<ContactRow, 2>& c) {
   if (!x.allFinite() || (as * x - b.head(dim)).norm() > 1e-9) r.ok = false;
   if (n == 2 && c[idx[0]].mode == Friction::kStick && c[idx[1]].mode == Friction::kStick &&
       (c[idx[0]].jt - c[idx[1]].jt).norm() <= 1e-12 * c[idx[0]].jt.norm()) {
-    // Flat, both sticking: only the sum of the tangential impulses matters; share it in
-    // proportion to the normal impulses (see persistent_contact.cc for the same choice).
-    const double n_sum = x(0) + x(1), t_sum = x(2) + x(3);
-    if (n_sum > 0) {
-      x(2) = t_sum * x(0) / n_sum;
-      x(3) = t_sum * x(1) / n_sum;
-    }
+    ShareTangentialByNormal(x);  // flat, both sticking (flat_contacts.h)
   }
   for (int k = 0; k < n; ++k) {
     r.dn[idx[k]] = x(k);

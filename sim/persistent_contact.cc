@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "sim/constants.h"
+#include "sim/flat_contacts.h"
 
 namespace dimer::sim {
 
@@ -49,15 +50,9 @@ ContactForces SolveContactForces(const Model& m, double t, const State& q,
     if ((a * x - b).norm() > 1e-9 * (1.0 + b.norm())) out.ok = false;
   }
   if (!x.allFinite()) out.ok = false;
-  if (n == 2 && cfg.slide[0] == 0 && cfg.slide[1] == 0 && std::abs(arm[0].rz - arm[1].rz) <= 1e-12 * m.R) {
-    // Flat and both sticking: only the sum of the tangential forces enters the equations, so
-    // share it in proportion to the normal forces; then a contact is inside its static cone
-    // whenever the whole dimer is (the even minimum-norm split could violate one cone).
-    const double n_sum = x(0) + x(1), f_sum = x(2) + x(3);
-    if (n_sum > 0) {
-      x(2) = f_sum * x(0) / n_sum;
-      x(3) = f_sum * x(1) / n_sum;
-    }
+  const bool flat = std::abs(arm[0].rz - arm[1].rz) <= 1e-12 * m.R;
+  if (n == 2 && cfg.slide[0] == 0 && cfg.slide[1] == 0 && flat) {
+    ShareTangentialByNormal(x);  // flat, both sticking (flat_contacts.h)
   }
   for (int k = 0; k < n; ++k) {
     out.n[idx[k]] = x(k);
