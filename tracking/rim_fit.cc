@@ -24,6 +24,8 @@ constexpr double kRampConvergedPx = 1e-2;
 // estimate), so what is left after a step below it is < 0.35 x 5e-3 ~ 0.002 px, 25 times below
 // the 0.05 px scatter target; 1e-3 cost one more pass per sphere for nothing measurable.
 constexpr double kRimConvergedPx = 5e-3;
+// Largest step ratio trusted to extrapolate the exact stage's steps (1 would be no limit).
+constexpr double kMaxRimContraction = 0.5;
 // Damping added to the level parameters' normal equations, (grey levels)^-2 scale: far below
 // any sector's information (>= 3 pixels x coverage^2), so it only pins empty sectors.
 constexpr double kLevelDamping = 1e-6;
@@ -272,11 +274,11 @@ int Step(const Window& w, const Usable& usable, double ramp_px, bool fit_radius,
         continue;
       }
       const double d2 = dx * dx + dy * dy;
-      if (d2 > outer2 || d2 < inner2 || !usable.OffRod(dx, dy)) continue;
+      if (d2 > outer2 || d2 < inner2) continue;
       int k0, k1;
       double f;
-      SectorOf(dx, dy, &k0, &k1, &f);
-      if (!valid[k0] || !valid[k1]) continue;
+      SectorOf(dx, dy, &k0, &k1, &f);  // before the rod test: most left-out pixels fail here
+      if (!valid[k0] || !valid[k1] || !usable.OffRod(dx, dy)) continue;
       const double a = (1 - f) * (*p)(4 + k0) + f * (*p)(4 + k1);
       const PixelCoverage cov = Cover(col, row, c, R, ramp_px);
       const double r = w.at(x, y) - (bg + (a - bg) * cov.area);
@@ -402,6 +404,7 @@ RimFitResult FitRim(const cv::Mat& frame, const Eigen::Vector2d& centre, double 
     if (ramp > 0 && !input.coarse_start) continue;  // a start within a few tenths of a pixel
     usable.centre_row = p(1);
     if (!SelectSectors(w, usable, min_contrast, &valid, &p)) return out;
+    Eigen::Vector2d last_move(0, 0);
     for (int i = 0; i < kFitMaxIter; ++i) {
       usable.centre_row = p(1);
       const Eigen::Vector2d before = p.head<2>();
@@ -413,7 +416,20 @@ RimFitResult FitRim(const cv::Mat& frame, const Eigen::Vector2d& centre, double 
       if (used < kMinEdgePixels || (p.head<2>() - centre).norm() > kMaxMovePx) {
         return out;
       }
-      if ((p.head<2>() - before).norm() < (ramp > 0 ? kRampConvergedPx : kRimConvergedPx)) break;
+      const Eigen::Vector2d moved = p.head<2>() - before;
+      if (moved.norm() < (ramp > 0 ? kRampConvergedPx : kRimConvergedPx)) break;
+      if (ramp == 0 && i > 0) {
+        // Linear convergence (kRimConvergedPx): the rest of the geometric series of steps,
+        // with the measured ratio, is added at once (Aitken) when it is below the tolerance.
+        const double ratio = std::clamp(moved.dot(last_move) / last_move.squaredNorm(), 0.0,
+                                        kMaxRimContraction);
+        const double tail = ratio / (1.0 - ratio);
+        if (moved.norm() * tail < kRimConvergedPx) {
+          p.head<2>() += tail * moved;
+          break;
+        }
+      }
+      last_move = moved;
     }
   }
   out.ok = true;
