@@ -17,19 +17,24 @@ struct Disc {
     const double s = std::sqrt(std::max(0.0, r2 - x * x));
     return 0.5 * (x * s + r2 * std::asin(std::clamp(x / r, -1.0, 1.0)));
   }
-  double Left(double x) const {  // H(x): area of the disc left of X = x
-    const double xc = std::clamp(x, -r, r);
-    return 2.0 * (S(xc) - S(-r));
-  }
+  // S(-R) = -pi R^2 / 4 with no asin call (asin(-1) is -pi/2 exactly as rounded). S is odd, so
+  // F needs only S(x') and S(c): two asin calls per corner instead of up to eight.
+  double SMinusR() const { return 0.5 * (r2 * -(0.5 * std::numbers::pi)); }
   double F(double x, double y) const {  // area with X <= x and Y <= y
-    if (y < 0) return Left(x) - F(x, -y);
     const double xc = std::clamp(x, -r, r);
-    const double half = S(xc) - S(-r);  // integral of s up to x'
-    if (y >= r) return 2.0 * half;
-    const double c = std::sqrt(r2 - y * y);
-    const double m = (S(std::min(xc, -c)) - S(-r)) + y * (std::clamp(xc, -c, c) + c) +
-                     (S(std::max(xc, c)) - S(c));
-    return half + m;
+    const double sx = S(xc), s_r = SMinusR();
+    const double half = sx - s_r;  // integral of s up to x'
+    const double ay = std::abs(y);
+    double upper;  // F(x, |y|)
+    if (ay >= r) {
+      upper = 2.0 * half;
+    } else {
+      const double c = std::sqrt(r2 - ay * ay), sc = S(c);
+      const double m = ((xc <= -c ? sx : -sc) - s_r) + ay * (std::clamp(xc, -c, c) + c) +
+                       ((xc >= c ? sx : sc) - sc);
+      upper = half + m;
+    }
+    return y < 0 ? 2.0 * half - upper : upper;  // H(x) - F(x, -y), H = 2 half
   }
   // dF/dx: chord length at X = x with Y <= y.
   double Fx(double x, double y) const {

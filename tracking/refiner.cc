@@ -456,20 +456,38 @@ void DiscFit(const cv::Mat& frame, const RefineContext& ctx, const Levels& start
   p << m->centre.x(), m->centre.y(), m->radius_px, start.uniform ? start.background : 0.0,
       start.uniform ? start.sphere : 1.0;
   const double radius_guess = m->radius_px;
-  Window w;
+  thread_local Window w;  // read once (re-read only if the fit walks off it): no allocation
   const int half = int(std::ceil(radius_guess + kFitBandPx + 2.0));
+  bool have_window = false;
   for (int it = 1; it <= kFitMaxIter; ++it) {
     const Eigen::Vector2d c(p(0), p(1));
-    if (!Extract(frame, c, half, ctx.polarity, &w)) {
-      m->status = SphereMeasurement::Status::kClipped;
-      return;
+    const Eigen::Vector2d window_centre(w.col0 + w.size / 2, w.row0 + w.size / 2);
+    if (!have_window || (c - window_centre).cwiseAbs().maxCoeff() > kRecentreWindowPx) {
+      if (!Extract(frame, c, half, ctx.polarity, &w)) {
+        m->status = SphereMeasurement::Status::kClipped;
+        return;
+      }
+      have_window = true;
     }
     const SymmetricMask mask = MakeMask(ctx, p(2), c, kMaskRampPx);
     Eigen::Matrix<double, 5, 5> jtj = Eigen::Matrix<double, 5, 5>::Zero();
     Eigen::Matrix<double, 5, 1> jtr = Eigen::Matrix<double, 5, 1>::Zero();
-    for (int y = 0; y < w.size; ++y) {
-      for (int x = 0; x < w.size; ++x) {
-        const double col = w.col0 + x, row = w.row0 + y, dx = col - c.x(), dy = row - c.y();
+    // Only the band R +- kFitBandPx: per row, the columns between its outer and inner circles.
+    const double outer = p(2) + kFitBandPx, inner = std::max(0.0, p(2) - kFitBandPx);
+    const int y0 = std::max(0, int(std::ceil(c.y() - outer)) - w.row0);
+    const int y1 = std::min(w.size - 1, int(std::floor(c.y() + outer)) - w.row0);
+    for (int y = y0; y <= y1; ++y) {
+      const double row = w.row0 + y, dy = row - c.y();
+      const double half_outer = std::sqrt(std::max(0.0, outer * outer - dy * dy));
+      const double half_inner = dy * dy < inner * inner ? std::sqrt(inner * inner - dy * dy) : -1;
+      const int x0 = std::max(0, int(std::ceil(c.x() - half_outer)) - w.col0);
+      const int x1 = std::min(w.size - 1, int(std::floor(c.x() + half_outer)) - w.col0);
+      for (int x = x0; x <= x1; ++x) {
+        const double col = w.col0 + x, dx = col - c.x();
+        if (std::abs(dx) < half_inner) {  // inside the inner circle: jump to its far side
+          x = std::max(x, int(std::floor(c.x() + half_inner)) - w.col0);
+          continue;
+        }
         if (std::abs(std::sqrt(dx * dx + dy * dy) - p(2)) > kFitBandPx) continue;
         if (mask(dx, dy) < 1.0) continue;  // rod corridor, plate: not part of the disc model
         const PixelCoverage cov = DiscPixelCoverage(col, row, c, p(2));
