@@ -492,6 +492,14 @@ void DiscFit(const cv::Mat& frame, const RefineContext& ctx, const Levels& start
         if (mask(dx, dy) < 1.0) continue;  // rod corridor, plate: not part of the disc model
         const PixelCoverage cov = DiscPixelCoverage(col, row, c, p(2));
         const double span = p(4) - p(3);
+        if (cov.d_cx == 0 && cov.d_cy == 0 && cov.d_r == 0) {
+          // Wholly outside or inside (most of the band): the Jacobian row is a unit vector on
+          // one level, so only that level's diagonal and right-hand side change.
+          const int level = cov.area > 0.5 ? 4 : 3;
+          jtj(level, level) += 1.0;
+          jtr(level) += Data(w.at(x, y), start) - (p(3) + span * cov.area);
+          continue;
+        }
         Eigen::Matrix<double, 5, 1> j;
         j << span * cov.d_cx, span * cov.d_cy, span * cov.d_r, 1.0 - cov.area, cov.area;
         jtj += j * j.transpose();
