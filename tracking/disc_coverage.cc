@@ -7,9 +7,6 @@
 namespace dimer::tracking {
 namespace {
 
-// Half-diagonal of a unit pixel: a pixel whose centre is farther than R + this from the disc
-// centre is outside, nearer than R - this is inside.
-constexpr double kHalfDiagonalPx = 0.70710678118654752;
 
 struct Disc {
   double r, r2;
@@ -66,8 +63,8 @@ struct Disc {
 double DiscPixelArea(double col, double row, const Eigen::Vector2d& centre, double radius_px) {
   const double dx = col - centre.x(), dy = row - centre.y();
   const double dist = std::sqrt(dx * dx + dy * dy);
-  if (dist >= radius_px + kHalfDiagonalPx) return 0.0;
-  if (dist <= radius_px - kHalfDiagonalPx) return 1.0;
+  if (dist >= radius_px + kPixelHalfDiagonalPx) return 0.0;
+  if (dist <= radius_px - kPixelHalfDiagonalPx) return 1.0;
   const Disc d{radius_px, radius_px * radius_px};
   const double a = d.F(dx + 0.5, dy + 0.5) - d.F(dx - 0.5, dy + 0.5) - d.F(dx + 0.5, dy - 0.5) +
                    d.F(dx - 0.5, dy - 0.5);
@@ -79,8 +76,8 @@ PixelCoverage DiscPixelCoverage(double col, double row, const Eigen::Vector2d& c
   PixelCoverage out;
   const double dx = col - centre.x(), dy = row - centre.y();
   const double dist = std::sqrt(dx * dx + dy * dy);
-  if (dist >= radius_px + kHalfDiagonalPx) return out;
-  if (dist <= radius_px - kHalfDiagonalPx) {
+  if (dist >= radius_px + kPixelHalfDiagonalPx) return out;
+  if (dist <= radius_px - kPixelHalfDiagonalPx) {
     out.area = 1.0;
     return out;
   }

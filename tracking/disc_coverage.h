@@ -17,6 +17,10 @@
 
 namespace dimer::tracking {
 
+// Half-diagonal of a unit pixel: a pixel whose centre is at least R + this from the disc centre
+// is wholly outside (coverage 0, no derivative), at most R - this wholly inside (1).
+inline constexpr double kPixelHalfDiagonalPx = 0.70710678118654752;
+
 struct PixelCoverage {
   double area = 0;       // fraction of the unit pixel inside the disc, 0..1
   double d_cx = 0;       // derivative with respect to the disc centre column

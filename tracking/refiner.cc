@@ -488,18 +488,21 @@ void DiscFit(const cv::Mat& frame, const RefineContext& ctx, const Levels& start
           x = std::max(x, int(std::floor(c.x() + half_inner)) - w.col0);
           continue;
         }
-        if (std::abs(std::sqrt(dx * dx + dy * dy) - p(2)) > kFitBandPx) continue;
+        const double dist = std::sqrt(dx * dx + dy * dy);
+        if (std::abs(dist - p(2)) > kFitBandPx) continue;
         if (mask(dx, dy) < 1.0) continue;  // rod corridor, plate: not part of the disc model
-        const PixelCoverage cov = DiscPixelCoverage(col, row, c, p(2));
         const double span = p(4) - p(3);
-        if (cov.d_cx == 0 && cov.d_cy == 0 && cov.d_r == 0) {
-          // Wholly outside or inside (most of the band): the Jacobian row is a unit vector on
-          // one level, so only that level's diagonal and right-hand side change.
-          const int level = cov.area > 0.5 ? 4 : 3;
+        const bool outside = dist >= p(2) + kPixelHalfDiagonalPx;
+        if (outside || dist <= p(2) - kPixelHalfDiagonalPx) {
+          // Wholly outside or inside (most of the band; the same tests as DiscPixelCoverage):
+          // the Jacobian row is a unit vector on one level, so only that level's diagonal and
+          // right-hand side change.
+          const int level = outside ? 3 : 4;
           jtj(level, level) += 1.0;
-          jtr(level) += Data(w.at(x, y), start) - (p(3) + span * cov.area);
+          jtr(level) += Data(w.at(x, y), start) - (p(3) + span * (outside ? 0.0 : 1.0));
           continue;
         }
+        const PixelCoverage cov = DiscPixelCoverage(col, row, c, p(2));
         Eigen::Matrix<double, 5, 1> j;
         j << span * cov.d_cx, span * cov.d_cy, span * cov.d_r, 1.0 - cov.area, cov.area;
         jtj += j * j.transpose();
