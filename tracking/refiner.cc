@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "tracking/disc_coverage.h"
+#include "tracking/pixel_window.h"
 #include "tracking/rim_fit.h"
 #include "tracking/tolerances.h"
 
@@ -47,39 +48,11 @@ constexpr double kCoreShiftPx = 1.25;
 const std::pair<Method, const char*> kMethodNames[] = {{Method::kCentroid, "centroid"},
                                                        {Method::kDiscFit, "discfit"}};
 
-// Polarity-applied float copy of the square [col0, col0 + size) x [row0, row0 + size).
-struct Window {
-  int col0 = 0, row0 = 0, size = 0;
-  std::vector<float> v;
-  float at(int x, int y) const { return v[size_t(y) * size + x]; }
-};
+using Window = PixelWindow;
 
-template <typename T>
-void CopyWindow(const cv::Mat& frame, int polarity, Window* w) {
-  w->v.resize(size_t(w->size) * w->size);
-  for (int y = 0; y < w->size; ++y) {
-    const T* src = frame.ptr<T>(w->row0 + y) + w->col0;
-    float* dst = &w->v[size_t(y) * w->size];
-    for (int x = 0; x < w->size; ++x) dst[x] = float(polarity * double(src[x]));
-  }
-}
-
-// False when the square of half-size `half` around `centre` leaves the frame (clipped sphere).
 bool Extract(const cv::Mat& frame, const Eigen::Vector2d& centre, int half, int polarity,
              Window* w) {
-  w->col0 = int(std::lround(centre.x())) - half;
-  w->row0 = int(std::lround(centre.y())) - half;
-  w->size = 2 * half + 1;
-  if (w->col0 < 0 || w->row0 < 0 || w->col0 + w->size > frame.cols ||
-      w->row0 + w->size > frame.rows) {
-    return false;
-  }
-  if (frame.depth() == CV_8U) {
-    CopyWindow<uint8_t>(frame, polarity, w);
-  } else {
-    CopyWindow<uint16_t>(frame, polarity, w);
-  }
-  return true;
+  return ExtractWindow(frame, centre, half, polarity, w);
 }
 
 double Median(std::vector<float>& v) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "tracking/disc_coverage.h"
+#include "tracking/pixel_window.h"
 #include "tracking/tolerances.h"
 
 namespace dimer::tracking {
@@ -55,36 +56,10 @@ constexpr int kMinEdgePixels = 40;
 // The fit must stay within this of the start, px; further means a wrong blob.
 constexpr double kMaxMovePx = 4.0;
 
-struct Window {
-  int col0 = 0, row0 = 0, size = 0;
-  std::vector<float> v;
-  float at(int x, int y) const { return v[size_t(y) * size + x]; }
-};
-
-template <typename T>
-void Copy(const cv::Mat& frame, int polarity, Window* w) {
-  for (int y = 0; y < w->size; ++y) {
-    const T* src = frame.ptr<T>(w->row0 + y) + w->col0;
-    float* dst = &w->v[size_t(y) * w->size];
-    for (int x = 0; x < w->size; ++x) dst[x] = float(polarity * int(src[x]));
-  }
-}
+using Window = PixelWindow;
 
 bool Extract(const cv::Mat& frame, const Eigen::Vector2d& c, int half, int polarity, Window* w) {
-  w->col0 = int(std::lround(c.x())) - half;
-  w->row0 = int(std::lround(c.y())) - half;
-  w->size = 2 * half + 1;
-  if (w->col0 < 0 || w->row0 < 0 || w->col0 + w->size > frame.cols ||
-      w->row0 + w->size > frame.rows) {
-    return false;
-  }
-  w->v.resize(size_t(w->size) * w->size);
-  if (frame.depth() == CV_8U) {
-    Copy<uint8_t>(frame, polarity, w);
-  } else {
-    Copy<uint16_t>(frame, polarity, w);
-  }
-  return true;
+  return ExtractWindow(frame, c, half, polarity, w);
 }
 
 // True where a point (offset d from the centre) may be the sphere's rim: not on the plate or
