@@ -2,6 +2,8 @@
 // A square window of a frame, copied to float with the polarity applied (the sphere brighter
 // than the background), shared by the refiners (centroid, disc fit) and the rim fit.
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -18,5 +20,34 @@ struct PixelWindow {
 // square leaves the frame (a clipped sphere). Reuses w's buffer.
 bool ExtractWindow(const cv::Mat& frame, const Eigen::Vector2d& centre, int half, int polarity,
                    PixelWindow* w);
+
+// Visits the pixels of `w` whose centres lie between the circles of radii `inner` and `outer`
+// about `c` (frame coordinates): per row, only the columns between the two circles on each
+// side, so a thin band costs its own area and not the window's. Rows where row_ok(dy) is false
+// are skipped whole. Calls f(x, y, dx, dy) with window indices and the offset from `c`; the
+// callers apply their own exact band test (pixels on the circles' rows may be slightly out).
+template <typename RowOk, typename F>
+void ForEachAnnulusPixel(const PixelWindow& w, const Eigen::Vector2d& c, double inner,
+                         double outer, RowOk&& row_ok, F&& f) {
+  const double outer2 = outer * outer, inner2 = inner * inner;
+  const int y0 = std::max(0, int(std::ceil(c.y() - outer)) - w.row0);
+  const int y1 = std::min(w.size - 1, int(std::floor(c.y() + outer)) - w.row0);
+  for (int y = y0; y <= y1; ++y) {
+    const double dy = (w.row0 + y) - c.y();
+    if (!row_ok(dy)) continue;
+    const double half_outer = std::sqrt(std::max(0.0, outer2 - dy * dy));
+    const double half_inner = dy * dy < inner2 ? std::sqrt(inner2 - dy * dy) : -1.0;
+    const int x0 = std::max(0, int(std::ceil(c.x() - half_outer)) - w.col0);
+    const int x1 = std::min(w.size - 1, int(std::floor(c.x() + half_outer)) - w.col0);
+    for (int x = x0; x <= x1; ++x) {
+      const double dx = (w.col0 + x) - c.x();
+      if (std::abs(dx) < half_inner) {  // inside the inner circle: jump to its far side
+        x = std::max(x, int(std::floor(c.x() + half_inner)) - w.col0);
+        continue;
+      }
+      f(x, y, dx, dy);
+    }
+  }
+}
 
 }  // namespace dimer::tracking

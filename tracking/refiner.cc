@@ -447,41 +447,29 @@ void DiscFit(const cv::Mat& frame, const RefineContext& ctx, const Levels& start
     Eigen::Matrix<double, 5, 1> jtr = Eigen::Matrix<double, 5, 1>::Zero();
     // Only the band R +- kFitBandPx: per row, the columns between its outer and inner circles.
     const double outer = p(2) + kFitBandPx, inner = std::max(0.0, p(2) - kFitBandPx);
-    const int y0 = std::max(0, int(std::ceil(c.y() - outer)) - w.row0);
-    const int y1 = std::min(w.size - 1, int(std::floor(c.y() + outer)) - w.row0);
-    for (int y = y0; y <= y1; ++y) {
-      const double row = w.row0 + y, dy = row - c.y();
-      const double half_outer = std::sqrt(std::max(0.0, outer * outer - dy * dy));
-      const double half_inner = dy * dy < inner * inner ? std::sqrt(inner * inner - dy * dy) : -1;
-      const int x0 = std::max(0, int(std::ceil(c.x() - half_outer)) - w.col0);
-      const int x1 = std::min(w.size - 1, int(std::floor(c.x() + half_outer)) - w.col0);
-      for (int x = x0; x <= x1; ++x) {
-        const double col = w.col0 + x, dx = col - c.x();
-        if (std::abs(dx) < half_inner) {  // inside the inner circle: jump to its far side
-          x = std::max(x, int(std::floor(c.x() + half_inner)) - w.col0);
-          continue;
-        }
-        const double dist = std::sqrt(dx * dx + dy * dy);
-        if (std::abs(dist - p(2)) > kFitBandPx) continue;
-        if (mask(dx, dy) < 1.0) continue;  // rod corridor, plate: not part of the disc model
-        const double span = p(4) - p(3);
-        const bool outside = dist >= p(2) + kPixelHalfDiagonalPx;
-        if (outside || dist <= p(2) - kPixelHalfDiagonalPx) {
-          // Wholly outside or inside (most of the band; the same tests as DiscPixelCoverage):
-          // the Jacobian row is a unit vector on one level, so only that level's diagonal and
-          // right-hand side change.
-          const int level = outside ? 3 : 4;
-          jtj(level, level) += 1.0;
-          jtr(level) += Data(w.at(x, y), start) - (p(3) + span * (outside ? 0.0 : 1.0));
-          continue;
-        }
-        const PixelCoverage cov = DiscPixelCoverage(col, row, c, p(2));
-        Eigen::Matrix<double, 5, 1> j;
-        j << span * cov.d_cx, span * cov.d_cy, span * cov.d_r, 1.0 - cov.area, cov.area;
-        jtj += j * j.transpose();
-        jtr += j * (Data(w.at(x, y), start) - (p(3) + span * cov.area));
+    auto all_rows = [](double) { return true; };
+    ForEachAnnulusPixel(w, c, inner, outer, all_rows, [&](int x, int y, double dx, double dy) {
+      const double col = w.col0 + x, row = w.row0 + y;
+      const double dist = std::sqrt(dx * dx + dy * dy);
+      if (std::abs(dist - p(2)) > kFitBandPx) return;
+      if (mask(dx, dy) < 1.0) return;  // rod corridor, plate: not part of the disc model
+      const double span = p(4) - p(3);
+      const bool outside = dist >= p(2) + kPixelHalfDiagonalPx;
+      if (outside || dist <= p(2) - kPixelHalfDiagonalPx) {
+        // Wholly outside or inside (most of the band; the same tests as DiscPixelCoverage):
+        // the Jacobian row is a unit vector on one level, so only that level's diagonal and
+        // right-hand side change.
+        const int level = outside ? 3 : 4;
+        jtj(level, level) += 1.0;
+        jtr(level) += Data(w.at(x, y), start) - (p(3) + span * (outside ? 0.0 : 1.0));
+        return;
       }
-    }
+      const PixelCoverage cov = DiscPixelCoverage(col, row, c, p(2));
+      Eigen::Matrix<double, 5, 1> j;
+      j << span * cov.d_cx, span * cov.d_cy, span * cov.d_r, 1.0 - cov.area, cov.area;
+      jtj += j * j.transpose();
+      jtr += j * (Data(w.at(x, y), start) - (p(3) + span * cov.area));
+    });
     const Eigen::Matrix<double, 5, 1> step = jtj.ldlt().solve(jtr);
     if (!step.allFinite()) return;  // keep the centroid result
     p += step;

@@ -232,37 +232,25 @@ int Step(const Window& w, const Usable& usable, double ramp_px, bool fit_radius,
   *sum_r2 = 0;
   // Only the annulus R +- band is visited: per row, the columns between its outer and inner
   // circles on each side (no scan of the whole window).
-  const double outer2 = (R + band) * (R + band), inner2 = std::max(0.0, R - band) * (R - band);
-  const int y0 = std::max(0, int(std::ceil(c.y() - R - band)) - w.row0);
-  const int y1 = std::min(w.size - 1, int(std::floor(c.y() + R + band)) - w.row0);
-  for (int y = y0; y <= y1; ++y) {
-    const double row = w.row0 + y, dy = row - c.y();
-    if (!usable.RowUsable(dy)) continue;
-    const double half_outer = std::sqrt(std::max(0.0, outer2 - dy * dy));
-    const double half_inner = dy * dy < inner2 ? std::sqrt(inner2 - dy * dy) : -1.0;
-    const int x0 = std::max(0, int(std::ceil(c.x() - half_outer)) - w.col0);
-    const int x1 = std::min(w.size - 1, int(std::floor(c.x() + half_outer)) - w.col0);
-    for (int x = x0; x <= x1; ++x) {
-      const double col = w.col0 + x, dx = col - c.x();
-      if (std::abs(dx) < half_inner) {  // inside the inner circle: jump to its far side
-        x = std::max(x, int(std::floor(c.x() + half_inner)) - w.col0);
-        continue;
-      }
-      const double d2 = dx * dx + dy * dy;
-      if (d2 > outer2 || d2 < inner2) continue;
-      int k0, k1;
-      double f;
-      SectorOf(dx, dy, &k0, &k1, &f);  // before the rod test: most left-out pixels fail here
-      if (!valid[k0] || !valid[k1] || !usable.OffRod(dx, dy)) continue;
-      const double a = (1 - f) * (*p)(4 + k0) + f * (*p)(4 + k1);
-      const PixelCoverage cov = Cover(col, row, c, R, ramp_px);
-      const double r = w.at(x, y) - (bg + (a - bg) * cov.area);
-      *sum_r2 += r * r;
-      ne.Add({(a - bg) * cov.d_cx, (a - bg) * cov.d_cy, (a - bg) * cov.d_r, 1 - cov.area}, k0, k1,
-             (1 - f) * cov.area, f * cov.area, r);
-      ++used;
-    }
-  }
+  const double outer = R + band, inner = std::max(0.0, R - band);
+  const double outer2 = outer * outer, inner2 = inner * inner;
+  auto row_ok = [&](double dy) { return usable.RowUsable(dy); };
+  ForEachAnnulusPixel(w, c, inner, outer, row_ok, [&](int x, int y, double dx, double dy) {
+    const double col = w.col0 + x, row = w.row0 + y;
+    const double d2 = dx * dx + dy * dy;
+    if (d2 > outer2 || d2 < inner2) return;
+    int k0, k1;
+    double f;
+    SectorOf(dx, dy, &k0, &k1, &f);  // before the rod test: most left-out pixels fail here
+    if (!valid[k0] || !valid[k1] || !usable.OffRod(dx, dy)) return;
+    const double a = (1 - f) * (*p)(4 + k0) + f * (*p)(4 + k1);
+    const PixelCoverage cov = Cover(col, row, c, R, ramp_px);
+    const double r = w.at(x, y) - (bg + (a - bg) * cov.area);
+    *sum_r2 += r * r;
+    ne.Add({(a - bg) * cov.d_cx, (a - bg) * cov.d_cy, (a - bg) * cov.d_r, 1 - cov.area}, k0, k1,
+           (1 - f) * cov.area, f * cov.area, r);
+    ++used;
+  });
   Mat jtj;
   Vec jtr;
   ne.Assemble(&jtj, &jtr);
