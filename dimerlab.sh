@@ -12,7 +12,7 @@ ROOT=$(pwd)
 JOBS=$(nproc)
 
 PACKAGES=(build-essential cmake ninja-build pkg-config libopencv-dev libeigen3-dev libhdf5-dev
-          hdf5-tools libcli11-dev libgtest-dev googletest)
+          hdf5-tools libcli11-dev libgtest-dev googletest libnlopt-dev gnuplot-nox)
 
 setup() {
   local missing=()

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "common/modes.h"
 #include "sim/state.h"
 
 namespace dimer::sim {
@@ -22,11 +23,8 @@ struct EventRecord {
   State before, after; // plate frame (converted to lab when written)
 };
 
-struct PeriodStats {
-  std::array<int, 2> impacts{};       // impacts faster than the collapse speed, per sphere
-  std::array<double, 2> rest_time{};  // time in persistent contact, s
-  double x_start = 0;                 // lab x of the CM at the period start, m
-  int events = 0;
-};
+// Per-period statistics (impacts faster than the collapse speed, time in persistent contact)
+// use the project's one PeriodStats (common/modes.h).
+using dimer::PeriodStats;
 
 }  // namespace dimer::sim

@@ -334,7 +334,7 @@ SimResult Runner::Run() {
       }
     }
   }
-  // Mode over the last half of the run (at most 100 periods).
+  // Mode over the project's settled window (common/modes.h).
   const State lab = LabFromPlate(m_, t_, q_);
   std::array<int, 2> dir{};
   for (int s = 0; s < 2; ++s) {
@@ -342,7 +342,8 @@ SimResult Runner::Run() {
     dir[s] = dx >= 0 ? 1 : -1;
   }
   const int n = static_cast<int>(res_.periods.size());
-  res_.mode = ClassifyMode(res_.periods, m_.period, lab.x, dir, std::max(1, std::min(100, n / 2)));
+  const int w = SettledWindow(n);
+  res_.mode = ClassifyPeriods(res_.periods, n - w, w, m_.period, lab.x, dir);
   return std::move(res_);
 }
 

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "sim/events.h"
-#include "sim/mode_classifier.h"
+#include "common/modes.h"
 #include "sim/model.h"
 #include "sim/state.h"
 

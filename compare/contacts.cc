@@ -1,0 +1,228 @@
+#include "compare/contacts.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "compare/noise.h"
+
+namespace dimer::compare {
+namespace {
+
+// Densest band of width 2 thr among the lower half of the gaps; NaN if it holds too few.
+double RestLevel(const std::vector<double>& gap, double thr) {
+  std::vector<double> v;
+  for (double g : gap)
+    if (std::isfinite(g)) v.push_back(g);
+  if (v.empty()) return kNaN;
+  std::sort(v.begin(), v.end());
+  size_t best_i = 0, best_n = 0, j = 0;
+  for (size_t i = 0; i <= v.size() / 2; ++i) {
+    j = std::max(j, i);
+    while (j < v.size() && v[j] <= v[i] + 2 * thr) ++j;
+    if (j - i > best_n) best_n = j - i, best_i = i;
+  }
+  if (best_n < kRestLevelMinFraction * v.size()) return kNaN;
+  return v[best_i + best_n / 2];
+}
+
+struct Quadratic {  // g(tau) = c0 + c1 tau + c2 tau^2, tau in frames
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  int points = 0;
+  double At(double tau) const { return c(0) + tau * (c(1) + tau * c(2)); }
+  double Slope(double tau) const { return c(1) + 2 * c(2) * tau; }
+};
+
+// Least-squares polynomial (degree 2, or 1 with fewer than 4 points) through frames `idx`.
+Quadratic FitFrames(const std::vector<double>& g, const std::vector<long>& idx, double tau0) {
+  Quadratic q;
+  q.points = static_cast<int>(idx.size());
+  if (q.points < 2) return q;
+  const int deg = q.points >= 4 ? 2 : 1;
+  Eigen::MatrixXd a(q.points, deg + 1);
+  Eigen::VectorXd b(q.points);
+  for (int k = 0; k < q.points; ++k) {
+    const double tau = static_cast<double>(idx[k]) - tau0;
+    for (int p = 0; p <= deg; ++p) a(k, p) = std::pow(tau, p);
+    b(k) = g[idx[k]];
+  }
+  const Eigen::VectorXd c = a.colPivHouseholderQr().solve(b);
+  for (int p = 0; p <= deg; ++p) q.c(p) = c(p);
+  return q;
+}
+
+// Root of p(tau) = 0 in [lo, hi] nearest `lo` (p quadratic); NaN if none.
+double RootIn(const Quadratic& p, double lo, double hi) {
+  const double a = p.c(2), b = p.c(1), c = p.c(0);
+  std::vector<double> roots;
+  if (std::abs(a) < 1e-300) {
+    if (b != 0) roots.push_back(-c / b);
+  } else {
+    const double disc = b * b - 4 * a * c;
+    if (disc >= 0) {
+      const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+      roots.push_back(q / a);
+      if (q != 0) roots.push_back(c / q);
+    }
+  }
+  double best = kNaN;
+  for (double r : roots)
+    if (r >= lo && r <= hi && !(r >= best)) best = r;
+  return best;
+}
+
+class ImpactFinder {
+ public:
+  ImpactFinder(const SampledRun& run, const PlateDrive& plate, int s, SphereContacts* c)
+      : run_(run), plate_(plate), s_(s), c_(*c) {}
+
+  void Run() {
+    const auto& g = c_.gap;
+    const long n = static_cast<long>(g.size());
+    const double lvl = c_.level_m, thr = c_.threshold_m;
+    double peak = -INFINITY;  // highest gap since the last contact
+    bool in_flight = false;
+    for (long i = 0; i < n; ++i) {
+      if (!std::isfinite(g[i])) {  // a gap in the data ends any flight unseen
+        in_flight = false, peak = -INFINITY;
+        continue;
+      }
+      const bool on = g[i] - lvl <= thr;  // below the level counts as touching
+      if (!on) {
+        if (in_flight && IsBounceMinimum(i) && peak >= lvl + 2 * thr) {
+          AddImpact(i, /*touch_end=*/i, /*bounce=*/true);
+          peak = -INFINITY;
+        }
+        in_flight = true;
+        peak = std::max(peak, g[i]);
+        continue;
+      }
+      if (on && in_flight && peak >= lvl + 2 * thr) {
+        long end = i;  // the touch: frames on the plate from i
+        while (end + 1 < n && std::isfinite(g[end + 1]) && g[end + 1] - lvl <= thr) ++end;
+        const bool bounce = end - i + 1 < kMinRestFrames && end + 1 < n &&
+                            std::isfinite(g[end + 1]) && g[end + 1] > lvl + thr;
+        AddImpact(i, end, bounce);
+      }
+      in_flight = false;
+      peak = -INFINITY;
+    }
+  }
+
+ private:
+  // A local minimum of the gap from which the plate is within one frame's travel.
+  bool IsBounceMinimum(long i) const {
+    const auto& g = c_.gap;
+    if (i < 1 || i + 1 >= static_cast<long>(g.size())) return false;
+    if (!std::isfinite(g[i - 1]) || !std::isfinite(g[i + 1])) return false;
+    if (!(g[i] <= g[i - 1] && g[i] < g[i + 1])) return false;
+    const double reach = std::max(g[i - 1] - g[i], g[i + 1] - g[i]);
+    return g[i] - c_.level_m <= c_.threshold_m + reach;
+  }
+
+  // Frames of the approach (before `first`) or departure (after `last`) that are airborne.
+  std::vector<long> Side(long from, int dir) const {
+    std::vector<long> idx;
+    const auto& g = c_.gap;
+    for (long k = from; k >= 0 && k < static_cast<long>(g.size()) &&
+                        static_cast<int>(idx.size()) < kImpactFitFrames;
+         k += dir) {
+      if (!std::isfinite(g[k]) || g[k] <= c_.level_m + c_.threshold_m) break;
+      idx.push_back(k);
+    }
+    if (dir < 0) std::reverse(idx.begin(), idx.end());
+    return idx;
+  }
+
+  // `first`: first frame of the touch (or the bounce minimum); `last`: its last frame.
+  void AddImpact(long first, long last, bool bounce) {
+    const bool minimum = first == last && c_.gap[first] > c_.level_m + c_.threshold_m;
+    const std::vector<long> before = Side(minimum ? first - 1 : first - 1, -1);
+    std::vector<long> after = bounce ? Side(minimum ? first + 1 : last + 1, +1) : std::vector<long>{};
+    const double tau0 = static_cast<double>(first);
+    const Quadratic qa = FitFrames(c_.gap, before, tau0);
+    Impact imp;
+    imp.sphere = s_;
+    imp.bounce = bounce;
+    double tau = kNaN;
+    const double lo = before.empty() ? -1.0 : static_cast<double>(before.back()) - tau0;
+    if (bounce && after.size() >= 2 && qa.points >= 2) {
+      const Quadratic qd = FitFrames(c_.gap, after, tau0);
+      Quadratic diff;
+      diff.c = qa.c - qd.c;
+      tau = RootIn(diff, lo, static_cast<double>(after.front()) - tau0);
+      if (std::isfinite(tau)) imp.v_after = qd.Slope(tau) / run_.dt;
+    }
+    if (!std::isfinite(tau) && qa.points >= 2) {
+      Quadratic shifted = qa;
+      shifted.c(0) -= c_.level_m;
+      tau = RootIn(shifted, lo, static_cast<double>(last - first) + 1.0);
+    }
+    if (!std::isfinite(tau)) tau = minimum ? 0.0 : -0.5;  // no usable fit: the frame itself
+    if (qa.points >= 2) {
+      imp.v_before = qa.Slope(tau) / run_.dt;
+      imp.level_m = qa.At(tau);
+    }
+    imp.frame = tau0 + tau;
+    imp.t = run_.t0 + imp.frame * run_.dt;
+    imp.plate_phase = std::isfinite(plate_.freq_hz) ? plate_.PhaseFraction(imp.t) : kNaN;
+    c_.impacts.push_back(imp);
+  }
+
+  const SampledRun& run_;
+  const PlateDrive& plate_;
+  int s_;
+  SphereContacts& c_;
+};
+
+void MarkResting(SphereContacts* c) {
+  const auto& g = c->gap;
+  const size_t n = g.size();
+  c->resting.assign(n, 0);
+  size_t i = 0;
+  while (i < n) {
+    if (!(g[i] - c->level_m <= c->threshold_m)) {
+      ++i;
+      continue;
+    }
+    size_t j = i;
+    while (j < n && g[j] - c->level_m <= c->threshold_m) ++j;
+    if (j - i >= static_cast<size_t>(kMinRestFrames)) std::fill(c->resting.begin() + i, c->resting.begin() + j, 1);
+    i = j;
+  }
+}
+
+}  // namespace
+
+std::vector<Impact> Contacts::AllImpacts() const {
+  std::vector<Impact> all = sphere[0].impacts;
+  all.insert(all.end(), sphere[1].impacts.begin(), sphere[1].impacts.end());
+  std::sort(all.begin(), all.end(), [](const Impact& a, const Impact& b) { return a.t < b.t; });
+  return all;
+}
+
+Contacts FindContacts(const SampledRun& run, const PlateDrive& plate) {
+  Contacts out;
+  const double radius = 0.5 * run.diameter_m;
+  std::array<double, 2> levels{kNaN, kNaN};
+  for (int s = 0; s < 2; ++s) {
+    SphereContacts& c = out.sphere[s];
+    c.gap.assign(run.n, kNaN);
+    for (size_t i = 0; i < run.n; ++i) {
+      const double pz = std::isfinite(run.plate_z[i]) ? run.plate_z[i] : plate.Z(run.Time(i));
+      c.gap[i] = run.z[s][i] - pz - radius;
+    }
+    c.noise_m = NoiseSigma(c.gap);
+    c.threshold_m = std::max(kContactSigmas * c.noise_m, kContactFloorRel * run.diameter_m);
+    levels[s] = RestLevel(c.gap, c.threshold_m);
+  }
+  for (int s = 0; s < 2; ++s) {
+    SphereContacts& c = out.sphere[s];
+    c.level_m = std::isfinite(levels[s]) ? levels[s] : std::isfinite(levels[1 - s]) ? levels[1 - s] : 0.0;
+    MarkResting(&c);
+    ImpactFinder(run, plate, s, &c).Run();
+  }
+  return out;
+}
+
+}  // namespace dimer::compare

@@ -1,0 +1,62 @@
+#pragma once
+// Contacts and impacts of each sphere with the plate, from a sampled trajectory.
+//
+// gap_s = z_s - z_plate - R is the height of sphere s's lowest point above the plate. A tracker
+// may see it with a constant offset (lighting moves the apparent centre by a fraction of a
+// pixel), so the level at which a sphere touches is measured, not assumed: the densest band of
+// width 2 thr among the lower half of its gaps, when it holds >= 5 % of the frames (a sphere
+// that rests); a sphere that never rests takes the other sphere's level (same appearance), or 0.
+// thr = max(4 sigma_gap, 1e-6 d), sigma_gap from the data (noise.h): every threshold follows
+// the noise, so a simulation (noise-free) resolves micro-bounces a camera cannot.
+//
+//   on the plate: gap - level <= thr;   resting: on the plate for >= 3 consecutive frames.
+//   impact: the end of a flight (a run of frames above level + thr that rose at least 2 thr)
+//   at a frame on the plate, or at a local minimum of the gap within one frame's travel of the
+//   plate (a bounce between two frames).
+// Impact times are not frame times: quadratics fitted to the approach (and the departure, for a
+// bounce) meet at the kink, or the approach meets the contact level (a landing). So the time is
+// a fraction of a frame, independent of the level for bounces, and the fitted slopes give the
+// normal velocities relative to the plate before and after.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "compare/plate_fit.h"
+#include "compare/sampled_run.h"
+
+namespace dimer::compare {
+
+inline constexpr double kContactSigmas = 4.0;       // thr in units of the gap noise
+inline constexpr double kContactFloorRel = 1e-6;    // thr floor, fraction of d (noise-free data)
+inline constexpr int kMinRestFrames = 3;            // a rest is this many frames on the plate
+inline constexpr double kRestLevelMinFraction = 0.05;
+inline constexpr int kImpactFitFrames = 8;          // frames fitted on each side of an impact
+
+struct Impact {
+  int sphere = 0;             // 0 left, 1 right
+  double t = kNaN;            // s (file time)
+  double frame = kNaN;        // fractional frame index
+  double plate_phase = kNaN;  // plate phase at t, [0, 1)
+  double v_before = kNaN;     // normal velocity relative to the plate before (< 0), m/s
+  double v_after = kNaN;      // after (> 0); NaN when it lands to rest
+  double level_m = kNaN;      // gap at the fitted contact point
+  bool bounce = false;        // true: flight-kink-flight; false: landing to rest
+};
+
+struct SphereContacts {
+  double noise_m = 0;         // sigma of the gap, m
+  double level_m = 0;         // contact level of the gap, m
+  double threshold_m = 0;     // thr, m
+  std::vector<double> gap;    // per frame, m (NaN where unknown)
+  std::vector<uint8_t> resting;  // per frame: 1 while resting
+  std::vector<Impact> impacts;
+};
+
+struct Contacts {
+  std::array<SphereContacts, 2> sphere;
+  std::vector<Impact> AllImpacts() const;  // both spheres, by time
+};
+
+Contacts FindContacts(const SampledRun& run, const PlateDrive& plate);
+
+}  // namespace dimer::compare

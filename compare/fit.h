@@ -1,0 +1,59 @@
+#pragma once
+// Fitting the contact coefficients by simulation: the scene the track shows is simulated with
+// trial coefficients, the simulation is analysed with the same code as the track, and the
+// observables are compared with their uncertainties:
+//   the drift speed <u> f / g; the bouncing end's mean take-off speed and apparent restitution
+//   (v_after / -v_before) and its mean impact phase; the phase-averaged slip profile and the
+//   slip after / before the bouncing end's impact. (Jump/flutter: each sphere's take-off speed
+//   and impact phase.)
+//   chi2 = sum ((sim - track) / sigma)^2, sigma^2 = sigma_track^2 + sigma_sim^2 + floor^2.
+// The optimiser is NLopt's bounded Nelder-Mead (derivative-free: the objective is piecewise
+// smooth, with jumps where the impact type changes). Uncertainties and identifiability come
+// from a slice of chi2 through the optimum along each parameter (the others held at the
+// optimum): the range where chi2 <= chi2_min + max(1, chi2_min / dof). A range that reaches
+// both bounds means the scene does not constrain the parameter: it is reported as
+// unconstrained, with no value.
+#include <string>
+#include <vector>
+
+#include "compare/analysis.h"
+#include "sim/model.h"
+
+namespace dimer::compare {
+
+struct FitParameter {
+  std::string name;              // eps | mu_hat | mu_hat_s | mu | mu_s
+  bool fitted = false;           // varied by the optimiser (else only sliced)
+  double lo = kNaN, hi = kNaN;   // bounds searched
+  double value = kNaN;           // optimum (meaningful only when constrained)
+  double err = kNaN;             // half-width of the chi2 range (when constrained)
+  double range_lo = kNaN, range_hi = kNaN;  // values with chi2 within the threshold
+  std::string status;            // constrained | bounded_below | bounded_above | unconstrained
+  std::vector<double> slice_x, slice_chi2;  // the slice through the optimum
+};
+
+struct FitResult {
+  std::vector<FitParameter> params;
+  double chi2 = kNaN;            // at the optimum
+  int dof = 0;                   // observables - fitted parameters
+  double threshold = kNaN;       // chi2 range threshold
+  int evaluations = 0;           // simulations run
+  double seconds = 0;            // wall time
+  std::vector<std::string> observable_names;
+  std::vector<double> observed, observed_err, simulated;  // at the optimum
+  sim::SimOptions best;          // the simulation options at the optimum
+};
+
+struct FitOptions {
+  int max_evaluations = 150;     // optimiser budget (simulations)
+  int slice_points = 15;         // points per parameter slice
+  int transient_periods = 30;    // simulated before the measured part
+  int measured_periods = 60;     // simulated and analysed (<= the track's)
+};
+
+// `scene`: the simulation options that describe the experiment (geometry, drive, the
+// starting coefficients); the fitted coefficients are varied from there.
+FitResult FitCoefficients(const Analysis& track, const sim::SimOptions& scene,
+                          const FitOptions& options);
+
+}  // namespace dimer::compare

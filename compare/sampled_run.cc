@@ -1,0 +1,161 @@
+#include "compare/sampled_run.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.h"
+#include "common/h5_file.h"
+#include "common/trajectory_io.h"
+
+namespace dimer::compare {
+namespace {
+
+// A time stamp may differ from its grid point by this fraction of a frame (round-off of
+// t = index / fps in files) and still be that frame.
+constexpr double kGridSlackFrames = 1e-3;
+
+double MedianOf(std::vector<double> v) {
+  v.erase(std::remove_if(v.begin(), v.end(), [](double a) { return !std::isfinite(a); }), v.end());
+  if (v.empty()) return kNaN;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+void FindGaps(SampledRun* run) {
+  for (int s = 0; s < 2; ++s) {
+    auto& gaps = run->gaps[s];
+    for (size_t i = 0; i < run->n; ++i) {
+      const bool missing = !std::isfinite(run->x[s][i]) || !std::isfinite(run->z[s][i]);
+      if (!missing) continue;
+      if (!gaps.empty() && gaps.back().first + gaps.back().count == i) {
+        ++gaps.back().count;
+      } else {
+        gaps.push_back({i, 1});
+      }
+    }
+  }
+}
+
+}  // namespace
+
+bool SampledRun::Valid(size_t i) const {
+  return std::isfinite(x[0][i]) && std::isfinite(z[0][i]) && std::isfinite(x[1][i]) &&
+         std::isfinite(z[1][i]);
+}
+
+SampledRun SampleTrajectory(const Trajectory& traj, double fps, double diameter_m,
+                            const std::string& label, const std::string& kind) {
+  SampledRun run;
+  run.path = label;
+  run.kind = kind;
+  const size_t m = traj.size();
+  if (m < 2) throw InputError(label + ": fewer than 2 samples");
+  for (size_t i = 1; i < m; ++i) {
+    if (!(traj.t[i] > traj.t[i - 1])) {
+      throw InputError(label + ": /t is not increasing at row " + std::to_string(i));
+    }
+  }
+  if (!(fps > 0) || !std::isfinite(fps)) {
+    std::vector<double> d(m - 1);
+    for (size_t i = 1; i < m; ++i) d[i - 1] = traj.t[i] - traj.t[i - 1];
+    fps = 1.0 / MedianOf(d);
+  }
+  run.dt = 1.0 / fps;
+  run.t0 = traj.t[0];
+  const double span = (traj.t[m - 1] - run.t0) / run.dt;
+  run.n = static_cast<size_t>(std::llround(span)) + 1;
+  if (run.n > 50 * m + 1000) {
+    throw InputError(label + ": the times span " + std::to_string(run.n) +
+                     " frames for " + std::to_string(m) + " samples (wrong fps?)");
+  }
+  for (int s = 0; s < 2; ++s) {
+    run.x[s].assign(run.n, kNaN);
+    run.z[s].assign(run.n, kNaN);
+  }
+  run.plate_z.assign(run.n, kNaN);
+  run.theta.assign(run.n, kNaN);
+  for (size_t i = 0; i < m; ++i) {
+    const double f = (traj.t[i] - run.t0) / run.dt;
+    const long k = std::lround(f);
+    if (std::abs(f - k) > kGridSlackFrames) {
+      throw InputError(label + ": time " + std::to_string(traj.t[i]) +
+                       " s is not on the frame grid of " + std::to_string(fps) + " frames/s");
+    }
+    run.x[0][k] = traj.tip_left[i].x();
+    run.z[0][k] = traj.tip_left[i].y();
+    run.x[1][k] = traj.tip_right[i].x();
+    run.z[1][k] = traj.tip_right[i].y();
+    run.plate_z[k] = traj.plate_z[i];
+    run.theta[k] = traj.theta[i];
+  }
+  FindGaps(&run);
+  for (int s = 0; s < 2; ++s) {
+    if (run.gaps[s].size() == 1 && run.gaps[s][0].count == run.n) {
+      throw InputError(label + ": the " + std::string(s ? "right" : "left") +
+                       " sphere is NaN in every frame (never found)");
+    }
+  }
+  run.diameter_m = diameter_m;
+  std::vector<double> len(run.n, kNaN);
+  for (size_t i = 0; i < run.n; ++i) {
+    len[i] = std::hypot(run.x[1][i] - run.x[0][i], run.z[1][i] - run.z[0][i]);
+  }
+  run.ar = MedianOf(len) / diameter_m + 1.0;
+  return run;
+}
+
+SampledRun LoadSampledRun(const std::string& path) {
+  H5Reader r(path);
+  const std::string kind = FileKind(r);
+  if (kind != "track" && kind != "sim") {
+    throw InputError(path + ": kind is '" + kind + "', expected a trajectory (track or sim)");
+  }
+  const Trajectory traj = ReadTrajectory(r);
+  const double fps = r.AttrDouble("/", "fps").value_or(kNaN);
+  const double d = r.AttrDouble("/", "diameter").value_or(kNaN);
+  if (!(d > 0)) throw InputError(path + ": no positive 'diameter' attribute (sphere size, m)");
+  SampledRun run = SampleTrajectory(traj, fps, d, path, kind);
+  if (kind == "track") {
+    run.m_per_px = r.AttrDouble("/", "m_per_px").value_or(kNaN);
+    run.row0_px = r.AttrDouble("/", "row0").value_or(kNaN);
+    if (r.Has("/frame_files") && r.Has("/frame_index")) {
+      const std::vector<std::string> files = r.ReadStrings("/frame_files");
+      run.frame_files.assign(run.n, "");
+      for (size_t i = 0; i < traj.size() && i < files.size(); ++i) {
+        const long k = std::lround((traj.t[i] - run.t0) / run.dt);
+        run.frame_files[k] = files[i];
+      }
+    }
+    return run;
+  }
+  run.sim_freq_hz = r.AttrDouble("/", "freq").value_or(kNaN);
+  run.sim_gamma = r.AttrDouble("/", "gamma").value_or(kNaN);
+  run.sim_plate_phase = r.AttrDouble("/", "plate_phase").value_or(0.0);
+  run.sim_t_start = r.AttrDouble("/", "t_start").value_or(run.t0);
+  run.sim_settled_mode = r.AttrString("/", "settled_mode").value_or("");
+  if (r.Has("/state")) {
+    Dims dims;
+    const std::vector<double> flat = r.ReadDoubles("/state", &dims);
+    if (dims.size() == 2 && dims[1] == 6 && dims[0] == traj.size()) {
+      run.state.assign(run.n, {kNaN, kNaN, kNaN, kNaN, kNaN, kNaN});
+      for (size_t i = 0; i < traj.size(); ++i) {
+        const long k = std::lround((traj.t[i] - run.t0) / run.dt);
+        for (int c = 0; c < 6; ++c) run.state[k][c] = flat[6 * i + c];
+      }
+    }
+  }
+  if (r.Has("/events/t")) {
+    const std::vector<double> et = r.ReadDoubles("/events/t");
+    const std::vector<std::string> ek = r.ReadStrings("/events/kind");
+    const std::vector<int8_t> es = r.ReadInt8("/events/sphere");
+    for (size_t i = 0; i < et.size() && i < ek.size() && i < es.size(); ++i) {
+      if (ek[i] == "impact" || ek[i] == "double_impact") {
+        run.sim_impact_t.push_back(et[i]);
+        run.sim_impact_sphere.push_back(es[i]);
+      }
+    }
+  }
+  return run;
+}
+
+}  // namespace dimer::compare
