@@ -2,19 +2,32 @@
 // every error reaches the user as one line "dimerlab: error: ..." and a non-zero exit.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include "app/commands.h"
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/provenance.h"
 
+namespace {
+std::string g_command_line;
+}  // namespace
+
+const std::string& dimer::app::CommandLine() { return g_command_line; }
+
 int main(int argc, char** argv) {
-  CLI::App app{"dimerlab: bouncing-dimer experiments into physics (simulate, render, track)"};
+  g_command_line = "dimerlab";
+  for (int i = 1; i < argc; ++i) g_command_line += std::string(" ") + argv[i];
+  CLI::App app{"dimerlab: bouncing-dimer experiments into physics (simulate, render, track, compare)"};
   app.set_version_flag("--version", dimer::DimerlabVersion());
   app.require_subcommand(1);
   dimer::app::RegisterSim(app);
   dimer::app::RegisterRender(app);
   dimer::app::RegisterTrack(app);
+#ifdef DIMERLAB_HAVE_COMPARE
+  dimer::app::RegisterCompare(app);
+  dimer::app::RegisterAnalyze(app);
+#endif
   dimer::InstallInterruptHandler();
   try {
     app.parse(argc, argv);

@@ -129,7 +129,7 @@ Analysis Analyze(const SampledRun& run, const AnalysisOptions& options) {
                      " plate periods long; at least 2 are needed");
   }
   // 2. Contacts and impacts; 3. free fall; 4. periods and modes; 5. drift; 6. slip.
-  a.contacts = FindContacts(run, a.plate);
+  a.contacts = FindContacts(run, a.plate, options.min_contact_threshold_m);
   a.free_fall = FitFreeFall(run, a.contacts);
   if (std::isfinite(a.free_fall.g_fit) && std::abs(a.free_fall.g_fit / kGravity - 1) > kGFitWarn) {
     a.warnings.push_back("fitted free fall g_fit/g = " + Fmt(a.free_fall.g_fit / kGravity) +
@@ -137,7 +137,8 @@ Analysis Analyze(const SampledRun& run, const AnalysisOptions& options) {
   }
   a.periods = AnalyzePeriods(run, a.plate, a.contacts, options.window_periods);
   a.drift = MeasureDrift(run, a.periods, options.travel_mm);
-  a.slip = AnalyzeSlip(run, a.plate, a.contacts, a.drift.bouncing_sphere, options.phase_bins);
+  a.slip = AnalyzeSlip(run, a.plate, a.contacts, a.drift.bouncing_sphere, options.phase_bins,
+                       options.slip_half_window);
   for (int s = 0; s < 2; ++s) {
     size_t missing = 0;
     for (const Gap& g : run.gaps[s]) missing += g.count;

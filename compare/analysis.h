@@ -3,6 +3,7 @@
 // small table (plate -> contacts -> free fall -> periods and modes -> drift -> slip). Tracks and
 // sim files go through the same code; a sim file's drive is read from its attributes (exact),
 // a track's is fitted.
+#include <array>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,10 @@ struct AnalysisOptions {
   int window_periods = 10;   // --mode-window: periods per window of the mode timeline
   int phase_bins = 40;       // --phase-bins: bins of the phase-averaged slip
   double travel_mm = 55.0;   // --travel-mm: the paper's travel distance for its drift timing, mm
+  // To see a simulation through a camera's eyes (the fit): contact thresholds at least these
+  // (per sphere, m; NaN: from the data) and this slip filter half-width (frames; 0: from the data).
+  std::array<double, 2> min_contact_threshold_m{kNaN, kNaN};
+  int slip_half_window = 0;
   // Every invalid field at once ("--flag: value: expected ..."); empty if valid.
   std::vector<std::string> Check() const;
 };

@@ -201,7 +201,8 @@ std::vector<Impact> Contacts::AllImpacts() const {
   return all;
 }
 
-Contacts FindContacts(const SampledRun& run, const PlateDrive& plate) {
+Contacts FindContacts(const SampledRun& run, const PlateDrive& plate,
+                      const std::array<double, 2>& min_threshold_m) {
   Contacts out;
   const double radius = 0.5 * run.diameter_m;
   std::array<double, 2> levels{kNaN, kNaN};
@@ -214,6 +215,7 @@ Contacts FindContacts(const SampledRun& run, const PlateDrive& plate) {
     }
     c.noise_m = NoiseSigma(c.gap);
     c.threshold_m = std::max(kContactSigmas * c.noise_m, kContactFloorRel * run.diameter_m);
+    if (std::isfinite(min_threshold_m[s])) c.threshold_m = std::max(c.threshold_m, min_threshold_m[s]);
     levels[s] = RestLevel(c.gap, c.threshold_m);
   }
   for (int s = 0; s < 2; ++s) {

@@ -57,6 +57,8 @@ struct Contacts {
   std::vector<Impact> AllImpacts() const;  // both spheres, by time
 };
 
-Contacts FindContacts(const SampledRun& run, const PlateDrive& plate);
+// `min_threshold_m` (NaN: none) raises each sphere's thr to at least that value.
+Contacts FindContacts(const SampledRun& run, const PlateDrive& plate,
+                      const std::array<double, 2>& min_threshold_m = {kNaN, kNaN});
 
 }  // namespace dimer::compare

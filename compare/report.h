@@ -40,7 +40,8 @@ struct ReportInputs {
 
 // Writes summary.md and figures/ into `dir`, which exists (the temporary folder of an atomic
 // output). Throws std::runtime_error naming the script when gnuplot fails or is missing.
-// FitResult::threshold is read as an absolute chi2 level (chi2_min + the allowed rise).
+// FitResult::threshold is read as the allowed rise of chi2 above FitResult::chi2 (fit.cc:
+// max(1, chi2 / dof)): a parameter's range is where its slice is <= chi2 + threshold.
 void WriteReport(const std::string& dir, const ReportInputs& in);
 
 }  // namespace dimer::compare

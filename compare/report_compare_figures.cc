@@ -145,9 +145,10 @@ PlannedFigure PlanFitProfile(const FitResult& fit) {
     std::vector<std::string> plot = {
         Format("datafile index %d using 1:2 with linespoints pt 7 ps 0.7 lc rgb \"black\" "
                "title \"chi2\"", k)};
-    if (std::isfinite(fit.threshold)) {
+    const double level = fit.chi2 + fit.threshold;
+    if (std::isfinite(level)) {
       plot.push_back(Format("%.9g with lines dt 2 lw 1.5 lc rgb \"#d62728\" title "
-                            "\"threshold %.4g\"", fit.threshold, fit.threshold));
+                            "\"chi2_min + %.3g\"", level, fit.threshold));
     }
     if (q.status == "constrained" && std::isfinite(q.value)) {
       plot.push_back("keyentry with lines lw 2 lc rgb \"#2ca02c\" title \"optimum\"");

@@ -1,6 +1,6 @@
 #pragma once
-// Internal to the report (report.cc): the figures and the summary are written by separate
-// files, the summary listing what the figures step drew or skipped.
+// Internal to the report (report*.cc) and the overlay: the figures and the summary are written
+// by separate files, the summary listing what the figures step drew or skipped.
 #include <string>
 #include <vector>
 

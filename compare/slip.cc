@@ -99,7 +99,7 @@ void PhaseAverage(const std::vector<double>& phase, const std::vector<double>& v
 }
 
 SlipResult AnalyzeSlip(const SampledRun& run, const PlateDrive& plate, const Contacts& contacts,
-                       int bouncing_sphere, int phase_bins) {
+                       int bouncing_sphere, int phase_bins, int half_window) {
   SlipResult out;
   const size_t n = run.n;
   out.U.assign(n, NAN);
@@ -134,6 +134,7 @@ SlipResult AnalyzeSlip(const SampledRun& run, const PlateDrive& plate, const Con
     return SlopeNoiseGain(hw) / run.dt * std::hypot(sx, arm * st);
   };
   while (h < kSlipMaxHalfWindow && noise_at(h) > target) ++h;
+  if (half_window > 0) h = half_window;  // imposed (a simulation seen as the track was)
   out.half_window = h;
   out.velocity_noise = noise_at(h);
   std::vector<double> breaks;

@@ -41,7 +41,7 @@ struct SlipResult {
 
 // `bouncing_sphere` (from the settled mode; -1 if none) decides the resting sphere and sign.
 SlipResult AnalyzeSlip(const SampledRun& run, const PlateDrive& plate, const Contacts& contacts,
-                       int bouncing_sphere, int phase_bins);
+                       int bouncing_sphere, int phase_bins, int half_window = 0);
 
 // The derivative filter, exposed for tests: d/dt of `v` at every frame, windows cut at
 // `breaks` (fractional frame indices) and NaN entries.

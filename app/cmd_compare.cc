@@ -1,0 +1,88 @@
+// `dimerlab compare TRAJ.h5 -o REPORT` and `dimerlab analyze FRAMES -o REPORT`: flags of
+// docs/FORMATS.md, parsed into compare::CompareArgs / AnalyzeArgs; the work is in compare/.
+#include <memory>
+
+#include "app/commands.h"
+#include "app/scene_file.h"
+#include "compare/run_compare.h"
+
+namespace dimer::app {
+namespace {
+
+struct CompareCli {
+  compare::AnalyzeArgs args;  // compare-only commands use args.compare
+  std::string scene;
+  bool no_simulate = false;
+};
+
+// Options shared by compare and analyze: analysis, simulation beside it, fit, report.
+void AddCompareOptions(CLI::App* c, CompareCli* cli) {
+  compare::CompareArgs& a = cli->args.compare;
+  c->add_option("-o,--output", a.output, "report folder to create")->required();
+  c->add_flag("--force", a.force, "replace an existing report folder");
+  c->add_flag("--fit", a.fit, "fit eps, mu_hat, mu_hat_s, mu, mu_s by simulation");
+  c->add_option("--freq", a.analysis.freq_hz, "drive frequency, Hz (needed when no plate is visible)");
+  c->add_option("--gamma", a.analysis.gamma, "drive Gamma (needed when no plate is visible)");
+  c->add_option("--mode-window", a.analysis.window_periods, "periods per window of the mode timeline")
+      ->capture_default_str();
+  c->add_option("--phase-bins", a.analysis.phase_bins, "bins of the phase-averaged slip")
+      ->capture_default_str();
+  c->add_option("--travel-mm", a.analysis.travel_mm, "travel distance of the paper's drift timing, mm")
+      ->capture_default_str();
+  c->add_option("--transient", a.transient_periods, "simulated periods before the compared part")
+      ->capture_default_str();
+  c->add_option("--eps", a.scene.eps, "restitution for --simulate, start of --fit")->capture_default_str();
+  c->add_option("--mu", a.scene.mu, "sliding friction, persistent contact")->capture_default_str();
+  c->add_option("--mu-s", a.scene.mu_s, "static friction, persistent contact")->capture_default_str();
+  c->add_option("--mu-hat", a.scene.mu_hat, "sliding friction, impacts")->capture_default_str();
+  c->add_option("--mu-hat-s", a.scene.mu_hat_s, "static friction, impacts")->capture_default_str();
+  c->add_option("--fit-evaluations", a.fit_options.max_evaluations, "optimiser budget, simulations")
+      ->capture_default_str();
+  c->add_option("--overlay-frames", a.overlay.max_frames, "frames in overlay.avi")->capture_default_str();
+  c->add_option("--scene", cli->scene, "scene file: these options, one `name = value` per line");
+  c->add_flag("-q,--quiet", a.quiet, "no progress on stderr");
+}
+
+}  // namespace
+
+void RegisterCompare(CLI::App& app) {
+  auto cli = std::make_shared<CompareCli>();
+  CLI::App* c = app.add_subcommand(
+      "compare", "modes, drift, slip, plate drive of a track or sim file; beside a simulation; fit");
+  compare::CompareArgs& a = cli->args.compare;
+  c->add_option("input", a.input, "trajectory file (track.h5 or sim.h5)")->required();
+  c->add_option("--sim", a.sim_path, "a sim file to compare with");
+  c->add_flag("--simulate", a.simulate, "simulate the scene the track shows and compare");
+  c->add_option("--frames", a.frames_dir, "the recorded frames: overlay video and stills");
+  AddCompareOptions(c, cli.get());
+  c->callback([cli, c] {
+    if (!cli->scene.empty()) ApplySceneFile(c, cli->scene);
+    cli->args.compare.commands = {CommandLine()};
+    compare::RunCompare(cli->args.compare);
+  });
+}
+
+void RegisterAnalyze(CLI::App& app) {
+  auto cli = std::make_shared<CompareCli>();
+  CLI::App* c = app.add_subcommand(
+      "analyze", "the whole pipeline on a recorded folder: track + compare --simulate");
+  tracking::TrackArgs& t = cli->args.track;
+  c->add_option("input", t.input, "folder of frames, multi-page TIFF or video")->required();
+  c->add_option("--fps", t.fps, "frame rate, frames/s")->capture_default_str();
+  c->add_option("--m-per-px", t.m_per_px, "metres per pixel [from --diameter]");
+  c->add_option("--diameter", t.diameter, "sphere diameter, m (calibrates m/px)")->capture_default_str();
+  c->add_option("--row0", t.row0, "row of z = 0, px [median plate row]");
+  c->add_option("--method", t.method, "tracking method: centroid | discfit")->capture_default_str();
+  c->add_option("--polarity", t.polarity, "auto | bright | dark")->capture_default_str();
+  c->add_option("--threads", t.sequence.threads, "tracking threads (0: all cores)");
+  c->add_flag("--no-simulate", cli->no_simulate, "analyse the track only, no simulation beside it");
+  AddCompareOptions(c, cli.get());
+  c->callback([cli, c] {
+    if (!cli->scene.empty()) ApplySceneFile(c, cli->scene);
+    cli->args.compare.simulate = !cli->no_simulate;
+    cli->args.compare.commands = {CommandLine()};
+    compare::RunAnalyze(cli->args);
+  });
+}
+
+}  // namespace dimer::app

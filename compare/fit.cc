@@ -1,0 +1,225 @@
+#include "compare/fit.h"
+
+#include <nlopt.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "common/error.h"
+#include "common/interrupt.h"
+#include "compare/fit_observables.h"
+#include "compare/simulate.h"
+
+namespace dimer::compare {
+namespace {
+
+constexpr double kMismatchPenalty = 1e4;  // chi2 added when the trial settles in another mode
+constexpr double kXtolRel = 1e-3;         // optimiser stop: relative parameter change
+constexpr int kEdgeBisections = 6;        // range ends to 1/64 of a slice step
+
+struct ParamSpec {
+  const char* name;
+  double lo, hi;
+  double sim::SimOptions::*field;
+};
+
+// The coefficients and the ranges searched (docs/MODEL.md: 0 <= eps <= 1, friction >= 0).
+const std::vector<ParamSpec>& Specs() {
+  static const std::vector<ParamSpec> specs = {
+      {"eps", 0.2, 0.95, &sim::SimOptions::eps},
+      {"mu_hat", 0.0, 0.5, &sim::SimOptions::mu_hat},
+      {"mu_hat_s", 0.0, 1.0, &sim::SimOptions::mu_hat_s},
+      {"mu", 0.0, 0.8, &sim::SimOptions::mu},
+      {"mu_s", 0.0, 1.5, &sim::SimOptions::mu_s}};
+  return specs;
+}
+
+class Objective {
+ public:
+  Objective(const Analysis& track, const sim::SimOptions& scene, const FitOptions& fo)
+      : track_(track), scene_(scene), fo_(fo), observed_(FitObservables(track)) {
+    // See the simulation as the camera saw the track: its contact thresholds and slip filter.
+    for (int s = 0; s < 2; ++s) view_.min_contact_threshold_m[s] = track.contacts.sphere[s].threshold_m;
+    view_.slip_half_window = track.slip.half_window;
+    view_.phase_bins = track.options.phase_bins;
+    view_.window_periods = track.options.window_periods;
+    view_.travel_mm = track.options.travel_mm;
+    for (const Observable& o : observed_)
+      if (std::isfinite(o.value)) ++usable_;
+  }
+
+  sim::SimOptions Options(const std::vector<double>& values) const {
+    sim::SimOptions o = scene_;
+    const auto& specs = Specs();
+    for (size_t k = 0; k < specs.size(); ++k) o.*(specs[k].field) = values[k];
+    // Static friction is never below sliding friction: a trial below it means "sticks at once".
+    o.mu_hat_s = std::max(o.mu_hat_s, o.mu_hat);
+    o.mu_s = std::max(o.mu_s, o.mu);
+    return o;
+  }
+
+  double Chi2(const std::vector<double>& values, std::vector<double>* simulated = nullptr) {
+    if (InterruptRequested()) throw Interrupted();
+    ++evaluations_;
+    Analysis a;
+    try {
+      a = SimulateAndAnalyze(Options(values), view_, "fit trial");
+    } catch (const InputError&) {
+      return kMismatchPenalty * 10;  // the trial could not be simulated (event storm)
+    }
+    const std::vector<Observable> sim = FitObservables(a);
+    double chi2 = a.periods.settled.summary.label == track_.periods.settled.summary.label ? 0 : kMismatchPenalty;
+    if (simulated) simulated->assign(observed_.size(), kNaN);
+    for (size_t k = 0; k < observed_.size(); ++k) {
+      const Observable& o = observed_[k];
+      if (!std::isfinite(o.value)) continue;
+      const Observable* s = k < sim.size() && sim[k].name == o.name ? &sim[k] : nullptr;
+      if (!s || !std::isfinite(s->value)) {
+        chi2 += kMismatchPenalty / usable_;
+        continue;
+      }
+      if (simulated) (*simulated)[k] = s->value;
+      const double e_o = std::isfinite(o.err) ? o.err : 0, e_s = std::isfinite(s->err) ? s->err : 0;
+      const double var = e_o * e_o + e_s * e_s + o.floor * o.floor;
+      chi2 += (s->value - o.value) * (s->value - o.value) / var;
+    }
+    return chi2;
+  }
+
+  const std::vector<Observable>& observed() const { return observed_; }
+  int usable() const { return usable_; }
+  int evaluations() const { return evaluations_; }
+
+ private:
+  const Analysis& track_;
+  sim::SimOptions scene_;
+  FitOptions fo_;
+  AnalysisOptions view_;
+  std::vector<Observable> observed_;
+  int usable_ = 0;
+  int evaluations_ = 0;
+};
+
+struct NloptData {
+  Objective* objective;
+  std::vector<double> full;        // all parameter values
+  std::vector<size_t> free_index;  // which of them the optimiser moves
+};
+
+double NloptObjective(unsigned n, const double* x, double*, void* data) {
+  auto* d = static_cast<NloptData*>(data);
+  for (unsigned k = 0; k < n; ++k) d->full[d->free_index[k]] = x[k];
+  return d->objective->Chi2(d->full);
+}
+
+// Bounded Nelder-Mead (NLopt) over the free parameters, from `start`; returns the optimum.
+std::vector<double> Minimise(Objective* obj, std::vector<double> start, int max_eval) {
+  const auto& specs = Specs();
+  NloptData data{obj, start, {}};
+  for (size_t k = 0; k < specs.size(); ++k) data.free_index.push_back(k);
+  const unsigned n = static_cast<unsigned>(data.free_index.size());
+  nlopt_opt opt = nlopt_create(NLOPT_LN_NELDERMEAD, n);
+  std::vector<double> lo, hi, x, step;
+  for (size_t k : data.free_index) {
+    lo.push_back(specs[k].lo), hi.push_back(specs[k].hi);
+    x.push_back(std::clamp(start[k], specs[k].lo, specs[k].hi));
+    step.push_back(0.15 * (specs[k].hi - specs[k].lo));
+  }
+  nlopt_set_lower_bounds(opt, lo.data());
+  nlopt_set_upper_bounds(opt, hi.data());
+  nlopt_set_min_objective(opt, NloptObjective, &data);
+  nlopt_set_xtol_rel(opt, kXtolRel);
+  nlopt_set_maxeval(opt, max_eval);
+  nlopt_set_initial_step(opt, step.data());
+  double best = 0;
+  const nlopt_result rc = nlopt_optimize(opt, x.data(), &best);
+  nlopt_destroy(opt);
+  if (rc < 0 && rc != NLOPT_ROUNDOFF_LIMITED) {
+    if (InterruptRequested()) throw Interrupted();
+    throw InputError("fit: the optimiser failed (NLopt code " + std::to_string(rc) + ")");
+  }
+  for (unsigned k = 0; k < n; ++k) start[data.free_index[k]] = x[k];
+  return start;
+}
+
+// The chi2 slice through `best` along parameter k, and what it says about k.
+FitParameter Slice(Objective* obj, const std::vector<double>& best, double chi2_min,
+                   double threshold, size_t k, int points) {
+  const ParamSpec& spec = Specs()[k];
+  FitParameter p;
+  p.name = spec.name;
+  p.fitted = true;
+  p.lo = spec.lo, p.hi = spec.hi;
+  p.value = best[k];
+  std::vector<double> x = best;
+  for (int i = 0; i < points; ++i) p.slice_x.push_back(spec.lo + (spec.hi - spec.lo) * i / (points - 1));
+  p.slice_x.push_back(best[k]);
+  std::sort(p.slice_x.begin(), p.slice_x.end());
+  for (double v : p.slice_x) {
+    x[k] = v;
+    p.slice_chi2.push_back(v == best[k] ? chi2_min : obj->Chi2(x));
+  }
+  // The contiguous run of slice points within the threshold around the optimum; each closed
+  // end is then located by bisection between the last point in and the first point out.
+  const size_t at = std::find(p.slice_x.begin(), p.slice_x.end(), best[k]) - p.slice_x.begin();
+  const double limit = chi2_min + threshold;
+  size_t a = at, b = at;
+  while (a > 0 && p.slice_chi2[a - 1] <= limit) --a;
+  while (b + 1 < p.slice_x.size() && p.slice_chi2[b + 1] <= limit) ++b;
+  auto edge = [&](double in, double out) {
+    for (int it = 0; it < kEdgeBisections; ++it) {
+      const double mid = 0.5 * (in + out);
+      x[k] = mid;
+      (obj->Chi2(x) <= limit ? in : out) = mid;
+    }
+    return 0.5 * (in + out);
+  };
+  const bool open_lo = a == 0, open_hi = b + 1 == p.slice_x.size();
+  p.range_lo = open_lo ? spec.lo : edge(p.slice_x[a], p.slice_x[a - 1]);
+  p.range_hi = open_hi ? spec.hi : edge(p.slice_x[b], p.slice_x[b + 1]);
+  p.status = open_lo && open_hi ? "unconstrained"
+             : open_lo          ? "bounded_above"
+             : open_hi          ? "bounded_below"
+                                : "constrained";
+  if (p.status == "constrained") p.err = 0.5 * (p.range_hi - p.range_lo);
+  return p;
+}
+
+}  // namespace
+
+FitResult FitCoefficients(const Analysis& track, const sim::SimOptions& scene,
+                          const FitOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string mode = track.periods.settled.summary.label;
+  if (mode != "drift" && mode != "jump" && mode != "flutter") {
+    throw InputError(track.run.path + ": --fit needs a drift, jump or flutter mode to fit; the track settled in " + mode);
+  }
+  sim::SimOptions base = SceneFromTrack(track, scene, options.transient_periods, nullptr);
+  base.cycles = options.transient_periods +
+                std::min<double>(options.measured_periods, std::max(2.0, base.cycles - options.transient_periods));
+  Objective obj(track, base, options);
+  if (obj.usable() == 0) throw InputError(track.run.path + ": --fit: the track has no usable observable");
+  std::vector<double> x;
+  for (const ParamSpec& s : Specs()) x.push_back(base.*(s.field));
+  x = Minimise(&obj, x, options.max_evaluations);
+  x = Minimise(&obj, x, options.max_evaluations / 2);  // restart: Nelder-Mead can stall
+  FitResult r;
+  r.chi2 = obj.Chi2(x, &r.simulated);
+  r.dof = std::max(1, obj.usable() - static_cast<int>(Specs().size()));
+  r.threshold = std::max(1.0, r.chi2 / r.dof);
+  for (size_t k = 0; k < Specs().size(); ++k) {
+    r.params.push_back(Slice(&obj, x, r.chi2, r.threshold, k, options.slice_points));
+  }
+  for (const Observable& o : obj.observed()) {
+    r.observable_names.push_back(o.name);
+    r.observed.push_back(o.value);
+    r.observed_err.push_back(std::hypot(std::isfinite(o.err) ? o.err : 0.0, o.floor));
+  }
+  r.best = obj.Options(x);
+  r.evaluations = obj.evaluations();
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace dimer::compare

@@ -1,0 +1,268 @@
+// summary.md: the report's text. Numbers carry their units; a value with an error is printed
+// to the error's second significant digit; unknown values print as "n/a" (never "nan").
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "compare/report_parts.h"
+
+namespace dimer::compare {
+namespace {
+
+constexpr double kMm = 1e3, kUm = 1e6, kMs = 1e3;  // from m, m/s, s
+constexpr size_t kMaxGapRows = 50;                   // per sphere; the rest are counted
+const char* const kSide[2] = {"left", "right"};
+
+std::string Num(double v, const char* fmt = "%.4g") {
+  return std::isfinite(v) ? Format(fmt, v) : "n/a";
+}
+
+// v ± err (both times `scale`) with the error's two significant digits, then the unit.
+std::string Pm(double v, double err, double scale = 1, const std::string& unit = "") {
+  if (!std::isfinite(v)) return "n/a";
+  const std::string u = unit.empty() ? "" : " " + unit;
+  v *= scale;
+  err *= scale;
+  if (!std::isfinite(err) || err <= 0) return Format("%.4g", v) + u;
+  const int decimals = std::clamp(1 - static_cast<int>(std::floor(std::log10(err))), 0, 12);
+  return Format("%.*f ± %.*f", decimals, v, decimals, err) + u;
+}
+
+std::string Side(int s) { return s == 0 || s == 1 ? kSide[s] : "none"; }
+
+std::string ModeText(const ModeSummary& m) {
+  return m.mode == Mode::kDrift ? m.label + " (bouncing " + Side(m.bouncing_sphere) + " end)"
+                                : m.label;
+}
+
+void Drive(const Analysis& a, std::ostringstream& o) {
+  const PlateDrive& d = a.plate;
+  const SampledRun& r = a.run;
+  o << "## Input and drive\n\n| quantity | value |\n|---|---|\n"
+    << "| input | `" << r.path << "` (" << r.kind << ") |\n"
+    << "| frames | " << r.n << Format(" at %.6g fps, t = %.4f … %.4f s", r.fps(), r.Time(0),
+                                      r.n ? r.Time(r.n - 1) : r.t0) << " |\n"
+    << "| drive source | " << d.source << " |\n"
+    << "| drive frequency f | " << Pm(d.freq_hz, d.freq_err, 1, "Hz") << " |\n"
+    << "| Γ | " << Pm(d.gamma, d.gamma_err) << " |\n"
+    << "| plate amplitude | " << Pm(d.amp_m, d.amp_err, kMm, "mm") << " |\n"
+    << "| plate phase at t = 0 | " << Pm(d.phase_rad, d.phase_err, 1, "rad") << " |\n"
+    << "| plate fit residual (rms) | " << Num(d.residual_rms_m * kUm, "%.3g") << " µm |\n"
+    << "| harmonics 2f, 3f, 4f (of the amplitude) | " << Num(d.harmonic_rel[0] * 100, "%.2g")
+    << " %, " << Num(d.harmonic_rel[1] * 100, "%.2g") << " %, "
+    << Num(d.harmonic_rel[2] * 100, "%.2g") << " % |\n"
+    << "| sphere diameter d | " << Num(r.diameter_m * kMm) << " mm |\n"
+    << "| A_r (measured) | " << Num(r.ar, "%.3f") << " |\n\n";
+}
+
+void Settled(const Analysis& a, std::ostringstream& o) {
+  const ModeWindow& w = a.periods.settled;
+  const ModeSummary& m = w.summary;
+  o << "## Settled mode\n\n";
+  if (w.count == 0) {
+    o << "No settled window: the run has no whole plate period.\n\n";
+    return;
+  }
+  o << "**" << ModeText(m) << "** over " << Format("t = %.4f … %.4f s (%d periods)", w.t_start,
+                                                    w.t_end, w.count)
+    << ".\n\n| per sphere | left | right |\n|---|---|---|\n"
+    << "| impacts per period | " << Num(m.impacts_per_period[0], "%.3f") << " | "
+    << Num(m.impacts_per_period[1], "%.3f") << " |\n"
+    << "| rest fraction | " << Num(m.rest_fraction[0], "%.3f") << " | "
+    << Num(m.rest_fraction[1], "%.3f") << " |\n";
+  const auto& sp = a.contacts.sphere;
+  o << "| position noise of the gap | " << Num(sp[0].noise_m * kUm, "%.3g") << " µm | "
+    << Num(sp[1].noise_m * kUm, "%.3g") << " µm |\n"
+    << "| contact level | " << Num(sp[0].level_m * kUm, "%.3g") << " µm | "
+    << Num(sp[1].level_m * kUm, "%.3g") << " µm |\n"
+    << "| contact threshold | " << Num(sp[0].threshold_m * kUm, "%.3g") << " µm | "
+    << Num(sp[1].threshold_m * kUm, "%.3g") << " µm |\n"
+    << "| impacts found (whole run) | " << sp[0].impacts.size() << " | " << sp[1].impacts.size()
+    << " |\n\n";
+}
+
+void DriftAndFall(const Analysis& a, std::ostringstream& o) {
+  const Drift& d = a.drift;
+  o << "## Drift\n\n- ⟨u⟩ = " << Pm(d.speed, d.speed_err, kMm, "mm/s")
+    << " (positive toward the bouncing end, " << Side(d.bouncing_sphere) << "), over "
+    << d.periods << " whole periods\n- ⟨u⟩ f / g = " << Pm(d.scaled, d.scaled_err) << "\n";
+  if (std::isfinite(d.travel_time_s)) {
+    o << "- travel over " << Num(d.travel_mm, "%.3g") << " mm (the paper's measure): "
+      << Num(d.travel_time_s, "%.4g") << " s, " << Num(d.travel_speed * kMm, "%.4g")
+      << " mm/s\n";
+  } else {
+    o << "- travel over " << Num(d.travel_mm, "%.3g") << " mm: not measured"
+      << (d.travel_note.empty() ? "" : " (" + d.travel_note + ")") << "\n";
+  }
+  const FreeFall& f = a.free_fall;
+  o << "\n## Free fall (calibration check)\n\n";
+  if (std::isfinite(f.g_fit)) {
+    o << "g_fit / g = " << Pm(f.g_fit / kGravity, f.g_fit_err / kGravity) << " from "
+      << f.flights << " flights (" << f.frames << " frames).\n\n";
+  } else {
+    o << "g_fit not measured" << (f.note.empty() ? "" : ": " + f.note) << ".\n\n";
+  }
+}
+
+void Slip(const Analysis& a, std::ostringstream& o) {
+  const SlipResult& s = a.slip;
+  o << "## Slip of the resting sphere\n\n";
+  if (s.resting_sphere < 0) {
+    o << "No resting sphere in the settled mode (" << a.periods.settled.summary.label
+      << "): no slip analysis.\n\n";
+    return;
+  }
+  o << "- resting sphere: " << Side(s.resting_sphere) << "; U positive toward the bouncing end\n"
+    << "- filter half-width h = " << s.half_window << " frames, predicted velocity noise "
+    << Num(s.velocity_noise * kMm, "%.3g") << " mm/s\n"
+    << "- U after the bouncing end's impact: " << Pm(s.after, s.after_err, kMm, "mm/s") << "\n"
+    << "- U before the next impact: " << Pm(s.before, s.before_err, kMm, "mm/s") << "\n"
+    << "- impact intervals averaged: " << s.intervals << "\n\n";
+}
+
+void Timeline(const Analysis& a, std::ostringstream& o) {
+  const auto& tl = a.periods.timeline;
+  o << "## Mode timeline\n\n";
+  if (tl.empty()) {
+    o << "No complete window of " << a.options.window_periods << " periods.\n\n";
+    return;
+  }
+  o << "| t_start (s) | t_end (s) | mode | impacts/period L | impacts/period R | rest fraction L "
+       "| rest fraction R | drift speed (mm/s) |\n|---|---|---|---|---|---|---|---|\n";
+  for (const ModeWindow& w : tl) {
+    const ModeSummary& m = w.summary;
+    o << Format("| %.4f | %.4f | ", w.t_start, w.t_end) << ModeText(m) << " | "
+      << Num(m.impacts_per_period[0], "%.2f") << " | " << Num(m.impacts_per_period[1], "%.2f")
+      << " | " << Num(m.rest_fraction[0], "%.2f") << " | " << Num(m.rest_fraction[1], "%.2f")
+      << " | " << Pm(m.drift_speed, m.drift_speed_err, kMm) << " |\n";
+  }
+  o << "\n### Switches between modes\n\n";
+  int switches = 0;
+  for (size_t k = 1; k < tl.size(); ++k) {
+    if (tl[k].summary.label == tl[k - 1].summary.label) continue;
+    o << Format("- t = %.4f s: ", tl[k].t_start) << tl[k - 1].summary.label << " → "
+      << tl[k].summary.label << "\n";
+    ++switches;
+  }
+  if (switches == 0) o << "None: one mode throughout.\n";
+  o << "\n";
+}
+
+void WarningsAndGaps(const ReportInputs& in, std::ostringstream& o) {
+  const Analysis& a = *in.track;
+  o << "## Warnings\n\n";
+  std::vector<std::string> all = a.warnings;
+  all.insert(all.end(), in.extra_warnings.begin(), in.extra_warnings.end());
+  for (const auto& w : all) o << "- " << w << "\n";
+  if (all.empty()) o << "None.\n";
+  o << "\n## Missing frames\n\n";
+  bool any = false;
+  for (int s = 0; s < 2; ++s) {
+    const auto& gaps = a.run.gaps[s];
+    if (gaps.empty()) continue;
+    any = true;
+    o << "### " << kSide[s] << " tip: " << gaps.size() << " gaps\n\n"
+      << "| first frame | frames | time (s) | duration (ms) |\n|---|---|---|---|\n";
+    for (size_t k = 0; k < gaps.size() && k < kMaxGapRows; ++k) {
+      o << Format("| %zu | %zu | %.4f | %.3g |\n", gaps[k].first, gaps[k].count,
+                  a.run.Time(gaps[k].first), double(gaps[k].count) * a.run.dt * kMs);
+    }
+    if (gaps.size() > kMaxGapRows) o << "\n… and " << gaps.size() - kMaxGapRows << " more.\n";
+    o << "\n";
+  }
+  if (!any) o << "None: every frame has both tips.\n\n";
+}
+
+void Comparing(const Analysis& t, const Comparison& c, std::ostringstream& o) {
+  const Analysis& s = c.sim;
+  o << "## Comparison with the simulation\n\n- simulation: `" << c.sim_path << "`\n"
+    << "- time offset (t_sim = t_track + offset): " << Num(c.time_offset_s * kMs, "%.5g")
+    << " ms\n- x offset: " << Num(c.x_offset_m * kMm, "%.5g") << " mm; simulation mirrored: "
+    << (c.mirrored ? "yes" : "no") << "\n- frames compared: " << c.frames_compared
+    << "; settled modes agree: " << (c.modes_agree ? "yes" : "no") << "\n\n"
+    << "| RMS residual over the settled window | left | right |\n|---|---|---|\n"
+    << "| x | " << Num(c.rms_x[0] * kUm, "%.3g") << " µm | " << Num(c.rms_x[1] * kUm, "%.3g")
+    << " µm |\n| z | " << Num(c.rms_z[0] * kUm, "%.3g") << " µm | "
+    << Num(c.rms_z[1] * kUm, "%.3g") << " µm |\n\n"
+    << "| quantity | track | simulation |\n|---|---|---|\n";
+  auto row = [&o](const std::string& q, const std::string& a, const std::string& b) {
+    o << "| " << q << " | " << a << " | " << b << " |\n";
+  };
+  row("settled mode", ModeText(t.periods.settled.summary), ModeText(s.periods.settled.summary));
+  row("drift ⟨u⟩ (mm/s)", Pm(t.drift.speed, t.drift.speed_err, kMm),
+      Pm(s.drift.speed, s.drift.speed_err, kMm));
+  row("⟨u⟩ f / g", Pm(t.drift.scaled, t.drift.scaled_err), Pm(s.drift.scaled, s.drift.scaled_err));
+  row("g_fit / g", Pm(t.free_fall.g_fit / kGravity, t.free_fall.g_fit_err / kGravity),
+      Pm(s.free_fall.g_fit / kGravity, s.free_fall.g_fit_err / kGravity));
+  row("slip after impact (mm/s)", Pm(t.slip.after, t.slip.after_err, kMm),
+      Pm(s.slip.after, s.slip.after_err, kMm));
+  row("slip before impact (mm/s)", Pm(t.slip.before, t.slip.before_err, kMm),
+      Pm(s.slip.before, s.slip.before_err, kMm));
+  o << "\n";
+}
+
+// A parameter's value cell: a number only when the chi2 slice constrains it.
+std::string ParameterValue(const FitParameter& p) {
+  if (p.status == "constrained") return Pm(p.value, p.err);
+  if (p.status == "bounded_below") return "≥ " + Num(p.range_lo);
+  if (p.status == "bounded_above") return "≤ " + Num(p.range_hi);
+  return "unconstrained (range " + Num(p.lo) + "–" + Num(p.hi) + ")";
+}
+
+void Fitting(const FitResult& f, std::ostringstream& o) {
+  o << "## Fit of the contact coefficients\n\n| parameter | fitted | status | value |\n"
+       "|---|---|---|---|\n";
+  for (const FitParameter& p : f.params) {
+    o << "| " << p.name << " | " << (p.fitted ? "yes" : "no (slice only)") << " | "
+      << (p.status.empty() ? "unknown" : p.status) << " | " << ParameterValue(p) << " |\n";
+  }
+  o << "\nchi2 = " << Num(f.chi2) << " with " << f.dof << " degrees of freedom; a parameter's "
+    << "range is where its slice stays within chi2 + " << Num(f.threshold) << " = "
+    << Num(f.chi2 + f.threshold) << "; " << f.evaluations << " simulations in "
+    << Num(f.seconds, "%.1f") << " s.\n\n";
+  if (f.observable_names.empty()) return;
+  o << "| observable | track | simulation at the optimum |\n|---|---|---|\n";
+  for (size_t k = 0; k < f.observable_names.size(); ++k) {
+    auto at = [k](const std::vector<double>& v) { return k < v.size() ? v[k] : kNaN; };
+    o << "| " << f.observable_names[k] << " | " << Pm(at(f.observed), at(f.observed_err))
+      << " | " << Num(at(f.simulated)) << " |\n";
+  }
+  o << "\n";
+}
+
+void Figures(const std::vector<FigureOutcome>& figures, std::ostringstream& o) {
+  o << "## Figures\n\nEach figure is drawn by gnuplot from `figures/NAME.dat` by "
+       "`figures/NAME.gp` (replot: `cd figures && gnuplot NAME.gp`).\n\n";
+  for (const FigureOutcome& f : figures) {
+    if (f.drawn) {
+      o << "- [" << f.name << ".png](figures/" << f.name << ".png): " << f.caption
+        << (f.note.empty() ? "" : " (" + f.note + ")") << "\n";
+    } else {
+      o << "- " << f.name << ": not drawn, " << f.note << "\n";
+    }
+  }
+  o << "\n";
+}
+
+}  // namespace
+
+std::string SummaryMarkdown(const ReportInputs& in, const std::vector<FigureOutcome>& figures) {
+  const Analysis& a = *in.track;
+  std::ostringstream o;
+  o << "# dimerlab report: " << a.run.path << "\n\n";
+  Drive(a, o);
+  Settled(a, o);
+  DriftAndFall(a, o);
+  Slip(a, o);
+  Timeline(a, o);
+  WarningsAndGaps(in, o);
+  if (in.comparison != nullptr) Comparing(a, *in.comparison, o);
+  if (in.fit != nullptr) Fitting(*in.fit, o);
+  Figures(figures, o);
+  o << "## Commands\n\n```\n";
+  for (const auto& c : in.commands) o << c << "\n";
+  o << "```\n";
+  return o.str();
+}
+
+}  // namespace dimer::compare
