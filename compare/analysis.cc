@@ -9,7 +9,7 @@ namespace dimer::compare {
 namespace {
 
 constexpr double kMinPeriods = 2.0;
-constexpr double kGFitWarn = 0.02;       // |g_fit/g - 1| above this: calibration warning
+constexpr double kGFitWarn = 0.02;       // |g_fit/g - 1| above this (and 2 sigma): calibration warning
 constexpr double kHarmonicWarn = 0.05;   // a harmonic above 5 % of the drive: not sinusoidal
 
 std::string Fmt(double v, int prec = 4) {
@@ -98,10 +98,20 @@ std::vector<std::string> AnalysisOptions::Check() const {
   return e;
 }
 
-Analysis Analyze(const SampledRun& run, const AnalysisOptions& options) {
+Analysis Analyze(const SampledRun& input, const AnalysisOptions& options) {
   Analysis a;
-  a.run = run;
+  a.run = input;
   a.options = options;
+  a.outliers = RejectOutliers(&a.run);
+  const SampledRun& run = a.run;
+  if (!a.outliers.empty()) {
+    std::string list;
+    for (size_t k = 0; k < a.outliers.size() && k < 10; ++k)
+      list += (k ? ", " : "") + std::to_string(a.outliers[k].frame) + (a.outliers[k].sphere ? "R" : "L");
+    a.warnings.push_back(std::to_string(a.outliers.size()) +
+                         " tip positions rejected as tracking outliers (frame+sphere: " + list +
+                         (a.outliers.size() > 10 ? ", ..." : "") + ")");
+  }
   // 1. Plate drive.
   if (run.kind == "sim" && std::isfinite(run.sim_freq_hz) && std::isfinite(run.sim_gamma)) {
     a.plate = PlateFromSim(run);
@@ -131,7 +141,8 @@ Analysis Analyze(const SampledRun& run, const AnalysisOptions& options) {
   // 2. Contacts and impacts; 3. free fall; 4. periods and modes; 5. drift; 6. slip.
   a.contacts = FindContacts(run, a.plate, options.min_contact_threshold_m);
   a.free_fall = FitFreeFall(run, a.contacts);
-  if (std::isfinite(a.free_fall.g_fit) && std::abs(a.free_fall.g_fit / kGravity - 1) > kGFitWarn) {
+  const double g_dev = std::abs(a.free_fall.g_fit - kGravity);
+  if (std::isfinite(g_dev) && g_dev > kGFitWarn * kGravity && g_dev > 2 * a.free_fall.g_fit_err) {
     a.warnings.push_back("fitted free fall g_fit/g = " + Fmt(a.free_fall.g_fit / kGravity) +
                          ": the length calibration (m/px) is likely off by that factor");
   }

@@ -9,6 +9,7 @@
 
 #include "compare/contacts.h"
 #include "compare/free_fall.h"
+#include "compare/outliers.h"
 #include "compare/periods.h"
 #include "compare/plate_fit.h"
 #include "compare/sampled_run.h"
@@ -41,7 +42,8 @@ struct Drift {
 };
 
 struct Analysis {
-  SampledRun run;
+  SampledRun run;                     // with tracking outliers removed (outliers.h)
+  std::vector<Outlier> outliers;
   AnalysisOptions options;
   PlateDrive plate;
   Contacts contacts;

@@ -67,7 +67,8 @@ Comparison CompareWithSimulation(const Analysis& track, const Analysis& sim) {
   const double t_tr_end = tr.Time(tr.n - 1), t_sim_end = sr.Time(sr.n - 1);
   double shift = (sim.plate.phase_rad - track.plate.phase_rad) / (2 * M_PI) * -T;  // phase match
   // Any shift + k T matches the phase; take the largest with t_tr_end + shift <= t_sim_end.
-  shift += std::floor((t_sim_end - t_tr_end - shift) / T + 1e-9) * T;
+  // (Half a frame of slack: the phase is fitted, so the exact end may come out a hair late.)
+  shift += std::floor((t_sim_end + 0.5 * tr.dt - t_tr_end - shift) / T) * T;
   c.time_offset_s = shift;
   // Mirror when the bouncing ends are on opposite sides.
   const int dt = BouncingDirection(track), ds = BouncingDirection(sim);

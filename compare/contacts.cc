@@ -9,7 +9,9 @@
 namespace dimer::compare {
 namespace {
 
-// Densest band of width 2 thr among the lower half of the gaps; NaN if it holds too few.
+// The rest level: the densest band of width 2 thr that starts among the lowest 2 % of the gaps
+// (a sphere cannot rest above where it touches; the slow apex of a bounce is dense too, but
+// high); NaN if that band holds too few frames.
 double RestLevel(const std::vector<double>& gap, double thr) {
   std::vector<double> v;
   for (double g : gap)
@@ -17,7 +19,8 @@ double RestLevel(const std::vector<double>& gap, double thr) {
   if (v.empty()) return kNaN;
   std::sort(v.begin(), v.end());
   size_t best_i = 0, best_n = 0, j = 0;
-  for (size_t i = 0; i <= v.size() / 2; ++i) {
+  const size_t starts = std::max<size_t>(1, v.size() / 50);
+  for (size_t i = 0; i < starts; ++i) {
     j = std::max(j, i);
     while (j < v.size() && v[j] <= v[i] + 2 * thr) ++j;
     if (j - i > best_n) best_n = j - i, best_i = i;
@@ -71,10 +74,18 @@ double RootIn(const Quadratic& p, double lo, double hi) {
   return best;
 }
 
+constexpr int kLandingBisections = 40;  // landing time to 1e-12 of a frame
+
 class ImpactFinder {
  public:
   ImpactFinder(const SampledRun& run, const PlateDrive& plate, int s, SphereContacts* c)
-      : run_(run), plate_(plate), s_(s), c_(*c) {}
+      : run_(run), plate_(plate), s_(s), c_(*c) {
+    // Fits are made in the lab frame (gap + the plate model): a tip in flight is a parabola
+    // there, while the gap also carries the plate's sinusoid, which a quadratic follows less
+    // well over the fitted frames.
+    lab_.resize(c_.gap.size());
+    for (size_t k = 0; k < lab_.size(); ++k) lab_[k] = c_.gap[k] + plate_.Z(run_.Time(k));
+  }
 
   void Run() {
     const auto& g = c_.gap;
@@ -134,36 +145,70 @@ class ImpactFinder {
     return idx;
   }
 
+  struct Solution {
+    double tau = kNaN;  // impact, frames from tau0
+    double v_before = kNaN, v_after = kNaN, level = kNaN;
+  };
+
+  // The impact from approach frames `before` and departure frames `after` (empty: a landing,
+  // the approach meets the contact level before frame `land_limit`).
+  Solution Solve(const std::vector<long>& before, const std::vector<long>& after, double tau0,
+                 double land_limit) const {
+    Solution sol;
+    const Quadratic qa = FitFrames(lab_, before, tau0);
+    if (qa.points < 2) return sol;
+    auto time = [&](double tau) { return run_.t0 + (tau0 + tau) * run_.dt; };
+    const double lo = static_cast<double>(before.back()) - tau0;
+    if (after.size() >= 2) {
+      const Quadratic qd = FitFrames(lab_, after, tau0);
+      Quadratic diff;
+      diff.c = qa.c - qd.c;
+      sol.tau = RootIn(diff, lo, static_cast<double>(after.front()) - tau0);
+      if (std::isfinite(sol.tau)) sol.v_after = qd.Slope(sol.tau) / run_.dt - plate_.V(time(sol.tau));
+    }
+    if (!std::isfinite(sol.tau)) {  // landing: the approach meets the plate + contact level
+      auto h = [&](double tau) { return qa.At(tau) - plate_.Z(time(tau)) - c_.level_m; };
+      double a = lo, b = land_limit;
+      if (h(a) > 0 && h(b) <= 0) {
+        for (int it = 0; it < kLandingBisections; ++it) (h(0.5 * (a + b)) > 0 ? a : b) = 0.5 * (a + b);
+        sol.tau = 0.5 * (a + b);
+      }
+    }
+    if (std::isfinite(sol.tau)) {
+      sol.v_before = qa.Slope(sol.tau) / run_.dt - plate_.V(time(sol.tau));
+      sol.level = qa.At(sol.tau) - plate_.Z(time(sol.tau));
+    }
+    return sol;
+  }
+
   // `first`: first frame of the touch (or the bounce minimum); `last`: its last frame.
   void AddImpact(long first, long last, bool bounce) {
     const bool minimum = first == last && c_.gap[first] > c_.level_m + c_.threshold_m;
-    const std::vector<long> before = Side(minimum ? first - 1 : first - 1, -1);
-    std::vector<long> after = bounce ? Side(minimum ? first + 1 : last + 1, +1) : std::vector<long>{};
     const double tau0 = static_cast<double>(first);
-    const Quadratic qa = FitFrames(c_.gap, before, tau0);
+    const double land_limit = static_cast<double>(last - first) + 1.0;
+    std::vector<long> before = Side(first - 1, -1);
+    std::vector<long> after = bounce ? Side(minimum ? first + 1 : last + 1, +1) : std::vector<long>{};
+    Solution sol = Solve(before, after, tau0, land_limit);
+    // Second pass without the frames within one frame of the impact: their exposure may straddle
+    // it (motion blur lifts them above the V), and the tracker is least sure next to the plate.
+    if (std::isfinite(sol.tau)) {
+      const double t_imp = tau0 + sol.tau;
+      std::vector<long> b2, a2;
+      for (long k : Side(static_cast<long>(std::floor(t_imp - 1.0)), -1)) b2.push_back(k);
+      if (bounce) a2 = Side(static_cast<long>(std::ceil(t_imp + 1.0)), +1);
+      if (b2.size() >= kImpactMinFitFrames && (!bounce || a2.size() >= kImpactMinFitFrames)) {
+        const Solution refined = Solve(b2, a2, tau0, land_limit);
+        if (std::isfinite(refined.tau)) sol = refined;
+      }
+    }
     Impact imp;
     imp.sphere = s_;
     imp.bounce = bounce;
-    double tau = kNaN;
-    const double lo = before.empty() ? -1.0 : static_cast<double>(before.back()) - tau0;
-    if (bounce && after.size() >= 2 && qa.points >= 2) {
-      const Quadratic qd = FitFrames(c_.gap, after, tau0);
-      Quadratic diff;
-      diff.c = qa.c - qd.c;
-      tau = RootIn(diff, lo, static_cast<double>(after.front()) - tau0);
-      if (std::isfinite(tau)) imp.v_after = qd.Slope(tau) / run_.dt;
-    }
-    if (!std::isfinite(tau) && qa.points >= 2) {
-      Quadratic shifted = qa;
-      shifted.c(0) -= c_.level_m;
-      tau = RootIn(shifted, lo, static_cast<double>(last - first) + 1.0);
-    }
-    if (!std::isfinite(tau)) tau = minimum ? 0.0 : -0.5;  // no usable fit: the frame itself
-    if (qa.points >= 2) {
-      imp.v_before = qa.Slope(tau) / run_.dt;
-      imp.level_m = qa.At(tau);
-    }
-    imp.frame = tau0 + tau;
+    if (!std::isfinite(sol.tau)) sol.tau = minimum ? 0.0 : -0.5;  // no usable fit: the frame itself
+    imp.v_before = sol.v_before;
+    imp.v_after = sol.v_after;
+    imp.level_m = sol.level;
+    imp.frame = tau0 + sol.tau;
     imp.t = run_.t0 + imp.frame * run_.dt;
     imp.plate_phase = std::isfinite(plate_.freq_hz) ? plate_.PhaseFraction(imp.t) : kNaN;
     c_.impacts.push_back(imp);
@@ -173,6 +218,7 @@ class ImpactFinder {
   const PlateDrive& plate_;
   int s_;
   SphereContacts& c_;
+  std::vector<double> lab_;  // gap + plate model: the sphere bottom's lab height, m
 };
 
 void MarkResting(SphereContacts* c) {
@@ -210,7 +256,10 @@ Contacts FindContacts(const SampledRun& run, const PlateDrive& plate,
     SphereContacts& c = out.sphere[s];
     c.gap.assign(run.n, kNaN);
     for (size_t i = 0; i < run.n; ++i) {
-      const double pz = std::isfinite(run.plate_z[i]) ? run.plate_z[i] : plate.Z(run.Time(i));
+      // A fitted plate is a sinusoid: using it rather than each frame's plate row keeps the
+      // plate's own tracking noise out of the gap (a sim file's plate is exact either way).
+      const bool fitted = plate.source == "fit";
+      const double pz = !fitted && std::isfinite(run.plate_z[i]) ? run.plate_z[i] : plate.Z(run.Time(i));
       c.gap[i] = run.z[s][i] - pz - radius;
     }
     c.noise_m = NoiseSigma(c.gap);

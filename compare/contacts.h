@@ -4,8 +4,8 @@
 // gap_s = z_s - z_plate - R is the height of sphere s's lowest point above the plate. A tracker
 // may see it with a constant offset (lighting moves the apparent centre by a fraction of a
 // pixel), so the level at which a sphere touches is measured, not assumed: the densest band of
-// width 2 thr among the lower half of its gaps, when it holds >= 5 % of the frames (a sphere
-// that rests); a sphere that never rests takes the other sphere's level (same appearance), or 0.
+// width 2 thr starting among the lowest 2 % of its gaps, when it holds >= 5 % of the frames (a
+// sphere that rests); a sphere that never rests takes the other sphere's level (same appearance), or 0.
 // thr = max(4 sigma_gap, 1e-6 d), sigma_gap from the data (noise.h): every threshold follows
 // the noise, so a simulation (noise-free) resolves micro-bounces a camera cannot.
 //
@@ -16,7 +16,8 @@
 // Impact times are not frame times: quadratics fitted to the approach (and the departure, for a
 // bounce) meet at the kink, or the approach meets the contact level (a landing). So the time is
 // a fraction of a frame, independent of the level for bounces, and the fitted slopes give the
-// normal velocities relative to the plate before and after.
+// normal velocities relative to the plate before and after. A second pass drops the frames
+// within one frame of the impact (motion blur straddling it; the tracker next to the plate).
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -30,7 +31,8 @@ inline constexpr double kContactSigmas = 4.0;       // thr in units of the gap n
 inline constexpr double kContactFloorRel = 1e-6;    // thr floor, fraction of d (noise-free data)
 inline constexpr int kMinRestFrames = 3;            // a rest is this many frames on the plate
 inline constexpr double kRestLevelMinFraction = 0.05;
-inline constexpr int kImpactFitFrames = 8;          // frames fitted on each side of an impact
+inline constexpr int kImpactFitFrames = 20;         // frames fitted on each side of an impact
+inline constexpr size_t kImpactMinFitFrames = 4;    // fewer: keep the first pass
 
 struct Impact {
   int sphere = 0;             // 0 left, 1 right

@@ -2,6 +2,8 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace dimer::compare {
 namespace {
@@ -37,6 +39,14 @@ FreeFall FitFreeFall(const SampledRun& run, const Contacts& contacts) {
     }
     return true;
   };
+  // Impacts split flights even when no frame falls within the contact threshold (a fast bounce
+  // passes the plate between two frames): a parabola never spans one.
+  std::vector<uint8_t> impact_after(run.n, 0);  // 1: an impact lies between frame i and i + 1
+  for (const Impact& imp : contacts.AllImpacts()) {
+    const long k = static_cast<long>(std::floor(imp.frame));
+    if (k >= 0 && k < static_cast<long>(run.n)) impact_after[k] = 1;
+    if (k >= 1 && static_cast<double>(k) == imp.frame) impact_after[k - 1] = 1;
+  }
   double wsum = 0, gsum = 0;
   bool exact = false;  // a noise-free flight (simulation): its g is exact, use it alone
   size_t i = 0;
@@ -45,8 +55,8 @@ FreeFall FitFreeFall(const SampledRun& run, const Contacts& contacts) {
       ++i;
       continue;
     }
-    size_t j = i;
-    while (j < run.n && airborne(j)) ++j;
+    size_t j = i + 1;
+    while (j < run.n && airborne(j) && !impact_after[j - 1]) ++j;
     const size_t a = i + kFreeFlightTrimFrames, b = j - kFreeFlightTrimFrames;
     double g = 0, var = 0;
     if (b > a && b - a >= static_cast<size_t>(kMinFreeFlightFrames) && FitFlight(run, a, b, &g, &var)) {

@@ -29,6 +29,7 @@ const std::array<cv::Scalar, 2> kTrackColour = {cv::Scalar(255, 200, 0),   // le
                                                 cv::Scalar(0, 140, 255)};  // right: orange
 const cv::Scalar kSimColour(60, 255, 60);                                  // simulation: green
 constexpr int kMinMarkerPx = 5, kMaxMarkerPx = 25;  // cross size bounds, px
+constexpr double kThickLineRadiusPx = 20;           // spheres larger than this get 2 px lines
 constexpr double kTextScalePerPx = 1.0 / 900;       // OpenCV font scale per pixel of width
 constexpr double kMinTextScale = 0.3, kMaxTextScale = 1.2;
 
@@ -123,15 +124,17 @@ void Draw(const Analysis& a, const Comparison* c, size_t i, const std::string& e
                      static_cast<int>(std::lround(r.row0_px - z / r.m_per_px)));
   };
   const int radius = std::max(1, static_cast<int>(std::lround(radius_px)));
+  const int line = radius_px > kThickLineRadiusPx ? 2 : 1;
   for (int s = 0; s < 2; ++s) {
     if (c != nullptr && i < c->sim_x[s].size() && i < c->sim_z[s].size() &&
         std::isfinite(c->sim_x[s][i]) && std::isfinite(c->sim_z[s][i])) {
-      cv::circle(*img, pixel(c->sim_x[s][i], c->sim_z[s][i]), radius, kSimColour, 1, cv::LINE_AA);
+      cv::circle(*img, pixel(c->sim_x[s][i], c->sim_z[s][i]), radius, kSimColour, line,
+                 cv::LINE_AA);
     }
     if (!std::isfinite(r.x[s][i]) || !std::isfinite(r.z[s][i])) continue;
     const cv::Point p = pixel(r.x[s][i], r.z[s][i]);
-    cv::drawMarker(*img, p, kTrackColour[s], cv::MARKER_CROSS, marker, 1, cv::LINE_AA);
-    cv::circle(*img, p, radius, kTrackColour[s], 1, cv::LINE_AA);
+    cv::drawMarker(*img, p, kTrackColour[s], cv::MARKER_CROSS, marker, line, cv::LINE_AA);
+    cv::circle(*img, p, radius, kTrackColour[s], line, cv::LINE_AA);
   }
   std::string text = Format("t = %.4f s  %s", r.Time(i), ModeAt(a, r.Time(i)).c_str()) + extra;
   if (c != nullptr) text += "  (green: simulation)";
@@ -180,7 +183,8 @@ std::vector<std::string> OverlayOptions::Check() const {
   if (max_frames <= 0)
     errors.push_back("max_frames: " + std::to_string(max_frames) + ": expected > 0");
   if (stills < 0) errors.push_back("stills: " + std::to_string(stills) + ": expected >= 0");
-  if (!(video_fps > 0)) errors.push_back("video_fps: " + Format("%g", video_fps) + ": expected > 0");
+  if (!(video_fps > 0))
+    errors.push_back("video_fps: " + Format("%g", video_fps) + ": expected > 0");
   return errors;
 }
 

@@ -104,6 +104,12 @@ double PlateDrive::Z(double t) const {
   return offset_m + amp_m * std::sin(kTwoPi * freq_hz * t + phase_rad);
 }
 
+double PlateDrive::V(double t) const {
+  if (!std::isfinite(phase_rad)) return 0.0;
+  const double w = kTwoPi * freq_hz;
+  return amp_m * w * std::cos(w * t + phase_rad);
+}
+
 double PlateDrive::PhaseFraction(double t) const {
   const double p = (kTwoPi * freq_hz * t + (std::isfinite(phase_rad) ? phase_rad : 0.0)) / kTwoPi;
   return p - std::floor(p);

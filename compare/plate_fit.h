@@ -31,6 +31,7 @@ struct PlateDrive {
 
   double period() const { return 1.0 / freq_hz; }
   double Z(double t) const;           // plate height at t, m (offset if the phase is unknown)
+  double V(double t) const;           // plate velocity at t, m/s (0 if the phase is unknown)
   double PhaseFraction(double t) const;  // plate phase at t in [0, 1): 0 = mid-height rising
 };
 

@@ -15,6 +15,7 @@ constexpr double kMs = 1e3;  // s -> ms
 const std::array<const char*, 2> kTipColour = {"#1f77b4", "#d62728"};
 const std::array<const char*, 2> kResColour = {"#ff7f0e", "#9467bd"};  // x, z residuals
 const std::array<const char*, 2> kSide = {"left", "right"};
+constexpr double kZoomThresholds = 10;  // fit_profile's y range: chi2_min + this many thresholds
 
 double At(const std::vector<double>& v, size_t i) { return i < v.size() ? v[i] : kNaN; }
 
@@ -47,10 +48,8 @@ PlannedFigure PlanSimVsTrack(const Analysis& a, const Comparison& c) {
                "first 4 periods of the settled window, and the residuals", false, ""};
   const ModeWindow& w = a.periods.settled;
   size_t i0 = 0, i1 = 0;
-  if (w.count > 0) {
-    FramesIn(a.run, w.t_start, std::min(w.t_start + kDetailPeriods * a.periods.period_s, w.t_end),
-             &i0, &i1);
-  }
+  const double t1 = std::min(w.t_start + kDetailPeriods * a.periods.period_s, w.t_end);
+  if (w.count > 0) FramesIn(a.run, w.t_start, t1, &i0, &i1);
   DataBlock b{"track and aligned simulation (track frame) per track frame; residual = track - sim",
               {"t_ms", "z_left_track_mm", "z_right_track_mm", "z_left_sim_mm", "z_right_sim_mm",
                "res_x_left_um", "res_x_right_um", "res_z_left_um", "res_z_right_um"}, {}};
@@ -93,12 +92,14 @@ PlannedFigure PlanSimVsTrack(const Analysis& a, const Comparison& c) {
   const std::string title =
       Format("Track vs simulation: time offset %.4g ms, x offset %.4g mm%s", c.time_offset_s * kMs,
              c.x_offset_m * kMm, c.mirrored ? ", simulation mirrored" : "");
-  p.figure.script = "set grid\nset lmargin 12\nset rmargin 4\nset key below horizontal\n"
+  p.figure.script = "set grid\nset lmargin 12\nset rmargin 4\nset key below horizontal\n" +
+                    Format("set xrange [%.9g:%.9g]\n", w.t_start * kMs, t1 * kMs) +
                     "set multiplot layout 2,1 title " + GnuplotQuote(title) + "\n" +
                     "set title " + GnuplotQuote("tip heights (simulation: " + c.sim_path + ")") +
                     "\nset xlabel \"time t (ms, track)\"\nset ylabel \"height z (mm)\"\nplot " +
                     Join(top) +
                     "set title \"residuals, track - simulation\"\nset ylabel \"residual (µm)\"\n"
+                    "set offsets 0, 0, graph 0.1, graph 0.1\n"
                     "plot " + Join(bottom) + "unset multiplot\n";
   p.figure.height_px = kPanelsFigureHeightPx;
   p.ready = true;
@@ -122,7 +123,8 @@ PlannedFigure PlanFitProfile(const FitResult& fit) {
   std::string& sc = p.figure.script;
   sc = Format("set grid\nset multiplot layout %d,%d title ", (n + 1) / 2, n == 1 ? 1 : 2) +
        GnuplotQuote(Format("chi2 slices through the optimum: chi2 = %.4g, dof %d", fit.chi2,
-                           fit.dof)) + "\nset key top center opaque\n";
+                           fit.dof)) + "\nset key inside top right opaque box\n"
+       "set offsets 0, 0, graph 0.05, graph 0.05\n";
   for (int k = 0; k < n; ++k) {
     const FitParameter& q = *sliced[k];
     DataBlock b{"chi2 along " + q.name + " (dimensionless) with the other parameters at the "
@@ -134,6 +136,15 @@ PlannedFigure PlanFitProfile(const FitResult& fit) {
       sc += Format("set xrange [%.9g:%.9g]\n", q.lo, q.hi);
     else
       sc += "set xrange [*:*]\n";
+    // Zoom on the minimum: the range is read where the slice crosses chi2 + threshold.
+    const double top = *std::max_element(q.slice_chi2.begin(), q.slice_chi2.end());
+    if (std::isfinite(fit.chi2) && fit.threshold > 0 &&
+        top > fit.chi2 + kZoomThresholds * fit.threshold) {
+      sc += Format("set yrange [%.9g:%.9g]\n", fit.chi2 - 0.5 * fit.threshold,
+                   fit.chi2 + kZoomThresholds * fit.threshold);
+    } else {
+      sc += "set yrange [*:*]\n";
+    }
     if (q.status != "unconstrained" && std::isfinite(q.range_lo) && std::isfinite(q.range_hi)) {
       sc += Format("set object 1 rect from %.9g, graph 0 to %.9g, graph 1 fc rgb \"#2ca02c\" "
                    "fs transparent solid 0.15 noborder behind\n", q.range_lo, q.range_hi);

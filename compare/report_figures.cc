@@ -88,7 +88,8 @@ PlannedFigure PlanHeights(const Analysis& a) {
   p.figure.script = "set title " +
                     GnuplotQuote("Tip heights, first periods of the settled window (" +
                                  w.summary.label + "); " + DriveText(d)) +
-                    "\nset xlabel \"time t (ms)\"\nset ylabel \"height z (mm)\"\n"
+                    "\nset xlabel \"time t (ms)\"\nset ylabel \"height z (mm)\"\n" +
+                    Format("set xrange [%.9g:%.9g]\n", w.t_start * kMs, t1 * kMs) +
                     "set grid\nset key below horizontal\nplot " + Join(plot);
   p.figure.height_px = kFigureHeightPx;
   p.ready = true;
@@ -130,7 +131,8 @@ PlannedFigure PlanPositions(const Analysis& a) {
   std::string& sc = p.figure.script;
   const std::string title = "Horizontal motion in the settled window (" + w.summary.label +
                             "); " + DriveText(a.plate);
-  sc = "set grid\nset lmargin 12\nset rmargin 4\nset key top left\n";
+  sc = "set grid\nset lmargin 12\nset rmargin 4\nset key top left\n" +
+       Format("set xrange [%.9g:%.9g]\n", w.t_start * kMs, w.t_end * kMs);
   if (has_u) sc += "set multiplot layout 2,1 title " + GnuplotQuote(title) + "\n";
   else sc += "set title " + GnuplotQuote(title) + "\n";
   sc += "set xlabel \"time t (ms)\"\nset ylabel \"x - x(window start) (mm)\"\nplot " + Join(plot);
@@ -141,7 +143,7 @@ PlannedFigure PlanPositions(const Analysis& a) {
                        " sphere (+ toward the bouncing end), filter half-width " +
                        std::to_string(a.slip.half_window) + " frames") +
           "\nset ylabel \"U (mm/s)\"\nplot datafile index 0 using 1:4 with lines lc rgb \"" +
-          std::string(kTipColour[r < 0 ? 0 : r]) + "\" title \"U\", 0 with lines dt 2 " +
+          std::string(kTipColour[r < 0 ? 0 : r]) + "\" notitle, 0 with lines dt 2 " +
           "lc rgb \"gray40\" notitle\nunset multiplot\n";
   } else {
     p.outcome.note = "slip panel omitted: no resting sphere";
@@ -164,9 +166,10 @@ PlannedFigure PlanSlipPhase(const Analysis& a, const Comparison* c) {
   auto profile_block = [](const SlipResult& r, const std::string& what) {
     DataBlock b{what + ": mean slip per plate-phase bin and its standard error",
                 {"phase", "U_mm_s", "U_err_mm_s", "count"}, {}};
+    auto at = [](const auto& v, size_t k) { return k < v.size() ? double(v[k]) : kNaN; };
     for (size_t k = 0; k < r.phase.size(); ++k) {
-      b.rows.push_back({r.phase[k], r.profile[k] * kMm, r.profile_err[k] * kMm,
-                        k < r.profile_count.size() ? double(r.profile_count[k]) : kNaN});
+      b.rows.push_back({r.phase[k], at(r.profile, k) * kMm, at(r.profile_err, k) * kMm,
+                        at(r.profile_count, k)});
     }
     return b;
   };
@@ -188,7 +191,7 @@ PlannedFigure PlanSlipPhase(const Analysis& a, const Comparison* c) {
   }
   p.figure.blocks.push_back(std::move(plate));
   plot.push_back(Format("datafile index %zu using 1:2 axes x1y2 with lines lw 2 "
-                        "lc rgb \"gray60\" title \"plate height / amplitude (right axis)\"",
+                        "lc rgb \"gray60\" title \"plate (right axis)\"",
                         p.figure.blocks.size() - 1));
   plot.push_back("0 with lines dt 3 lc rgb \"gray40\" notitle");
   p.figure.script =
@@ -199,7 +202,8 @@ PlannedFigure PlanSlipPhase(const Analysis& a, const Comparison* c) {
       "\nset xlabel \"plate phase (0 = plate at mid-height, rising)\"\n"
       "set ylabel \"slip velocity U (mm/s), + toward the bouncing end\"\n"
       "set y2label \"plate height / amplitude\"\nset xrange [0:1]\nset y2range [-1.1:1.1]\n"
-      "set ytics nomirror\nset y2tics\nset grid\nset key below horizontal\nplot " + Join(plot);
+      "set ytics nomirror\nset y2tics\nset grid\nset key below horizontal\nplot " +
+      Join(plot);
   p.figure.height_px = kFigureHeightPx;
   p.ready = true;
   return p;
@@ -272,14 +276,25 @@ PlannedFigure PlanModes(const Analysis& a) {
 
   const double t_span = per.rows.back().t_start + per.period_s - per.rows.front().t_start;
   std::string& sc = p.figure.script;
-  sc = "set grid\nset lmargin 12\nset rmargin 4\nset key top right opaque\n";
+  // Fixed margins keep the two panels' time axes aligned with the keys outside on the right.
+  sc = Format("set grid\nset lmargin 12\nset rmargin 26\nset key outside right top\n"
+              "set xrange [%.9g:%.9g]\n", per.rows.front().t_start,
+              per.rows.front().t_start + t_span);
   sc += ModeBands(per, t_span);
   std::vector<std::string> top = {"datafile index 0 using 2:3 with linespoints pt 7 ps 0.5 lw 1 "
                                   "lc rgb \"black\" title \"energy per period\""};
-  for (const auto& [level, name] : kPaperEnergies) {
-    if (level <= kReferenceSpan * e_max)
-      top.push_back(Format("%g with lines dt 2 lc rgb \"gray40\" title \"%s (paper)\"", level,
-                           name));
+  const bool incomplete = std::any_of(per.rows.begin(), per.rows.end(),
+                                      [](const PeriodRow& r) { return !r.complete; });
+  if (incomplete) {
+    top.push_back("datafile index 0 using 2:($8 == 0 ? $3 : NaN) with points pt 2 ps 1.5 "
+                  "lc rgb \"#d62728\" title \"incomplete period\"");
+  }
+  for (size_t k = 0; k < kPaperEnergies.size(); ++k) {
+    const auto& [level, name] = kPaperEnergies[k];
+    if (level <= kReferenceSpan * e_max) {
+      top.push_back(Format("%g with lines dt %zu lw 1.5 lc rgb \"gray30\" title \"%s (paper)\"",
+                           level, k + 2, name));
+    }
   }
   std::vector<bool> shown(ModeNames().size(), false);
   for (const ModeWindow& w : per.timeline) shown[ModeIndex(w.summary.mode)] = true;
@@ -291,16 +306,17 @@ PlannedFigure PlanModes(const Analysis& a) {
   }
   const ModeWindow& st = per.settled;
   if (st.count > 0) {
-    sc += Format("set arrow 1 from %.9g, graph 0.93 to %.9g, graph 0.93 heads size screen 0.008,90 "
-                 "lw 2 front\nset label 100 \"settled window: %s\" at %.9g, graph 0.96 center "
+    sc += Format("set arrow 1 from %.9g, graph 0.9 to %.9g, graph 0.9 heads size screen 0.008,90 "
+                 "lw 2 front\nset label 100 \"settled window: %s\" at %.9g, graph 0.94 center "
                  "front\n", st.t_start, st.t_end, st.summary.label.c_str(),
                  0.5 * (st.t_start + st.t_end));
   }
   sc += "set multiplot layout 2,1 title " +
         GnuplotQuote("Modes over time; " + DriveText(a.plate)) +
         "\nset title \"energy measure per period\"\nset xlabel \"time t (s)\"\n"
-        "set ylabel \"Σ max elevation / (g T²)\"\nset yrange [0:*]\nplot " + Join(top);
-  sc += "unset label\nunset arrow\nset title \"impacts per period\"\n"
+        "set ylabel \"Σ max elevation / (g T²)\"\nset yrange [0:*]\n"
+        "set offsets 0, 0, graph 0.2, 0\nplot " + Join(top);
+  sc += "unset label\nunset arrow\nset offsets 0, 0, 0, 0\nset title \"impacts per period\"\n"
         "set ylabel \"impacts in the period\"\n" +
         Format("set yrange [-0.3:%g]\nset ytics 1\n", i_max + 0.8) +
         Format("plot datafile index 0 using 2:4 with points pt 6 ps 1.0 lc rgb \"%s\" "

@@ -11,6 +11,7 @@ namespace {
 
 constexpr double kMm = 1e3, kUm = 1e6, kMs = 1e3;  // from m, m/s, s
 constexpr size_t kMaxGapRows = 50;                   // per sphere; the rest are counted
+constexpr int kMaxSignificant = 6;                   // digits of a value with a tiny error
 const char* const kSide[2] = {"left", "right"};
 
 std::string Num(double v, const char* fmt = "%.4g") {
@@ -24,8 +25,20 @@ std::string Pm(double v, double err, double scale = 1, const std::string& unit =
   v *= scale;
   err *= scale;
   if (!std::isfinite(err) || err <= 0) return Format("%.4g", v) + u;
-  const int decimals = std::clamp(1 - static_cast<int>(std::floor(std::log10(err))), 0, 12);
+  const int decimals = std::max(0, 1 - static_cast<int>(std::floor(std::log10(err))));
+  // A tiny error (a noise-free simulation) would ask for many digits: the value keeps
+  // kMaxSignificant, the error is shown in exponent form.
+  const int max_decimals =
+      v == 0 ? decimals
+             : kMaxSignificant - 1 - static_cast<int>(std::floor(std::log10(std::abs(v))));
+  if (decimals > max_decimals) {
+    return Format("%.*f ± %.1g", std::max(0, max_decimals), v, err) + u;
+  }
   return Format("%.*f ± %.*f", decimals, v, decimals, err) + u;
+}
+
+std::string Percent(double fraction) {
+  return std::isfinite(fraction) ? Format("%.2g %%", fraction * 100) : "n/a";
 }
 
 std::string Side(int s) { return s == 0 || s == 1 ? kSide[s] : "none"; }
@@ -48,9 +61,8 @@ void Drive(const Analysis& a, std::ostringstream& o) {
     << "| plate amplitude | " << Pm(d.amp_m, d.amp_err, kMm, "mm") << " |\n"
     << "| plate phase at t = 0 | " << Pm(d.phase_rad, d.phase_err, 1, "rad") << " |\n"
     << "| plate fit residual (rms) | " << Num(d.residual_rms_m * kUm, "%.3g") << " µm |\n"
-    << "| harmonics 2f, 3f, 4f (of the amplitude) | " << Num(d.harmonic_rel[0] * 100, "%.2g")
-    << " %, " << Num(d.harmonic_rel[1] * 100, "%.2g") << " %, "
-    << Num(d.harmonic_rel[2] * 100, "%.2g") << " % |\n"
+    << "| harmonics 2f, 3f, 4f (of the amplitude) | " << Percent(d.harmonic_rel[0]) << ", "
+    << Percent(d.harmonic_rel[1]) << ", " << Percent(d.harmonic_rel[2]) << " |\n"
     << "| sphere diameter d | " << Num(r.diameter_m * kMm) << " mm |\n"
     << "| A_r (measured) | " << Num(r.ar, "%.3f") << " |\n\n";
 }
@@ -161,7 +173,8 @@ void WarningsAndGaps(const ReportInputs& in, std::ostringstream& o) {
     const auto& gaps = a.run.gaps[s];
     if (gaps.empty()) continue;
     any = true;
-    o << "### " << kSide[s] << " tip: " << gaps.size() << " gaps\n\n"
+    o << "### " << kSide[s] << " tip: " << gaps.size() << (gaps.size() == 1 ? " gap" : " gaps")
+      << "\n\n"
       << "| first frame | frames | time (s) | duration (ms) |\n|---|---|---|---|\n";
     for (size_t k = 0; k < gaps.size() && k < kMaxGapRows; ++k) {
       o << Format("| %zu | %zu | %.4f | %.3g |\n", gaps[k].first, gaps[k].count,
@@ -171,6 +184,17 @@ void WarningsAndGaps(const ReportInputs& in, std::ostringstream& o) {
     o << "\n";
   }
   if (!any) o << "None: every frame has both tips.\n\n";
+  if (a.outliers.empty()) return;
+  o << "### Tracking outliers (rejected, part of the gaps above): " << a.outliers.size()
+    << "\n\n| frame | tip | time (s) | distance from the local median (µm) |\n|---|---|---|---|\n";
+  for (size_t k = 0; k < a.outliers.size() && k < kMaxGapRows; ++k) {
+    const Outlier& x = a.outliers[k];
+    o << Format("| %zu | %s | %.4f | %.4g |\n", x.frame, Side(x.sphere).c_str(),
+                a.run.Time(x.frame), x.deviation_m * kUm);
+  }
+  if (a.outliers.size() > kMaxGapRows)
+    o << "\n… and " << a.outliers.size() - kMaxGapRows << " more.\n";
+  o << "\n";
 }
 
 void Comparing(const Analysis& t, const Comparison& c, std::ostringstream& o) {

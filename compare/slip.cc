@@ -145,7 +145,9 @@ SlipResult AnalyzeSlip(const SampledRun& run, const PlateDrive& plate, const Con
   std::vector<double> phase(n, NAN);
   for (size_t i = 0; i < n; ++i) {
     phase[i] = plate.PhaseFraction(run.Time(i));
-    if (!contacts.sphere[rs].resting[i]) continue;
+    const SphereContacts& c = contacts.sphere[rs];
+    const double near = std::max(c.threshold_m, kSlipHopRel * run.diameter_m);
+    if (!(c.gap[i] - c.level_m <= near)) continue;
     const double rz = run.z[rs][i] - radius - zc[i];
     out.U[i] = out.sign * (u[i] - w[i] * rz);
   }

@@ -9,8 +9,11 @@
 // so ends use one-sided windows. h is the smallest in [2, 10] whose derivative noise, from the
 // measured position noise, is below 0.5 % of g/f; noise-free simulations get h = 2.
 //
-// U is signed positive toward the bouncing end (as the drift), defined where the resting
-// sphere rests (NaN elsewhere), and phase-averaged over the plate period with standard errors.
+// U is signed positive toward the bouncing end (as the drift), defined while the resting sphere
+// is within max(thr, 0.01 d) of the plate (NaN elsewhere): the micro-bounces of the inelastic
+// collapse after each impact (micrometres, which a simulation resolves and a camera does not)
+// do not interrupt it, so simulations and tracks report the slip over the same frames. It is
+// phase-averaged over the plate period with standard errors.
 // The positive slip after the bouncing end's impact and the negative slip before the next one
 // are reported separately: the mean slip over the first and the second half of the interval
 // between consecutive impacts of the bouncing end.
@@ -25,6 +28,7 @@ namespace dimer::compare {
 
 inline constexpr int kSlipMinHalfWindow = 2, kSlipMaxHalfWindow = 10;
 inline constexpr double kSlipNoiseTarget = 0.005;  // velocity noise, fraction of g/f
+inline constexpr double kSlipHopRel = 0.01;        // hops below this fraction of d still count
 
 struct SlipResult {
   int resting_sphere = -1;   // 0 left, 1 right; -1 when no sphere rests

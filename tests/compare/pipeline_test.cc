@@ -1,0 +1,165 @@
+// End to end with exact ground truth: simulate -> render (our renderer, backlit and mirror-lit
+// steel, sensor noise sigma = 2 grey levels, motion blur) -> track -> compare, against the
+// simulation itself. The targets are those of docs/FORMATS.md's compare contract: the same mode
+// label, the drift speed within 2 %, the slip profile within 10 % of its peak, Gamma within
+// 0.5 %, the plate phase within 0.01 rad, impact times within 0.1 frame, g_fit/g within 1 %.
+// DIMERLAB_TEST_SCALE (sanitizer runs) shortens the films.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include "../common/test_tmpdir.h"
+#include "compare/comparison.h"
+#include "sim/sim_file.h"
+#include "sim/simulator.h"
+#include "sim/state.h"
+#include "tracking/render.h"
+#include "tracking/track.h"
+
+namespace dimer::compare {
+namespace {
+
+double Scale() {
+  const char* s = std::getenv("DIMERLAB_TEST_SCALE");
+  return s ? std::atof(s) : 1.0;
+}
+
+struct Film {
+  const char* name;
+  sim::InitKind init;
+  tracking::Lighting lighting;
+  double m_per_px;
+  int width;
+  int supersample;
+  // Impact times, 95th percentile of |error|, frames. The target is 0.1 frame; mirror-lit
+  // steel is tracked with ~5x the scatter of a silhouette here (gap noise ~10 um vs ~2 um), and
+  // the timing error scales with it: measured 0.13 frame, a missed target that docs/BENCHMARKS.md
+  // reports, bounded here so that it cannot get worse unnoticed.
+  double impact_p95_frames;
+};
+
+struct Result {
+  Analysis sim, track;
+  sim::SimResult raw;
+};
+
+Result SimulateRenderTrack(const Film& f, const testing::TempDir& dir) {
+  sim::SimOptions o;
+  o.ar = 3.9;
+  o.init = f.init;
+  o.cycles = std::max(20.0, std::round(110 * Scale()));
+  o.fps = 2000;
+  Result r;
+  r.raw = sim::RunSimulation(o);
+  sim::WriteSimFile(dir / "sim.h5", false, o, r.raw);
+  tracking::RenderArgs ra;
+  ra.input = dir / "sim.h5";
+  ra.output = dir / "frames";
+  ra.m_per_px = f.m_per_px;
+  ra.quiet = true;
+  ra.image.width = f.width;
+  ra.image.height = 128;
+  ra.image.lighting = f.lighting;
+  ra.image.noise = 2.0;
+  ra.image.supersample = f.supersample;
+  tracking::RunRender(ra);
+  tracking::TrackArgs ta;
+  ta.input = dir / "frames";
+  ta.output = dir / "track.h5";
+  ta.m_per_px = f.m_per_px;  // the calibration a lab makes with a ruler (see Calibration below)
+  ta.quiet = true;
+  tracking::RunTrack(ta);
+  r.sim = Analyze(LoadSampledRun(dir / "sim.h5"), {});
+  r.track = Analyze(LoadSampledRun(dir / "track.h5"), {});
+  return r;
+}
+
+class Pipeline : public ::testing::TestWithParam<Film> {};
+
+TEST_P(Pipeline, TrackedFilmGivesTheSimulationsPhysics) {
+  const Film& f = GetParam();
+  testing::TempDir dir;
+  const Result r = SimulateRenderTrack(f, dir);
+  const Analysis& s = r.sim;
+  const Analysis& t = r.track;
+  // Mode.
+  ASSERT_EQ(t.periods.settled.summary.label, r.raw.mode.label);
+  EXPECT_EQ(t.periods.settled.summary.bouncing_sphere, r.raw.mode.bouncing_sphere);
+  // Drive: Gamma and the plate phase at the track's t = 0, which is the sim's t_start.
+  EXPECT_NEAR(t.plate.gamma, 0.9, 0.005 * 0.9);
+  const double expected_phase = std::fmod(2 * M_PI * 25.0 * r.raw.t_start, 2 * M_PI);
+  EXPECT_NEAR(std::remainder(t.plate.phase_rad - expected_phase, 2 * M_PI), 0.0, 0.01);
+  // Impact times of the bouncing end(s) against the simulator's events, in frames.
+  std::vector<double> err;
+  for (int sp = 0; sp < 2; ++sp) {
+    if (t.periods.settled.summary.label == "drift" && sp != r.raw.mode.bouncing_sphere) continue;
+    for (const Impact& imp : t.contacts.sphere[sp].impacts) {
+      double best = INFINITY;
+      for (size_t k = 0; k < s.run.sim_impact_t.size(); ++k) {
+        const int who = s.run.sim_impact_sphere[k];
+        if (who != sp && who != 2) continue;
+        const double dt = imp.t + r.raw.t_start - s.run.sim_impact_t[k];
+        if (std::abs(dt) < std::abs(best)) best = dt;
+      }
+      err.push_back(std::abs(best) * 2000.0);
+    }
+  }
+  ASSERT_GT(err.size(), 10u);
+  std::sort(err.begin(), err.end());
+  std::printf("%s: %zu impacts, timing error median %.4f, 95%% %.4f, max %.4f frames\n", f.name,
+              err.size(), err[err.size() / 2], err[err.size() * 95 / 100], err.back());
+  EXPECT_LE(err[err.size() * 95 / 100], f.impact_p95_frames);
+  if (t.periods.settled.summary.label == "drift") {
+    EXPECT_NEAR(t.drift.speed, r.raw.mode.drift_speed, 0.02 * std::abs(r.raw.mode.drift_speed));
+    // Slip: the tracked profile against the exact slip U = u - omega r_z of the simulated state
+    // on the same frames (track frame i is sim sample i), binned the same way.
+    const int rs = t.slip.resting_sphere;
+    ASSERT_EQ(rs, 1 - r.raw.mode.bouncing_sphere);
+    std::vector<double> exact(t.run.n, NAN), phase(t.run.n);
+    for (size_t i = 0; i < t.run.n && i < r.raw.lab.size(); ++i) {
+      phase[i] = t.plate.PhaseFraction(t.run.Time(i));
+      if (std::isfinite(t.slip.U[i]))
+        exact[i] = t.slip.sign * sim::SlipU(sim::ContactArm(r.raw.model, r.raw.lab[i].th, rs), r.raw.lab[i]);
+    }
+    std::vector<double> centres, mean, sem;
+    std::vector<int> count;
+    PhaseAverage(phase, exact, static_cast<int>(t.slip.phase.size()), &centres, &mean, &sem, &count);
+    double peak = 0;
+    for (double v : mean)
+      if (std::isfinite(v)) peak = std::max(peak, std::abs(v));
+    ASSERT_GT(peak, 0);
+    int compared = 0;
+    for (size_t b = 0; b < mean.size(); ++b) {
+      if (count[b] < 3) continue;
+      EXPECT_NEAR(t.slip.profile[b], mean[b], 0.10 * peak) << "phase bin " << b;
+      ++compared;
+    }
+    EXPECT_GE(compared, static_cast<int>(mean.size()) / 2);
+  } else {
+    // Free flight: the calibration check.
+    ASSERT_TRUE(std::isfinite(t.free_fall.g_fit)) << t.free_fall.note;
+    EXPECT_NEAR(t.free_fall.g_fit / kGravity, 1.0, 0.01);
+  }
+  // The tracked and simulated tips agree once aligned (residual well under a pixel).
+  const Comparison c = CompareWithSimulation(t, s);
+  EXPECT_TRUE(c.modes_agree);
+  EXPECT_FALSE(c.mirrored);
+  // The time shift comes from the fitted plate phase: good to its 0.01 rad / (2 pi f).
+  EXPECT_NEAR(c.time_offset_s, r.raw.t_start, 0.01 / (2 * M_PI * 25.0));
+  for (int sp = 0; sp < 2; ++sp) {
+    EXPECT_LT(c.rms_x[sp], 0.25 * f.m_per_px);
+    EXPECT_LT(c.rms_z[sp], 0.25 * f.m_per_px);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Films, Pipeline,
+    ::testing::Values(Film{"drift_backlit", sim::InitKind::kDrift, tracking::Lighting::kBacklit, 4e-4, 400, 4, 0.1},
+                      Film{"drift_reflect", sim::InitKind::kDrift, tracking::Lighting::kReflect, 3e-4, 460, 2, 0.15},
+                      Film{"jump_backlit", sim::InitKind::kJump, tracking::Lighting::kBacklit, 4e-4, 200, 4, 0.1}),
+    [](const auto& p) { return std::string(p.param.name); });
+
+}  // namespace
+}  // namespace dimer::compare
