@@ -38,18 +38,15 @@ build() { build_dir build -DCMAKE_BUILD_TYPE=Release; }
 
 demo() {
   setup; build
-  local out=demo_out
+  local out=demo_out D=./build/app/dimerlab
   mkdir -p "$out"
-  echo "== simulate the drift mode of samples/drift_ar3.9.scene (10 periods at 25 Hz) =="
-  ./build/app/dimerlab sim --scene samples/drift_ar3.9.scene -o "$out/sim.h5" --force
-  if ./build/app/dimerlab --help | grep -q ' render'; then
-    echo "== render synthetic 2000 frames/s footage of it =="
-    ./build/app/dimerlab render "$out/sim.h5" -o "$out/frames" --force
-    echo "== track the frames =="
-    ./build/app/dimerlab track "$out/frames" -o "$out/track.h5" --force
-  fi
-  echo "== outputs in $out/ =="
-  ls -l "$out"
+  echo "== 1. simulate the drift mode of samples/drift_ar3.9.scene (30 periods at 25 Hz, 2000 samples/s) =="
+  $D sim --scene samples/drift_ar3.9.scene --cycles 30 -o "$out/sim.h5" --force -q
+  echo "== 2. render it as 2000 frames/s footage of polished steel (our renderer, sensor noise 2 grey levels) =="
+  $D render "$out/sim.h5" -o "$out/frames" --force --quiet
+  echo "== 3. analyze the footage: track, fit the drive, modes, drift, slip, simulate it beside the track =="
+  $D analyze "$out/frames" -o "$out/report" --force -q
+  echo "== the report: $out/report/summary.md (figures in $out/report/figures/, overlay.avi, compare.h5) =="
 }
 
 run_tests() {

@@ -14,9 +14,13 @@
 namespace dimer::compare {
 namespace {
 
-constexpr double kMismatchPenalty = 1e4;  // chi2 added when the trial settles in another mode
+constexpr double kMissingPenalty = 25;     // chi2 of an observable the trial lacks (a 5 sigma miss)
+constexpr double kFailedTrial = 1e6;      // chi2 of a trial that could not be simulated
 constexpr double kXtolRel = 1e-3;         // optimiser stop: relative parameter change
 constexpr int kEdgeBisections = 6;        // range ends to 1/64 of a slice step
+constexpr double kLocalXtolRel = 1e-2;    // multi-start: each local search, coarse
+constexpr int kLocalEvaluations = 60;     // multi-start: budget of each local search
+constexpr unsigned kStartsPerRound = 4;   // multi-start: Sobol points per round
 
 struct ParamSpec {
   const char* name;
@@ -45,8 +49,10 @@ class Objective {
     view_.phase_bins = track.options.phase_bins;
     view_.window_periods = track.options.window_periods;
     view_.travel_mm = track.options.travel_mm;
-    for (const Observable& o : observed_)
+    for (const Observable& o : observed_) {
       if (std::isfinite(o.value)) ++usable_;
+      if (o.name == "bouncing_impact_phase") observed_phase_ = o.value;
+    }
   }
 
   sim::SimOptions Options(const std::vector<double>& values) const {
@@ -66,17 +72,17 @@ class Objective {
     try {
       a = SimulateAndAnalyze(Options(values), view_, "fit trial");
     } catch (const InputError&) {
-      return kMismatchPenalty * 10;  // the trial could not be simulated (event storm)
+      return kFailedTrial;  // the trial could not be simulated (event storm)
     }
-    const std::vector<Observable> sim = FitObservables(a);
-    double chi2 = a.periods.settled.summary.label == track_.periods.settled.summary.label ? 0 : kMismatchPenalty;
+    const std::vector<Observable> sim = FitObservables(a, track_.periods.settled.summary.label, observed_phase_);
+    double chi2 = 0;
     if (simulated) simulated->assign(observed_.size(), kNaN);
     for (size_t k = 0; k < observed_.size(); ++k) {
       const Observable& o = observed_[k];
       if (!std::isfinite(o.value)) continue;
       const Observable* s = k < sim.size() && sim[k].name == o.name ? &sim[k] : nullptr;
       if (!s || !std::isfinite(s->value)) {
-        chi2 += kMismatchPenalty / usable_;
+        chi2 += kMissingPenalty;
         continue;
       }
       if (simulated) (*simulated)[k] = s->value;
@@ -99,6 +105,7 @@ class Objective {
   std::vector<Observable> observed_;
   int usable_ = 0;
   int evaluations_ = 0;
+  double observed_phase_ = kNaN;  // the track's bouncing-end impact phase (drift)
 };
 
 struct NloptData {
@@ -113,13 +120,14 @@ double NloptObjective(unsigned n, const double* x, double*, void* data) {
   return d->objective->Chi2(d->full);
 }
 
-// Bounded Nelder-Mead (NLopt) over the free parameters, from `start`; returns the optimum.
-std::vector<double> Minimise(Objective* obj, std::vector<double> start, int max_eval) {
+// NLopt over the free parameters from `start` with algorithm `algo` (a global DIRECT-L search
+// over the whole box, or a bounded Nelder-Mead polish); returns the best point found.
+std::vector<double> Minimise(Objective* obj, std::vector<double> start, int max_eval, nlopt_algorithm algo,
+                             const std::vector<size_t>& free_index) {
   const auto& specs = Specs();
-  NloptData data{obj, start, {}};
-  for (size_t k = 0; k < specs.size(); ++k) data.free_index.push_back(k);
+  NloptData data{obj, start, free_index};
   const unsigned n = static_cast<unsigned>(data.free_index.size());
-  nlopt_opt opt = nlopt_create(NLOPT_LN_NELDERMEAD, n);
+  nlopt_opt opt = nlopt_create(algo, n);
   std::vector<double> lo, hi, x, step;
   for (size_t k : data.free_index) {
     lo.push_back(specs[k].lo), hi.push_back(specs[k].hi);
@@ -132,9 +140,19 @@ std::vector<double> Minimise(Objective* obj, std::vector<double> start, int max_
   nlopt_set_xtol_rel(opt, kXtolRel);
   nlopt_set_maxeval(opt, max_eval);
   nlopt_set_initial_step(opt, step.data());
+  nlopt_opt local = nullptr;
+  if (algo == NLOPT_G_MLSL_LDS) {  // multi-start: Nelder-Mead from a Sobol sequence of starts
+    local = nlopt_create(NLOPT_LN_NELDERMEAD, n);
+    nlopt_set_xtol_rel(local, kLocalXtolRel);
+    nlopt_set_maxeval(local, kLocalEvaluations);
+    nlopt_set_initial_step(local, step.data());
+    nlopt_set_local_optimizer(opt, local);
+    nlopt_set_population(opt, kStartsPerRound);
+  }
   double best = 0;
   const nlopt_result rc = nlopt_optimize(opt, x.data(), &best);
   nlopt_destroy(opt);
+  if (local) nlopt_destroy(local);
   if (rc < 0 && rc != NLOPT_ROUNDOFF_LIMITED) {
     if (InterruptRequested()) throw Interrupted();
     throw InputError("fit: the optimiser failed (NLopt code " + std::to_string(rc) + ")");
@@ -188,6 +206,25 @@ FitParameter Slice(Objective* obj, const std::vector<double>& best, double chi2_
 
 }  // namespace
 
+namespace {
+
+sim::SimOptions FitScene(const Analysis& track, const sim::SimOptions& scene, const FitOptions& options) {
+  sim::SimOptions base = SceneFromTrack(track, scene, options.transient_periods, nullptr);
+  base.cycles = options.transient_periods +
+                std::min<double>(options.measured_periods, std::max(2.0, base.cycles - options.transient_periods));
+  return base;
+}
+
+}  // namespace
+
+double FitChi2(const Analysis& track, const sim::SimOptions& coefficients, const FitOptions& options) {
+  const sim::SimOptions base = FitScene(track, coefficients, options);
+  Objective obj(track, base, options);
+  std::vector<double> x;
+  for (const ParamSpec& s : Specs()) x.push_back(base.*(s.field));
+  return obj.Chi2(x);
+}
+
 FitResult FitCoefficients(const Analysis& track, const sim::SimOptions& scene,
                           const FitOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -195,15 +232,31 @@ FitResult FitCoefficients(const Analysis& track, const sim::SimOptions& scene,
   if (mode != "drift" && mode != "jump" && mode != "flutter") {
     throw InputError(track.run.path + ": --fit needs a drift, jump or flutter mode to fit; the track settled in " + mode);
   }
-  sim::SimOptions base = SceneFromTrack(track, scene, options.transient_periods, nullptr);
-  base.cycles = options.transient_periods +
-                std::min<double>(options.measured_periods, std::max(2.0, base.cycles - options.transient_periods));
+  const sim::SimOptions base = FitScene(track, scene, options);
   Objective obj(track, base, options);
   if (obj.usable() == 0) throw InputError(track.run.path + ": --fit: the track has no usable observable");
   std::vector<double> x;
   for (const ParamSpec& s : Specs()) x.push_back(base.*(s.field));
-  x = Minimise(&obj, x, options.max_evaluations);
-  x = Minimise(&obj, x, options.max_evaluations / 2);  // restart: Nelder-Mead can stall
+  // Global first (the objective has local minima where the impact type changes), then local
+  // polish from the best of the global search and of the start, then a restart (Nelder-Mead
+  // can stall on a collapsed simplex).
+  // Stage 1 searches all five over their box (DIRECT-L: deterministic, global; the objective
+  // has local minima where impact types change); stage 2 polishes with Nelder-Mead from the
+  // best of stage 1 and of the start. eps starts at the measured apparent restitution of the
+  // bouncing end (v_after / -v_before).
+  for (const Observable& o : obj.observed()) {
+    if (o.name.find("restitution_ratio") != std::string::npos && std::isfinite(o.value)) {
+      x[0] = std::clamp(o.value, Specs()[0].lo, Specs()[0].hi);
+      break;
+    }
+  }
+  const std::vector<size_t> all = {0, 1, 2, 3, 4};
+  const std::vector<double> start = x;
+  const double chi2_start = obj.Chi2(start);
+  x = Minimise(&obj, x, options.global_evaluations, NLOPT_G_MLSL_LDS, all);
+  if (obj.Chi2(x) > chi2_start) x = start;
+  x = Minimise(&obj, x, options.max_evaluations, NLOPT_LN_NELDERMEAD, all);
+  x = Minimise(&obj, x, options.max_evaluations / 2, NLOPT_LN_NELDERMEAD, all);
   FitResult r;
   r.chi2 = obj.Chi2(x, &r.simulated);
   r.dof = std::max(1, obj.usable() - static_cast<int>(Specs().size()));

@@ -7,8 +7,10 @@
 //   slip after / before the bouncing end's impact. (Jump/flutter: each sphere's take-off speed
 //   and impact phase.)
 //   chi2 = sum ((sim - track) / sigma)^2, sigma^2 = sigma_track^2 + sigma_sim^2 + floor^2.
-// The optimiser is NLopt's bounded Nelder-Mead (derivative-free: the objective is piecewise
-// smooth, with jumps where the impact type changes). Uncertainties and identifiability come
+// The optimiser is NLopt's: a global DIRECT-L search over the box (eps starting at the
+// measured apparent restitution), then a bounded Nelder-Mead polish; both derivative-free and
+// deterministic (the objective is piecewise smooth, with jumps where the impact type changes,
+// and has local minima). Uncertainties and identifiability come
 // from a slice of chi2 through the optimum along each parameter (the others held at the
 // optimum): the range where chi2 <= chi2_min + max(1, chi2_min / dof). A range that reaches
 // both bounds means the scene does not constrain the parameter: it is reported as
@@ -45,11 +47,16 @@ struct FitResult {
 };
 
 struct FitOptions {
-  int max_evaluations = 150;     // optimiser budget (simulations)
+  int global_evaluations = 400;  // global search budget, simulations (NLopt DIRECT-L)
+  int max_evaluations = 150;     // local optimiser budget (simulations), twice: start + restart
   int slice_points = 15;         // points per parameter slice
   int transient_periods = 30;    // simulated before the measured part
   int measured_periods = 60;     // simulated and analysed (<= the track's)
 };
+
+// chi2 of one trial: `coefficients` supplies eps, mu_hat, mu_hat_s, mu, mu_s; the rest is the
+// scene the track shows (as FitCoefficients builds it). For diagnostics and tests.
+double FitChi2(const Analysis& track, const sim::SimOptions& coefficients, const FitOptions& options);
 
 // `scene`: the simulation options that describe the experiment (geometry, drive, the
 // starting coefficients); the fitted coefficients are varied from there.

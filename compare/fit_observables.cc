@@ -11,6 +11,7 @@ constexpr double kDriftFloor = 5e-4;     // <u> f / g
 constexpr double kSpeedFloor = 2e-3;     // velocities, units of g/f
 constexpr double kRatioFloor = 5e-3;     // v_after / -v_before
 constexpr double kPhaseFloor = 2e-3;     // periods
+constexpr double kModeStatFloor = 0.05;  // impacts per period, rest fractions
 constexpr int kMinBinCount = 3;
 
 struct Stats {
@@ -60,21 +61,45 @@ void SphereImpacts(const Analysis& a, int s, const std::string& tag, std::vector
 
 }  // namespace
 
-std::vector<Observable> FitObservables(const Analysis& a) {
+std::vector<Observable> FitObservables(const Analysis& a, const std::string& mode, double impact_phase) {
   std::vector<Observable> out;
   const ModeSummary& ms = a.periods.settled.summary;
+  const std::string label = mode.empty() ? ms.label : mode;
   const double vscale = kGravity / a.plate.freq_hz;
-  if (ms.label == "drift") {
-    out.push_back({"drift_scaled", a.drift.scaled, a.drift.scaled_err, kDriftFloor});
-    SphereImpacts(a, ms.bouncing_sphere, "bouncing", &out);
+  if (label == "drift") {
+    const int b = ms.bouncing_sphere >= 0 ? ms.bouncing_sphere : (ms.rest_fraction[0] < ms.rest_fraction[1] ? 0 : 1);
+    out.push_back({"bouncing_impacts_per_period", ms.impacts_per_period[b], 0, kModeStatFloor});
+    out.push_back({"bouncing_rest_fraction", ms.rest_fraction[b], 0, kModeStatFloor});
+    out.push_back({"resting_rest_fraction", ms.rest_fraction[1 - b], 0, kModeStatFloor});
+    // The drift toward the bouncing end (ClassifyPeriods signs it only in drift).
+    double drift = a.drift.scaled, drift_err = a.drift.scaled_err;
+    if (ms.bouncing_sphere < 0 && a.run.n > 0) {
+      size_t i = a.run.n - 1;
+      while (i > 0 && !a.run.Valid(i)) --i;
+      drift *= a.run.x[b][i] >= a.run.x[1 - b][i] ? 1 : -1;
+    }
+    out.push_back({"drift_scaled", drift, drift_err, kDriftFloor});
+    SphereImpacts(a, b, "bouncing", &out);
     out.push_back({"slip_after", a.slip.after / vscale, a.slip.after_err / vscale, kSpeedFloor});
     out.push_back({"slip_before", a.slip.before / vscale, a.slip.before_err / vscale, kSpeedFloor});
-    for (size_t b = 0; b < a.slip.profile.size(); ++b) {
-      const bool ok = a.slip.profile_count[b] >= kMinBinCount;
-      out.push_back({"slip_bin_" + std::to_string(b), ok ? a.slip.profile[b] / vscale : kNaN,
-                     ok ? a.slip.profile_err[b] / vscale : kNaN, kSpeedFloor});
+    // Bins next to the bouncing end's impact are left out: U jumps inside them, so their mean
+    // depends on where the frames fall relative to the impact, not on the physics.
+    if (!std::isfinite(impact_phase)) impact_phase = out[6].value;  // bouncing_impact_phase
+    const int nb = static_cast<int>(a.slip.profile.size());
+    for (int k = 0; k < a.options.phase_bins; ++k) {
+      const double centre = (k + 0.5) / a.options.phase_bins;
+      const bool at_impact = std::isfinite(impact_phase) &&
+                             std::abs(std::remainder(centre - impact_phase, 1.0)) < 1.5 / a.options.phase_bins;
+      const bool ok = k < nb && a.slip.profile_count[k] >= kMinBinCount && !at_impact;
+      out.push_back({"slip_bin_" + std::to_string(k), ok ? a.slip.profile[k] / vscale : kNaN,
+                     ok ? a.slip.profile_err[k] / vscale : kNaN, kSpeedFloor});
     }
-  } else if (ms.label == "jump" || ms.label == "flutter") {
+  } else if (label == "jump" || label == "flutter") {
+    for (int s = 0; s < 2; ++s) {
+      const std::string tag = s ? "right" : "left";
+      out.push_back({tag + "_impacts_per_period", ms.impacts_per_period[s], 0, kModeStatFloor});
+      out.push_back({tag + "_rest_fraction", ms.rest_fraction[s], 0, kModeStatFloor});
+    }
     SphereImpacts(a, 0, "left", &out);
     SphereImpacts(a, 1, "right", &out);
   }

@@ -15,6 +15,14 @@ struct Observable {
   double floor = 0;  // systematic floor added in quadrature (analysis resolution)
 };
 
-std::vector<Observable> FitObservables(const Analysis& a);
+// The observables of `a` read as the mode `mode` (empty: a's own settled mode), so that a
+// trial simulation that settles elsewhere still yields the same list, only far off: first the
+// mode's own statistics (impacts per period and rest fractions of the bouncing and resting
+// ends; of each sphere for jump and flutter), which grade how far a trial is from the mode.
+// In drift the bouncing end is a's, or, if a is not in drift, the sphere that rests least.
+// `impact_phase` (NaN: a's own) is where the slip bins next to the bouncing end's impact are
+// left out; a trial simulation is given the track's, so both leave out the same bins.
+std::vector<Observable> FitObservables(const Analysis& a, const std::string& mode = "",
+                                       double impact_phase = kNaN);
 
 }  // namespace dimer::compare

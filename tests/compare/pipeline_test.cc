@@ -12,6 +12,7 @@
 
 #include "../common/test_tmpdir.h"
 #include "compare/comparison.h"
+#include "compare/fit.h"
 #include "sim/sim_file.h"
 #include "sim/simulator.h"
 #include "sim/state.h"
@@ -38,6 +39,7 @@ struct Film {
   // the timing error scales with it: measured 0.13 frame, a missed target that docs/BENCHMARKS.md
   // reports, bounded here so that it cannot get worse unnoticed.
   double impact_p95_frames;
+  bool fit = false;  // also fit the coefficients from the tracked film
 };
 
 struct Result {
@@ -137,6 +139,25 @@ TEST_P(Pipeline, TrackedFilmGivesTheSimulationsPhysics) {
       ++compared;
     }
     EXPECT_GE(compared, static_cast<int>(mean.size()) / 2);
+    if (f.fit) {
+      // The coefficients from the tracked film, starting far from the truth (the paper's
+      // eps 0.65, mu_hat 0.1 simulated): eps within 3 %, mu_hat within 10 %; mu_hat_s gets no
+      // value (no impact of this scene sticks; see fit_test.cc).
+      sim::SimOptions start;
+      start.eps = 0.8, start.mu_hat = 0.2, start.mu_hat_s = 0.4, start.mu = 0.3, start.mu_s = 0.5;
+      const FitResult fit = FitCoefficients(t, start, {});
+      std::printf("  chi2 %.3f dof %d evaluations %d, %.1f s\n", fit.chi2, fit.dof, fit.evaluations, fit.seconds);
+      for (const FitParameter& p : fit.params)
+        std::printf("  fit %-8s %-14s %.4f +- %.4f [%.4f, %.4f]\n", p.name.c_str(), p.status.c_str(), p.value,
+                    p.err, p.range_lo, p.range_hi);
+      ASSERT_EQ(fit.params[0].status, "constrained");
+      EXPECT_NEAR(fit.params[0].value, 0.65, 0.03 * 0.65);
+      ASSERT_EQ(fit.params[1].status, "constrained");
+      EXPECT_NEAR(fit.params[1].value, 0.1, 0.10 * 0.1);
+      EXPECT_NE(fit.params[2].status, "constrained");
+      EXPECT_LE(fit.params[2].range_lo, 0.2);
+      EXPECT_GE(fit.params[2].range_hi, 0.2);
+    }
   } else {
     // Free flight: the calibration check.
     ASSERT_TRUE(std::isfinite(t.free_fall.g_fit)) << t.free_fall.note;
@@ -156,7 +177,7 @@ TEST_P(Pipeline, TrackedFilmGivesTheSimulationsPhysics) {
 
 INSTANTIATE_TEST_SUITE_P(
     Films, Pipeline,
-    ::testing::Values(Film{"drift_backlit", sim::InitKind::kDrift, tracking::Lighting::kBacklit, 4e-4, 400, 4, 0.1},
+    ::testing::Values(Film{"drift_backlit", sim::InitKind::kDrift, tracking::Lighting::kBacklit, 4e-4, 400, 4, 0.1, true},
                       Film{"drift_reflect", sim::InitKind::kDrift, tracking::Lighting::kReflect, 3e-4, 460, 2, 0.15},
                       Film{"jump_backlit", sim::InitKind::kJump, tracking::Lighting::kBacklit, 4e-4, 200, 4, 0.1}),
     [](const auto& p) { return std::string(p.param.name); });
