@@ -31,7 +31,7 @@ InitialCondition OnPeriodOneOrbit(const Model& m, const SimOptions& o) {
     std::ostringstream s;
     s << "--init jump: no period-1 orbit at --gamma " << o.gamma << " with --eps " << o.eps
       << "; it needs Gamma >= pi(1-eps)/(1+eps) = " << M_PI * (1 - o.eps) / (1 + o.eps);
-    throw InputError(s.str());
+    throw UsageError(s.str());
   }
   InitialCondition ic;
   ic.t0 = TimeAtPhase(m, phase);
@@ -52,7 +52,7 @@ InitialCondition MakeInitialCondition(const Model& m, const SimOptions& o) {
     ic.q = PlateFromLab(m, 0, lab);
     for (int sp = 0; sp < 2; ++sp) {
       if (Gap(m, ic.q, sp) < -1e-9 * m.R) {
-        throw InputError("--init-state: sphere " + std::string(sp ? "right" : "left") +
+        throw UsageError("--init-state: sphere " + std::string(sp ? "right" : "left") +
                          " starts below the plate surface");
       }
     }

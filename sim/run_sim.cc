@@ -21,13 +21,13 @@ std::array<double, 6> ParseInitState(const std::string& text) {
     char* end = nullptr;
     const double x = std::strtod(item.c_str(), &end);
     if (n >= 6 || end == item.c_str() || *end != '\0') {
-      throw InputError("--init-state: \"" + text +
+      throw UsageError("--init-state: \"" + text +
                        "\": expected six comma-separated numbers x,z,theta,u,v,omega");
     }
     v[n++] = x;
   }
   if (n != 6) {
-    throw InputError("--init-state: \"" + text +
+    throw UsageError("--init-state: \"" + text +
                      "\": expected six comma-separated numbers x,z,theta,u,v,omega");
   }
   return v;
@@ -35,13 +35,13 @@ std::array<double, 6> ParseInitState(const std::string& text) {
 
 int RunSim(const SimRunArgs& args) {
   // Check the output path before spending time on the run.
-  if (args.output.empty()) throw InputError("sim: -o/--output is required");
+  if (args.output.empty()) throw UsageError("sim: -o/--output is required");
   {
     std::vector<std::string> errors = args.options.Check();
     if (!errors.empty()) {
       std::string msg = "invalid simulation parameters: ";
       for (size_t i = 0; i < errors.size(); ++i) msg += (i ? "; " : "") + errors[i];
-      throw InputError(msg);
+      throw UsageError(msg);
     }
   }
   CheckCanWrite(args.output, args.force);

@@ -353,7 +353,7 @@ SimResult RunSimulation(const SimOptions& options, const RunControls& controls) 
   if (!errors.empty()) {
     std::string msg = "invalid simulation parameters: ";
     for (size_t i = 0; i < errors.size(); ++i) msg += (i ? "; " : "") + errors[i];
-    throw InputError(msg);
+    throw UsageError(msg);
   }
   Runner runner(options, controls);
   return runner.Run();

@@ -143,7 +143,7 @@ void RenderArgs::Check() const {
   need(blur_samples >= 1 && blur_samples <= 64, "--blur-samples must be 1..64");
   need(format == "png" || format == "tiff", "--format '" + format + "': expected png or tiff");
   need(threads >= 0 && threads <= 256, "--threads must be 0 (all cores) .. 256");
-  if (!bad.empty()) throw InputError(bad);
+  if (!bad.empty()) throw UsageError(bad);
   image.Check();
 }
 

@@ -99,8 +99,8 @@ void Stitch(const std::vector<FrameTrack>& done, std::vector<FrameTrack>* chunk)
 
 void SequenceOptions::Check() const {
   tracker.Check();
-  if (threads < 0 || threads > 256) throw InputError("--threads must be 0 (all cores) .. 256");
-  if (chunk_frames < 1) throw InputError("--chunk-frames must be >= 1");
+  if (threads < 0 || threads > 256) throw UsageError("--threads must be 0 (all cores) .. 256");
+  if (chunk_frames < 1) throw UsageError("--chunk-frames must be >= 1");
 }
 
 SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options,
@@ -184,7 +184,7 @@ void TrackArgs::Check() const {
   } catch (const InputError& e) {
     need(false, e.what());
   }
-  if (!bad.empty()) throw InputError(bad);
+  if (!bad.empty()) throw UsageError(bad);
   sequence.Check();
 }
 

@@ -217,6 +217,29 @@ TEST(Simulator, InvalidParametersAreReportedTogether) {
   EXPECT_THROW(RunSimulation(jump), InputError);
 }
 
+TEST(SimOptions, OnlyTheRootCauseIsReported) {
+  // The default lift depends on --freq and its bound on --ar: a bad --ar or --freq must not add
+  // a --lift error for a flag never given.
+  SimOptions bad_ar;
+  bad_ar.ar = 0.5;
+  ASSERT_EQ(bad_ar.Check().size(), 1u);
+  EXPECT_EQ(bad_ar.Check()[0].rfind("--ar", 0), 0u) << bad_ar.Check()[0];
+  SimOptions bad_freq;
+  bad_freq.freq_hz = 0;
+  ASSERT_EQ(bad_freq.Check().size(), 1u);
+  EXPECT_EQ(bad_freq.Check()[0].rfind("--freq", 0), 0u) << bad_freq.Check()[0];
+  // A valid but low --freq makes the derived lift too large: reported, saying it is the default.
+  SimOptions low_freq;
+  low_freq.freq_hz = 2;
+  ASSERT_EQ(low_freq.Check().size(), 1u);
+  EXPECT_NE(low_freq.Check()[0].find("default lift"), std::string::npos) << low_freq.Check()[0];
+  // An explicit lift is still checked against a valid --ar.
+  SimOptions high_lift;
+  high_lift.lift = 5;
+  ASSERT_EQ(high_lift.Check().size(), 1u);
+  EXPECT_EQ(high_lift.Check()[0].rfind("--lift", 0), 0u);
+}
+
 TEST(Simulator, SameInputsGiveBitIdenticalResults) {
   SimOptions o;
   o.cycles = 30;
