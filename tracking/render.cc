@@ -75,14 +75,22 @@ std::string RenderJson(const RenderArgs& a, const RenderPlan& p, double diameter
   add("blur_samples", std::to_string(a.blur_samples));
   add("bit_depth", std::to_string(a.image.bit_depth));
   add("format", "\"" + a.format + "\"");
-  add("seed", std::to_string(a.image.seed), true);
+  add("seed", std::to_string(a.image.seed));
+  add("units",
+      "{\"m_per_px\": \"m/px\", \"row0\": \"px\", \"col_offset\": \"px\", "
+      "\"diameter\": \"m\", \"radius_px\": \"px\", \"rod_diameter\": \"m\", "
+      "\"noise\": \"grey levels (8-bit scale)\", \"gradient\": \"1\", "
+      "\"exposure\": \"frame intervals\", \"width\": \"px\", \"height\": \"px\"}");
+  add("format_doc", "\"docs/FORMATS.md, render folder\"", true);
   return j + "}\n";
 }
 
 void WriteTruth(const std::string& path, const RenderArgs& a, const RenderPlan& p,
                 const Trajectory& traj, size_t n) {
   std::ofstream out(path);
-  out << "# dimerlab render truth: exact pixel centres (col, row) at each frame's sample time\n"
+  out << "# dimerlab render truth: exact pixel centres (col, row) at each frame's sample time; "
+         "units: t s, *_col *_row plate_row px (0-based pixel centres, rows growing downward); "
+         "docs/FORMATS.md\n"
       << "# m_per_px=" << Num(p.map.m_per_px) << " row0=" << Num(p.map.row0)
       << " col_offset=" << Num(p.map.col_offset) << " radius_px=" << Num(p.radius_px)
       << " lighting=" << ToString(a.image.lighting) << " noise=" << Num(a.image.noise)

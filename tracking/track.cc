@@ -264,16 +264,37 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                    {"chunk_frames", int64_t(args.sequence.chunk_frames)},
                    {"width", int64_t(r.width)}, {"height", int64_t(r.height)},
                    {"frames_tracked", int64_t(n)}, {"frames_skipped", int64_t(r.skipped.size())},
-                   {"complete", int64_t(r.complete)}});
+                   {"complete", int64_t(r.complete)}},
+                  {{"fps", "1/s"}, {"m_per_px", "m/px"}, {"row0", "px"}, {"diameter", "m"},
+                   {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
+                   {"frames_tracked", "1"}, {"frames_skipped", "1"}},
+                  {{"m_per_px_given", "0=calibrated from --diameter,1=given by --m-per-px"},
+                   {"complete", "0=interrupted (Ctrl-C): the frames tracked so far,1=complete"}});
   WriteTrajectory(w, traj);
-  w.WriteDoubles("/pixels/left", px[0], {n, 2}, "px");
-  w.WriteDoubles("/pixels/right", px[1], {n, 2}, "px");
+  w.WriteDoubles("/pixels/left", px[0], {n, 2}, "px", "col,row");
+  w.SetAttr("/pixels/left", "description",
+            "sub-pixel centre of the left sphere: 0-based column and row of pixel centres, rows "
+            "growing downward; NaN where not found");
+  w.WriteDoubles("/pixels/right", px[1], {n, 2}, "px", "col,row");
+  w.SetAttr("/pixels/right", "description",
+            "sub-pixel centre of the right sphere: 0-based column and row of pixel centres, rows "
+            "growing downward; NaN where not found");
   w.WriteDoubles("/pixels/plate_row", plate_row, {n}, "px");
+  w.SetAttr("/pixels/plate_row", "description", "row of the plate's top surface");
   w.WriteInt64("/frame_index", index, {n});
+  w.SetAttr("/frame_index", "units", "1");
+  w.SetAttr("/frame_index", "description",
+            "0-based index of the frame in the source's sorted frame list");
   w.WriteStrings("/frame_files", r.names);
+  w.SetAttr("/frame_files", "description", "file name of each tracked frame (FILE#PAGE in a stack)");
   w.WriteUint8("/found", found, {n, 2});
+  w.SetAttr("/found", "columns", "left,right");
+  w.SetAttr("/found", "codes", "0=not found (its tips and pixels are NaN),1=found");
+  w.SetAttr("/found", "description", "whether each sphere was found in the frame");
   w.WriteStrings("/skipped/files", skipped_names);
+  w.SetAttr("/skipped/files", "description", "frames that could not be used");
   w.WriteStrings("/skipped/reasons", skipped_reasons);
+  w.SetAttr("/skipped/reasons", "description", "why each skipped frame could not be used");
   w.Close();
 }
 
