@@ -25,7 +25,7 @@ using Dims = std::vector<hsize_t>;
 
 // Deflate level used by default: the knee of the size/speed table in docs/BENCHMARKS.md
 // ("HDF5 compression level", bench/bench_h5_compression.cc).
-constexpr int kDefaultDeflateLevel = 4;
+constexpr int kDefaultDeflateLevel = 1;
 
 struct H5WriteOptions {
   int deflate_level = kDefaultDeflateLevel;  // 0..9 (0: shuffle and checksum only)
