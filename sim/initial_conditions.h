@@ -3,7 +3,7 @@
 //  - drift (the paper's release): the left sphere on the plate, the right end lifted by
 //    lift * d, released at rest (lab) at plate phase release_phase (default 0.25: the plate is
 //    momentarily still at its top, so "at rest" is the same in both frames).
-//  - jump: a flat dimer leaving the plate on the bouncing-ball period-1 orbit (MODEL.md check
+//  - jump: a flat dimer leaving the plate on the bouncing-ball period-1 orbit (docs/MODEL.md check
 //    1): impact at the phase where the plate velocity is V_p = gT(1-eps)/(2(1+eps)) with the
 //    plate decelerating, take-off velocity gT/2 (lab). Needs Gamma >= pi(1-eps)/(1+eps).
 //  - flutter: the left tip leaving the plate at the jump orbit's phase with tip velocities

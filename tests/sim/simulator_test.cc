@@ -21,7 +21,7 @@ SimOptions EventsOnly(SimOptions o) {
   return o;
 }
 
-// MODEL.md check 1: a flat, non-rotating dimer hitting with both spheres at once is a bouncing
+// docs/MODEL.md check 1: a flat, non-rotating dimer hitting with both spheres at once is a bouncing
 // ball; on the period-1 orbit every impact is at the same plate phase and leaves at gT/2.
 TEST(Simulator, JumpModeFollowsTheBouncingBallPeriodOneOrbit) {
   SimOptions o = EventsOnly({});
@@ -39,7 +39,7 @@ TEST(Simulator, JumpModeFollowsTheBouncingBallPeriodOneOrbit) {
     const State lab = LabFromPlate(m, e.t, e.after);
     EXPECT_NEAR(lab.v, takeoff, 1e-9 * takeoff) << "impact at t = " << e.t;
     EXPECT_NEAR(lab.w, 0.0, 1e-9);
-    // Lab-frame identity of MODEL.md: w - V_p = eps g T / (1 + eps).
+    // Lab-frame identity of docs/MODEL.md: w - V_p = eps g T / (1 + eps).
     EXPECT_NEAR(lab.v - m.PlateV(e.t), m.eps * kGravity * m.period / (1 + m.eps), 1e-9 * takeoff);
   }
   EXPECT_EQ(r.mode.label, "jump");
@@ -47,7 +47,7 @@ TEST(Simulator, JumpModeFollowsTheBouncingBallPeriodOneOrbit) {
 
 double TotalEnergy(const Model& m, const State& q) { return Energy(m, q); }
 
-// MODEL.md check 3: with a still plate, eps = 1 and no friction, kinetic + potential energy is
+// docs/MODEL.md check 3: with a still plate, eps = 1 and no friction, kinetic + potential energy is
 // the same after any number of impacts; with dissipation it never increases.
 struct EnergyRun {
   double eps, mu_hat, mu;
@@ -111,7 +111,7 @@ INSTANTIATE_TEST_SUITE_P(Laws, SimulatorEnergy,
                                   std::to_string(int(p.param.mu * 100));
                          });
 
-// MODEL.md check 4: a flat dimer stays on a plate with Gamma < 1, and does not slide on a
+// docs/MODEL.md check 4: a flat dimer stays on a plate with Gamma < 1, and does not slide on a
 // still plate tilted below the friction angle.
 TEST(Simulator, FlatDimerRestsBelowGammaOne) {
   for (double gamma : {0.0, 0.5, 0.9, 0.999}) {
@@ -284,7 +284,7 @@ namespace {
 
 // Dynamic similarity: with lengths scaled as g T^2 (diameter ~ 1/f^2, same lift in diameters)
 // the model is the same in units of g and T, so <u> f / g must not depend on f. (At a fixed
-// diameter it does, by a few per cent: a finite-size effect, see the note on issue 2.)
+// diameter it does, by a few per cent: a finite-size effect, see docs/MODEL.md, "Finite size".)
 TEST(Simulator, DriftIsDynamicallySimilarWhenTheDiameterScalesAsOneOverFSquared) {
   double scaled[3];
   const double freqs[3] = {25, 50, 75};
