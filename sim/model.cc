@@ -86,6 +86,11 @@ std::vector<std::string> SimOptions::Check() const {
   return e;
 }
 
+long SimOptions::SampleCount() const {
+  if (!(fps > 0)) return 0;
+  return static_cast<long>(std::floor(Duration() * fps + kSampleCountSlack)) + 1;
+}
+
 double SimOptions::EffectiveLift() const {
   if (!std::isnan(lift)) return lift;
   const double r = kDefaultLiftFreqHz / freq_hz;

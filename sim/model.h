@@ -67,6 +67,13 @@ struct SimOptions {
   // Every invalid field at once, as "--flag: value: expected ..." lines; empty if valid.
   std::vector<std::string> Check() const;
   double Duration() const { return duration_s > 0 ? duration_s : cycles / freq_hz; }
+  // Output samples of the run, defined once (docs/FORMATS.md, "Samples"): sample k is at
+  // exactly t_start + k / fps for k = 0 .. n-1, n = floor(Duration() fps + kSampleCountSlack) + 1,
+  // so the end time is included whenever Duration() fps is a whole number up to its rounding
+  // (3 periods at 25 Hz and 2000/s give 240.00000000000003 or 239.99999999999997: 241
+  // samples either way). 0 when fps == 0 (events only).
+  long SampleCount() const;
+  static constexpr double kSampleCountSlack = 1e-6;  // samples
   double EffectiveLift() const;
 };
 
