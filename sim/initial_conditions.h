@@ -11,6 +11,8 @@
 //    alternate; whether it settles into flutter is reported, not assumed.
 //  - rest: flat on the plate, at rest.
 //  - init_state: the lab state (x, z, theta, u, v, omega) at t = 0.
+#include <string>
+
 #include "sim/model.h"
 #include "sim/state.h"
 
@@ -26,5 +28,11 @@ InitialCondition MakeInitialCondition(const Model& m, const SimOptions& o);
 
 // Phase (rad, in [0, 2 pi)) of the period-1 bouncing-ball impact, or NaN if it does not exist.
 double PeriodOneImpactPhase(const Model& m);
+
+// When a run started by --init KIND (not --init-state) settled in another mode: one sentence
+// naming the mode reached and the likely reason (docs/MODEL.md, "Modes and the drift speed",
+// and the paper's ranges); "" when it reached the mode asked for. `periods` is the number of
+// complete periods simulated.
+std::string ModeNote(const SimOptions& o, const std::string& settled_mode, long periods);
 
 }  // namespace dimer::sim

@@ -7,6 +7,7 @@
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/progress.h"
+#include "sim/initial_conditions.h"
 #include "sim/sim_file.h"
 #include "sim/simulator.h"
 
@@ -64,6 +65,10 @@ int RunSim(const SimRunArgs& args) {
                 ms.drift_speed * args.options.freq_hz / kGravity);
   }
   std::printf("\n");
+  if (r.error.empty() && !r.interrupted) {
+    const std::string note = ModeNote(args.options, ms.label, static_cast<long>(r.periods.size()));
+    if (!note.empty()) std::fprintf(stderr, "dimerlab: warning: %s\n", note.c_str());
+  }
   if (!r.error.empty()) {
     throw std::runtime_error(r.error + " (partial run written to " + args.output + ")");
   }

@@ -4,6 +4,7 @@
 #include "common/h5_file.h"
 #include "common/trajectory_io.h"
 #include "sim/frames.h"
+#include "sim/initial_conditions.h"
 
 namespace dimer::sim {
 
@@ -151,6 +152,7 @@ void WriteSimFile(const std::string& path, bool force, const SimOptions& o, cons
                  {{"t_start", r.t_start},
                   {"t_end", r.t_end},
                   {"settled_mode", r.mode.label},
+                  {"mode_note", ModeNote(o, r.mode.label, static_cast<long>(r.periods.size()))},
                   {"bouncing_sphere", int64_t{r.mode.bouncing_sphere}},
                   {"drift_speed", r.mode.drift_speed},
                   {"drift_speed_err", r.mode.drift_speed_err},
