@@ -216,6 +216,10 @@ void RunRender(const RenderArgs& args) {
   WriteTruth(out.temp_path() + "/truth.csv", args, plan, traj, n);
   std::ofstream(out.temp_path() + "/render.json") << RenderJson(args, plan, diameter, n);
   out.Commit();
+  // The one-line summary every subcommand ends with (stdout; -q silences progress only).
+  std::printf("%s: %zu frames %dx%d, %d-bit %s, %s lighting, %.3g m/px; truth.csv, render.json\n",
+              args.output.c_str(), n, args.image.width, args.image.height, args.image.bit_depth,
+              args.format.c_str(), ToString(args.image.lighting).c_str(), args.m_per_px);
 }
 
 }  // namespace dimer::tracking

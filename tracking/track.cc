@@ -324,8 +324,15 @@ void RunTrack(const TrackArgs& args) {
     throw InputError(args.input + ": no readable frame (all " +
                      std::to_string(r.skipped.size()) + " were skipped)");
   }
-  WriteTrackFile(out.temp_path(), args, r, Calibrate(args, r));
+  const Calibration cal = Calibrate(args, r);
+  WriteTrackFile(out.temp_path(), args, r, cal);
   out.Commit();
+  // The one-line summary every subcommand ends with (stdout; -q silences progress only).
+  size_t both = 0;
+  for (const auto& f : r.frames) both += f.found[0] && f.found[1];
+  std::printf("%s: %zu frames tracked, %zu skipped, both spheres found in %zu, %s, %.4g m/px%s\n",
+              args.output.c_str(), r.frames.size(), r.skipped.size(), both, args.method.c_str(),
+              cal.m_per_px, r.complete ? "" : " (interrupted: partial)");
   if (!r.complete) throw Interrupted();
 }
 
