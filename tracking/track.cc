@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <deque>
 #include <future>
+#include <mutex>
+#include <set>
 #include <thread>
 
 #include "common/atomic_output.h"
@@ -12,6 +14,7 @@
 #include "common/h5_file.h"
 #include "common/interrupt.h"
 #include "common/progress.h"
+#include "common/stderr_capture.h"
 #include "common/provenance.h"
 #include "common/trajectory_io.h"
 
@@ -298,6 +301,48 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
   w.Close();
 }
 
+// Decoders (libpng, libjpeg, libtiff, OpenCV's codecs) may print their own messages on stderr.
+// While frames are decoded they are captured and each distinct one becomes one dimerlab warning
+// (common/stderr_capture.h); our own progress and warnings go to the real stderr.
+SequenceResult TrackWithLibraryMessagesCaptured(const TrackArgs& args, const SequenceOptions& seq,
+                                                FrameSource& source) {
+  std::mutex seen_mutex;
+  std::set<std::string> seen;
+  size_t repeats = 0;
+  auto on_library_line = [&](const std::string& line) {
+    std::lock_guard<std::mutex> lock(seen_mutex);
+    if (!seen.insert(line).second) {
+      ++repeats;
+      return;
+    }
+    std::fprintf(StderrCapture::Diagnostics(), "dimerlab: warning: %s: decoder message: %s\n",
+                 args.input.c_str(), line.c_str());
+  };
+  SequenceResult r;
+  {
+    StderrCapture capture(on_library_line);
+    FILE* diag = StderrCapture::Diagnostics();
+    const bool live = StderrCapture::DiagnosticsIsTerminal();
+    ProgressMeter progress("track", "frames", double(source.size()), !args.quiet, diag, live);
+    r = TrackSequence(
+        source, seq,
+        [&](size_t done) {
+          progress.Update(double(done));
+          if (args.on_progress) args.on_progress(done);
+        },
+        [&](const SkippedFrame& s) {
+          std::fprintf(diag, "%sdimerlab: warning: %s: %s; skipped\n",
+                       args.quiet || !live ? "" : "\n", s.name.c_str(), s.reason.c_str());
+        });
+    progress.Finish(double(r.frames.size() + r.skipped.size()));
+  }
+  if (repeats > 0) {
+    std::fprintf(stderr, "dimerlab: warning: %s: %zu repeated decoder messages not shown\n",
+                 args.input.c_str(), repeats);
+  }
+  return r;
+}
+
 }  // namespace
 
 void RunTrack(const TrackArgs& args) {
@@ -307,18 +352,7 @@ void RunTrack(const TrackArgs& args) {
   seq.tracker.polarity = args.polarity == "bright" ? 1 : args.polarity == "dark" ? -1 : 0;
   AtomicOutput out(args.output, args.force);  // refuses an existing output before any work
   auto source = FrameSource::Open(args.input);
-  ProgressMeter progress("track", "frames", double(source->size()), !args.quiet);
-  const SequenceResult r = TrackSequence(
-      *source, seq,
-      [&](size_t done) {
-        progress.Update(double(done));
-        if (args.on_progress) args.on_progress(done);
-      },
-      [&](const SkippedFrame& s) {
-        std::fprintf(stderr, "%sdimerlab: warning: %s: %s; skipped\n", args.quiet ? "" : "\n",
-                     s.name.c_str(), s.reason.c_str());
-      });
-  progress.Finish(double(r.frames.size() + r.skipped.size()));
+  const SequenceResult r = TrackWithLibraryMessagesCaptured(args, seq, *source);
   if (r.frames.empty()) {
     if (!r.complete) throw Interrupted();
     throw InputError(args.input + ": no readable frame (all " +
