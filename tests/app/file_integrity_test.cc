@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -168,3 +169,34 @@ TEST(FileIntegrity, AFlippedByteAnywhereIsAnErrorOrChangesNothing) {
 
 }  // namespace
 }  // namespace dimer
+
+#ifdef DIMERLAB_HAVE_TRACKING
+namespace dimer {
+namespace {
+
+// The case that went wrong before checksums: one flipped bit in /tips/left turned x = 1.08 mm
+// into 1.9e305 m and `render` carried on. Now render stops with an error naming the dataset.
+TEST(FileIntegrity, RenderRefusesASimFileWithAFlippedBitInTheTips) {
+  testing::TempDir dir;
+  const std::string sim = testing::MakeEveryFileKind(dir)[0].path;
+  const std::vector<Extent> chunks = ChunkExtents(sim, "/tips/left");
+  ASSERT_FALSE(chunks.empty());
+  const int fd = open(sim.c_str(), O_RDWR);
+  XorByte(fd, chunks[0].address + chunks[0].size / 2, 0x40);  // one bit
+  close(fd);
+  tracking::RenderArgs render;
+  render.input = sim;
+  render.output = dir / "frames_of_corrupt";
+  render.quiet = true;
+  try {
+    tracking::RunRender(render);
+    FAIL() << "render read corrupt data without complaint";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/tips/left"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(render.output));
+}
+
+}  // namespace
+}  // namespace dimer
+#endif
