@@ -1,5 +1,5 @@
 #pragma once
-// Which mode a simulated run settled in (docs/MODEL.md, "Modes and the drift speed"), from the last
+// Which mode a simulated run settled in (MODEL.md "What the paper reports"), from the last
 // periods of the run, and its drift speed.
 //   rest:    both spheres in persistent contact >= 95 % of the time, no impacts;
 //   drift:   one sphere rests >= 20 % of the time and the other has one impact per period

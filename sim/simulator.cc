@@ -351,9 +351,9 @@ SimResult Runner::Run() {
       }
     }
   }
-  FinishSamples();
   // Mode over the last half of the run (at most 100 periods).
   const State lab = LabFromPlate(m_, t_, q_);
+  FinishSamples();  // the last sample and t_end (t_, q_ unchanged)
   std::array<int, 2> dir{};
   for (int s = 0; s < 2; ++s) {
     const double dx = TipLab(m_, lab, s).x() - TipLab(m_, lab, 1 - s).x();
