@@ -19,24 +19,24 @@ int main(int argc, char** argv) {
   dimer::app::RegisterTrack(app);
   dimer::InstallInterruptHandler();
   // Exit codes: docs/DESIGN.md, "Errors and exit codes" (the README's table).
-  using namespace dimer::app;
+  namespace cli = dimer::app;
   const std::vector<std::string> args(argv + 1, argv + argc);
-  if (auto bad = CheckSubcommand(app, args)) return ReportError(kExitUsage, *bad);
+  if (auto bad = cli::CheckSubcommand(app, args)) return cli::ReportError(cli::kExitUsage, *bad);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ExtrasError& e) {
-    return ReportError(kExitUsage, ExtrasMessage(app, args, e.what()));
+    return cli::ReportError(cli::kExitUsage, cli::ExtrasMessage(app, args, e.what()));
   } catch (const CLI::ParseError& e) {
     // --help and --version arrive here too, with CLI11's success code.
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
-    return ReportError(kExitUsage, e.what());
+    return cli::ReportError(cli::kExitUsage, e.what());
   } catch (const dimer::Interrupted&) {
     std::fprintf(stderr, "\ndimerlab: interrupted; partial output (if any) is complete and valid\n");
-    return kExitInterrupted;
+    return cli::kExitInterrupted;
   } catch (const dimer::UsageError& e) {
-    return ReportError(kExitUsage, e.what());
+    return cli::ReportError(cli::kExitUsage, e.what());
   } catch (const std::exception& e) {
-    return ReportError(kExitFailure, e.what());
+    return cli::ReportError(cli::kExitFailure, e.what());
   }
-  return kExitSuccess;
+  return cli::kExitSuccess;
 }
