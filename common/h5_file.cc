@@ -93,7 +93,8 @@ H5Writer::H5Writer(const std::string& path, const H5WriteOptions& options)
   // heap once there are more than 8: the root carries every parameter of the run.
   H5Pset_attr_phase_change(fcpl, 65535, 0);
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  // The 1.8 format: checksummed superblock and object headers, read by every HDF5 since 2008.
+  // The 1.10 format: checksummed superblock, object headers and chunk indexes (the 1.8 format's
+  // chunk B-tree has none: a flipped byte there silently moved a chunk), read by HDF5 >= 1.10.
   H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110);
   file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
   H5Pclose(fapl);

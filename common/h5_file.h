@@ -8,10 +8,11 @@
 // dataset's stored data fails the checksum on reading (the checksum is over the compressed
 // bytes, checked before inflating) and the reader names the dataset instead of returning wrong
 // numbers. Strings are stored fixed-length (null-terminated, UTF-8) so that they too live inside the
-// checksummed chunks (variable-length strings would sit in an unchecked heap). The file uses the
-// HDF5 1.8 object format, whose superblock and object headers carry their own checksums. All
-// three filters are built into every HDF5 library: h5py, MATLAB and h5dump read the files with no
-// plugin.
+// checksummed chunks (variable-length strings would sit in an unchecked heap); string attributes
+// likewise stay in their object header. The file uses the HDF5 1.10 format, whose superblock,
+// object headers and chunk indexes carry their own checksums, so a flipped byte outside the
+// data is an error too (or lands in padding). All three filters are built into every HDF5
+// library: h5py, MATLAB and h5dump read the files with no plugin (HDF5 >= 1.10).
 #include <hdf5.h>
 
 #include <cstdint>
