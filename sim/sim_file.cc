@@ -109,7 +109,7 @@ AttrUnits SimAttrUnits() {
           {"mu_hat_s", "1"}, {"lift", "d"}, {"release_phase", "period"}, {"cycles", "period"},
           {"duration", "s"}, {"fps", "1/s"}, {"collapse_vc", "g/f"}, {"contact_tol", "1"},
           {"gap_tol", "m"}, {"max_events_per_period", "1/period"}, {"t_start", "s"},
-          {"t_end", "s"}, {"samples", "1"}, {"drift_speed", "m/s"}, {"drift_speed_err", "m/s"},
+          {"t_end", "s"}, {"drift_speed", "m/s"}, {"drift_speed_err", "m/s"},
           {"drift_scaled", "1"}, {"mode_window_periods", "period"},
           {"mode_impacts_per_period_left", "1/period"},
           {"mode_impacts_per_period_right", "1/period"}, {"mode_rest_fraction_left", "1"},
