@@ -6,6 +6,8 @@
 #   ./dimerlab.sh test       setup + build + the whole GoogleTest suite through CTest
 #   ./dimerlab.sh sanitize   setup + ASan/UBSan build with warnings as errors + the suite
 #   ./dimerlab.sh bench      setup + build + every benchmark program (prints tables)
+#   ./dimerlab.sh install    setup + build + install `dimerlab` into PREFIX/bin (PREFIX: env, default
+#                            /usr/local, already on the PATH) and its docs into PREFIX/share/doc
 set -euo pipefail
 cd "$(dirname "$0")"
 ROOT=$(pwd)
@@ -67,6 +69,12 @@ bench() {
   for b in build/bench/bench_*; do echo "== $b =="; "$b"; done
 }
 
+install_dimerlab() {
+  setup; build
+  cmake --install build --prefix "${PREFIX:-/usr/local}"
+  echo "dimerlab installed: $(command -v dimerlab || echo "${PREFIX:-/usr/local}/bin/dimerlab (add it to PATH)")" >&2
+}
+
 case "${1:-}" in
   setup) setup ;;
   build) setup; build ;;
@@ -74,5 +82,6 @@ case "${1:-}" in
   test) run_tests ;;
   sanitize) sanitize ;;
   bench) bench ;;
-  *) echo "usage: $0 setup|build|demo|test|sanitize|bench" >&2; exit 2 ;;
+  install) install_dimerlab ;;
+  *) echo "usage: $0 setup|build|demo|test|sanitize|bench|install" >&2; exit 2 ;;
 esac

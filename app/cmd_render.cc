@@ -41,7 +41,7 @@ void AddRenderOptions(CLI::App* sub, RenderCli* cli) {
       ->capture_default_str();
   sub->add_option("--frames", a.max_frames, "render only the first N samples (0: all)");
   sub->add_option("--threads", a.threads, "worker threads (0: all cores)");
-  sub->add_flag("--quiet", a.quiet, "no progress on stderr");
+  sub->add_flag("-q,--quiet", a.quiet, "no progress on stderr");
 }
 
 }  // namespace

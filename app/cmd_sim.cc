@@ -1,4 +1,4 @@
-// `dimerlab sim`: flags of FORMATS.md, registered once; a scene file (--scene) holds the same
+// `dimerlab sim`: flags of docs/FORMATS.md, registered once; a scene file (--scene) holds the same
 // options in CLI11's config format and the command line overrides it.
 #include <map>
 #include <memory>

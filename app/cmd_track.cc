@@ -22,7 +22,7 @@ void AddTrackOptions(CLI::App* sub, tracking::TrackArgs* a) {
   sub->add_option("--threads", a->sequence.threads, "worker threads (0: all cores)");
   sub->add_option("--chunk-frames", a->sequence.chunk_frames, "frames per parallel chunk")
       ->capture_default_str();
-  sub->add_flag("--quiet", a->quiet, "no progress on stderr");
+  sub->add_flag("-q,--quiet", a->quiet, "no progress on stderr");
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 #pragma once
-// Scene files (FORMATS.md): the options of a subcommand in a file, one `name = value` per line
+// Scene files (docs/FORMATS.md, "Scene files"): the options of a subcommand in a file, one `name = value` per line
 // (`#` comments, an optional `[sim]` section header, names with or without the leading --).
 // Values given on the command line win over the scene.
 #include <CLI/CLI.hpp>

@@ -1,4 +1,4 @@
-// The speed/accuracy trade of the simulator's three numerical knobs (issue: measure, never
+// The speed/accuracy trade of the simulator's three numerical knobs (measure, never
 // guess): the impact-location tolerance (--gap-tol), the inelastic-collapse threshold
 // (--collapse-vc) and the persistent-contact integration tolerance (--contact-tol). For each,
 // the drift speed <u> f/g at A_r = 3.9, 25 Hz (paper parameters), the events per period and

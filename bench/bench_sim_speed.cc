@@ -1,5 +1,5 @@
 // Simulator speed: simulated plate periods per second on one core, in the drift mode and the
-// other modes, with and without output sampling. Target (issue): >= 10,000 periods/s in the
+// other modes, with and without output sampling. Target (docs/BENCHMARKS.md): >= 10,000 periods/s in the
 // drift mode at default tolerances. Usage: bench_sim_speed [periods]
 #include <chrono>
 #include <cstdio>

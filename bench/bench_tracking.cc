@@ -1,4 +1,4 @@
-// Tracking benchmark: accuracy against speed for every method on the targets.
+// Tracking benchmark: accuracy against speed for every method on the project's targets (docs/BENCHMARKS.md).
 //   bench_tracking [frames]   (default 2000 frames per case)
 // Prints, per method: RMS error and pixel locking on uniform discs at sigma = 2 with the
 // Cramér-Rao bound computed from the exact disc model; scatter about the bias on reflect-lit

@@ -1,15 +1,11 @@
 #pragma once
-// Atomic outputs (FORMATS.md): a file or folder is written under a temporary name beside its
+// Atomic outputs (docs/FORMATS.md, "Conventions"): a file or folder is written under a temporary name beside its
 // final path and renamed into place only when complete, so a crash or Ctrl-C never leaves a
 // truncated result under the final name. An existing output is refused unless `force` is set;
 // with `force` the old one is replaced only after the new one is complete.
 #include <string>
 
 namespace dimer {
-
-// Fails early (InputError) if `final_path` could not be written: it exists and !force, or its
-// folder is missing. Long computations call it before they start.
-void CheckCanWrite(const std::string& final_path, bool force);
 
 class AtomicOutput {
  public:
@@ -29,5 +25,13 @@ class AtomicOutput {
   Kind kind_;
   bool committed_ = false;
 };
+
+// Fails early (InputError) if `final_path` could not be written as `kind`: it exists and
+// !force, it exists as the other kind (a folder where a file is asked for, or the reverse: the
+// final rename would fail after all the work), its folder is missing, or a file cannot be
+// created in that folder (read-only, no permission, full). Long computations call it before they
+// start. The two-argument form checks for a file.
+void CheckCanWrite(const std::string& final_path, bool force, AtomicOutput::Kind kind);
+void CheckCanWrite(const std::string& final_path, bool force);
 
 }  // namespace dimer

@@ -1,5 +1,6 @@
 #include "common/h5_file.h"
 
+#include <algorithm>
 #include <numeric>
 
 #include "common/error.h"
@@ -32,11 +33,71 @@ hid_t NoTimesPlist(hid_t cls) {
   return pl;
 }
 
+// Fixed-length, null-terminated UTF-8 strings of `size` bytes, terminator included (h5dump,
+// h5py and MATLAB then show each string without padding).
+hid_t FixedStringType(size_t size) {
+  hid_t t = H5Tcopy(H5T_C_S1);
+  H5Tset_size(t, std::max<size_t>(size, 1));
+  H5Tset_strpad(t, H5T_STR_NULLTERM);
+  H5Tset_cset(t, H5T_CSET_UTF8);
+  return t;
+}
+
+// Chunk shape: whole rows, about `chunk_bytes` per chunk, never more rows than the dataset has.
+Dims ChunkDims(const Dims& dims, size_t elem_size, size_t chunk_bytes) {
+  Dims chunk = dims;
+  size_t row_bytes = elem_size;
+  for (size_t i = 1; i < dims.size(); ++i) row_bytes *= static_cast<size_t>(dims[i]);
+  const hsize_t rows = std::max<hsize_t>(1, chunk_bytes / std::max<size_t>(row_bytes, 1));
+  chunk[0] = std::min(dims[0], rows);
+  return chunk;
+}
+
+// Dataset creation list: chunked, shuffle -> deflate -> Fletcher32 (the checksum last on
+// writing, so first on reading: corrupt bytes are caught before zlib sees them). Empty datasets
+// have no data to protect and HDF5 allows no zero-sized chunk: they stay contiguous.
+hid_t DatasetPlist(const Dims& dims, hid_t file_type, const H5WriteOptions& o) {
+  hid_t pl = NoTimesPlist(H5P_DATASET_CREATE);
+  if (dims.empty() || Count(dims) == 0) return pl;
+  const Dims chunk = ChunkDims(dims, H5Tget_size(file_type), o.chunk_bytes);
+  H5Pset_chunk(pl, static_cast<int>(chunk.size()), chunk.data());
+  H5Pset_shuffle(pl);
+  if (o.deflate_level > 0) H5Pset_deflate(pl, static_cast<unsigned>(o.deflate_level));
+  H5Pset_fletcher32(pl);
+  return pl;
+}
+
+// The innermost message of HDF5's current error stack (e.g. "data error detected by fletcher32
+// checksum"), so that our one-line error can say why.
+std::string Hdf5Reason() {
+  std::string reason;
+  auto walk = [](unsigned n, const H5E_error2_t* e, void* out) -> herr_t {
+    if (n == 0 && e->desc) *static_cast<std::string*>(out) = e->desc;
+    return 0;
+  };
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, walk, &reason);
+  return reason;
+}
+
 }  // namespace
 
-H5Writer::H5Writer(const std::string& path) : path_(path) {
+H5Writer::H5Writer(const std::string& path) : H5Writer(path, H5WriteOptions{}) {}
+
+H5Writer::H5Writer(const std::string& path, const H5WriteOptions& options)
+    : path_(path), options_(options) {
+  if (options.deflate_level < 0 || options.deflate_level > 9 || options.chunk_bytes == 0) {
+    throw std::logic_error("H5Writer: deflate level 0..9 and chunk_bytes > 0");
+  }
   hid_t fcpl = NoTimesPlist(H5P_FILE_CREATE);
-  file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT);
+  // Attributes stay in the (checksummed) object header rather than moving to a dense-storage
+  // heap once there are more than 8: the root carries every parameter of the run.
+  H5Pset_attr_phase_change(fcpl, 65535, 0);
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  // The 1.10 format: checksummed superblock, object headers and chunk indexes (the 1.8 format's
+  // chunk B-tree has none: a flipped byte there silently moved a chunk), read by HDF5 >= 1.10.
+  H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110);
+  file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
+  H5Pclose(fapl);
   H5Pclose(fcpl);
   if (file_ < 0) throw InputError(path + ": cannot create HDF5 file");
 }
@@ -55,6 +116,7 @@ void H5Writer::EnsureParents(const std::string& name) {
     std::string group = name.substr(0, pos);
     if (H5Lexists(file_, group.c_str(), H5P_DEFAULT) > 0) continue;
     hid_t gcpl = NoTimesPlist(H5P_GROUP_CREATE);
+    H5Pset_attr_phase_change(gcpl, 65535, 0);
     hid_t g = H5Gcreate2(file_, group.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT);
     H5Pclose(gcpl);
     if (g < 0) throw InputError(path_ + ": cannot create group " + group);
@@ -66,7 +128,8 @@ void H5Writer::Write(const std::string& name, hid_t mem_type, hid_t file_type, c
                      const Dims& dims) {
   EnsureParents(name);
   hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
-  hid_t dcpl = NoTimesPlist(H5P_DATASET_CREATE);
+  hid_t dcpl = DatasetPlist(dims, file_type, options_);
+  H5Pset_attr_phase_change(dcpl, 65535, 0);
   hid_t ds = H5Dcreate2(file_, name.c_str(), file_type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
   H5Pclose(dcpl);
   herr_t st = ds < 0 ? -1 : (Count(dims) == 0 ? 0 : H5Dwrite(ds, mem_type, H5S_ALL, H5S_ALL,
@@ -77,10 +140,12 @@ void H5Writer::Write(const std::string& name, hid_t mem_type, hid_t file_type, c
 }
 
 void H5Writer::WriteDoubles(const std::string& name, const std::vector<double>& data,
-                            const Dims& dims, const std::string& units) {
+                            const Dims& dims, const std::string& units,
+                            const std::string& columns) {
   if (Count(dims) != data.size()) throw std::logic_error("WriteDoubles: size mismatch " + name);
   Write(name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, data.data(), dims);
   if (!units.empty()) SetAttr(name, "units", units);
+  if (!columns.empty()) SetAttr(name, "columns", columns);
 }
 void H5Writer::WriteUint8(const std::string& name, const std::vector<uint8_t>& data,
                           const Dims& dims) {
@@ -98,11 +163,12 @@ void H5Writer::WriteInt64(const std::string& name, const std::vector<int64_t>& d
   Write(name, H5T_NATIVE_INT64, H5T_STD_I64LE, data.data(), dims);
 }
 void H5Writer::WriteStrings(const std::string& name, const std::vector<std::string>& data) {
-  std::vector<const char*> ptrs;
-  ptrs.reserve(data.size());
-  for (const auto& s : data) ptrs.push_back(s.c_str());
-  hid_t t = VarStringType();
-  Write(name, t, t, ptrs.data(), {data.size()});
+  size_t width = 1;  // longest string + its terminator
+  for (const auto& s : data) width = std::max(width, s.size() + 1);
+  std::string packed(width * data.size(), '\0');
+  for (size_t i = 0; i < data.size(); ++i) packed.replace(i * width, data[i].size(), data[i]);
+  hid_t t = FixedStringType(width);
+  Write(name, t, t, packed.data(), {data.size()});
   H5Tclose(t);
 }
 
@@ -138,9 +204,9 @@ void H5Writer::SetAttr(const std::string& object, const std::string& key, int64_
 void H5Writer::SetAttr(const std::string& object, const std::string& key,
                        const std::string& value) {
   hid_t obj = OpenObject(object);
-  hid_t t = VarStringType();
-  const char* p = value.c_str();
-  WriteAttr(path_, obj, key, t, &p);
+  // Fixed-length: the text lives in the checksummed object header, not in an unchecked heap.
+  hid_t t = FixedStringType(value.size() + 1);
+  WriteAttr(path_, obj, key, t, value.c_str());
   H5Tclose(t);
   H5Oclose(obj);
 }
@@ -152,7 +218,21 @@ H5Reader::H5Reader(const std::string& path) : path_(path) {
     throw InputError(path + ": not an HDF5 file (missing, unreadable or corrupt)");
   }
   file_ = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (file_ < 0) throw InputError(path + ": cannot open HDF5 file");
+  if (file_ < 0) throw InputError(path + ": cannot open HDF5 file (" + Hdf5Reason() + ")");
+  // The root group's header holds the root attributes: a corrupt one is reported now, once,
+  // rather than as attributes that seem to be missing.
+  H5O_info_t info;
+  if (H5Oget_info_by_name2(file_, "/", &info, H5O_INFO_NUM_ATTRS, H5P_DEFAULT) < 0) {
+    const std::string reason = Hdf5Reason();
+    H5Fclose(file_);
+    file_ = -1;
+    throw InputError(path + ": corrupt HDF5 file, root group unreadable (" + reason + ")");
+  }
+}
+
+void H5Reader::Corrupt(const std::string& object, const std::string& what) const {
+  throw InputError(path_ + ": " + object + ": cannot read " + what + ", the file is corrupt (" +
+                   Hdf5Reason() + ")");
 }
 
 H5Reader::~H5Reader() {
@@ -163,7 +243,9 @@ bool H5Reader::Has(const std::string& name) const {
   // H5Lexists fails on a missing intermediate group: check each level.
   for (size_t pos = name.find('/', 1);; pos = name.find('/', pos + 1)) {
     std::string part = pos == std::string::npos ? name : name.substr(0, pos);
-    if (H5Lexists(file_, part.c_str(), H5P_DEFAULT) <= 0) return false;
+    const htri_t exists = H5Lexists(file_, part.c_str(), H5P_DEFAULT);
+    if (exists < 0) Corrupt(part, "the group");  // an error, not an absence
+    if (exists == 0) return false;
     if (pos == std::string::npos) return true;
   }
 }
@@ -172,15 +254,25 @@ template <typename T>
 std::vector<T> H5Reader::Read(const std::string& name, hid_t mem_type, Dims* dims) const {
   if (!Has(name)) throw InputError(path_ + ": missing dataset " + name);
   hid_t ds = H5Dopen2(file_, name.c_str(), H5P_DEFAULT);
+  if (ds < 0) throw InputError(path_ + ": cannot open dataset " + name + " (" + Hdf5Reason() + ")");
   hid_t space = H5Dget_space(ds);
   int rank = H5Sget_simple_extent_ndims(space);
   Dims d(static_cast<size_t>(std::max(rank, 0)));
   H5Sget_simple_extent_dims(space, d.data(), nullptr);
-  std::vector<T> out(Count(d));
-  herr_t st = out.empty() ? 0 : H5Dread(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data());
+  hid_t ftype = H5Dget_type(ds);
+  const H5T_class_t cls = H5Tget_class(ftype);
+  H5Tclose(ftype);
+  std::vector<T> out;
+  herr_t st = -1;
+  std::string reason = "not numbers";
+  if (cls == H5T_INTEGER || cls == H5T_FLOAT || cls == H5T_ENUM) {
+    out.resize(Count(d));
+    st = out.empty() ? 0 : H5Dread(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data());
+    if (st < 0) reason = "corrupt or unreadable: " + Hdf5Reason();
+  }
   H5Sclose(space);
   H5Dclose(ds);
-  if (st < 0) throw InputError(path_ + ": cannot read dataset " + name + " as numbers");
+  if (st < 0) throw InputError(path_ + ": dataset " + name + ": " + reason);
   if (dims) *dims = d;
   return out;
 }
@@ -201,73 +293,148 @@ std::vector<int64_t> H5Reader::ReadInt64(const std::string& name, Dims* dims) co
 std::vector<std::string> H5Reader::ReadStrings(const std::string& name) const {
   if (!Has(name)) throw InputError(path_ + ": missing dataset " + name);
   hid_t ds = H5Dopen2(file_, name.c_str(), H5P_DEFAULT);
+  if (ds < 0) throw InputError(path_ + ": cannot open dataset " + name + " (" + Hdf5Reason() + ")");
   hid_t space = H5Dget_space(ds);
-  hssize_t n = H5Sget_simple_extent_npoints(space);
-  std::vector<char*> ptrs(static_cast<size_t>(n), nullptr);
-  hid_t t = VarStringType();
-  herr_t st = n == 0 ? 0 : H5Dread(ds, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data());
+  const size_t n = static_cast<size_t>(std::max<hssize_t>(H5Sget_simple_extent_npoints(space), 0));
+  hid_t ftype = H5Dget_type(ds);
   std::vector<std::string> out;
-  out.reserve(ptrs.size());
-  for (char* p : ptrs) out.emplace_back(p ? p : "");
-  if (st >= 0 && n > 0) H5Dvlen_reclaim(t, space, H5P_DEFAULT, ptrs.data());
-  H5Tclose(t);
+  herr_t st = -1;
+  std::string reason = "not strings";
+  if (H5Tget_class(ftype) == H5T_STRING && H5Tis_variable_str(ftype) > 0) {
+    // Variable-length strings: files written before the fixed-length layout.
+    std::vector<char*> ptrs(n, nullptr);
+    hid_t t = VarStringType();
+    st = n == 0 ? 0 : H5Dread(ds, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data());
+    if (st >= 0) {
+      for (char* p : ptrs) out.emplace_back(p ? p : "");
+      if (n > 0) H5Dvlen_reclaim(t, space, H5P_DEFAULT, ptrs.data());
+    }
+    H5Tclose(t);
+  } else if (H5Tget_class(ftype) == H5T_STRING) {
+    const size_t width = H5Tget_size(ftype);
+    std::string packed(width * n, '\0');
+    hid_t t = FixedStringType(width);
+    st = n == 0 ? 0 : H5Dread(ds, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, packed.data());
+    H5Tclose(t);
+    if (st >= 0) {
+      for (size_t i = 0; i < n; ++i) {
+        std::string item = packed.substr(i * width, width);
+        out.emplace_back(item.c_str());  // up to the terminator
+      }
+    }
+  }
+  if (st < 0 && H5Tget_class(ftype) == H5T_STRING) {
+    reason = "corrupt or unreadable: " + Hdf5Reason();
+  }
+  H5Tclose(ftype);
   H5Sclose(space);
   H5Dclose(ds);
-  if (st < 0) throw InputError(path_ + ": cannot read dataset " + name + " as strings");
+  if (st < 0) throw InputError(path_ + ": dataset " + name + ": " + reason);
   return out;
+}
+
+hid_t H5Reader::OpenAttr(const std::string& object, const std::string& key) const {
+  if (object != "/" && !Has(object)) return -1;
+  const htri_t exists = H5Aexists_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT);
+  if (exists < 0) Corrupt(object, "its attributes");
+  if (exists == 0) return -1;
+  hid_t attr = H5Aopen_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+  if (attr < 0) Corrupt(object, "attribute " + key);
+  return attr;
 }
 
 std::optional<double> H5Reader::AttrDouble(const std::string& object,
                                            const std::string& key) const {
-  if (object != "/" && !Has(object)) return std::nullopt;
-  if (H5Aexists_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT) <= 0) return std::nullopt;
-  hid_t attr = H5Aopen_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+  hid_t attr = OpenAttr(object, key);
+  if (attr < 0) return std::nullopt;
+  hid_t ftype = H5Aget_type(attr);
+  const H5T_class_t cls = H5Tget_class(ftype);
+  H5Tclose(ftype);
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER) {  // a string, say: not a number, not an error
+    H5Aclose(attr);
+    return std::nullopt;
+  }
   double v = 0;
   herr_t st = H5Aread(attr, H5T_NATIVE_DOUBLE, &v);
   H5Aclose(attr);
-  if (st < 0) return std::nullopt;
+  if (st < 0) Corrupt(object, "attribute " + key);
   return v;
 }
 
 std::optional<std::string> H5Reader::AttrString(const std::string& object,
                                                 const std::string& key) const {
-  if (object != "/" && !Has(object)) return std::nullopt;
-  if (H5Aexists_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT) <= 0) return std::nullopt;
-  hid_t attr = H5Aopen_by_name(file_, object.c_str(), key.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+  hid_t attr = OpenAttr(object, key);
+  if (attr < 0) return std::nullopt;
   hid_t ftype = H5Aget_type(attr);
   std::optional<std::string> out;
+  bool ok = true;
   if (H5Tget_class(ftype) == H5T_STRING) {
     if (H5Tis_variable_str(ftype) > 0) {
       hid_t t = VarStringType();
       char* p = nullptr;
-      if (H5Aread(attr, t, &p) >= 0 && p) {
-        out = std::string(p);
-        H5free_memory(p);
-      }
+      ok = H5Aread(attr, t, &p) >= 0;
+      if (ok) out = std::string(p ? p : "");
+      if (p) H5free_memory(p);
       H5Tclose(t);
     } else {
       std::string buf(H5Tget_size(ftype), '\0');
-      if (H5Aread(attr, ftype, buf.data()) >= 0) out = std::string(buf.c_str());
+      ok = H5Aread(attr, ftype, buf.data()) >= 0;
+      if (ok) out = std::string(buf.c_str());
     }
   }
   H5Tclose(ftype);
   H5Aclose(attr);
+  if (!ok) Corrupt(object, "attribute " + key);
   return out;
 }
 
 std::vector<std::string> H5Reader::AttrNames(const std::string& object) const {
   std::vector<std::string> names;
+  if (object != "/" && !Has(object)) return names;
   hid_t obj = H5Oopen(file_, object.c_str(), H5P_DEFAULT);
-  if (obj < 0) return names;
+  if (obj < 0) Corrupt(object, "the object");
   H5O_info_t info;
-  H5Oget_info2(obj, &info, H5O_INFO_NUM_ATTRS);
-  for (hsize_t i = 0; i < info.num_attrs; ++i) {
+  bool ok = H5Oget_info2(obj, &info, H5O_INFO_NUM_ATTRS) >= 0;
+  for (hsize_t i = 0; ok && i < info.num_attrs; ++i) {
     char buf[256];
-    H5Aget_name_by_idx(obj, ".", H5_INDEX_NAME, H5_ITER_INC, i, buf, sizeof buf, H5P_DEFAULT);
+    ok = H5Aget_name_by_idx(obj, ".", H5_INDEX_NAME, H5_ITER_INC, i, buf, sizeof buf,
+                            H5P_DEFAULT) >= 0;
     names.emplace_back(buf);
   }
   H5Oclose(obj);
+  if (!ok) Corrupt(object, "the attribute names");
   return names;
+}
+
+std::vector<std::string> H5Reader::DatasetNames() const {
+  std::vector<std::string> names;
+  auto visit = [](hid_t, const char* name, const H5O_info_t* info, void* out) -> herr_t {
+    if (info->type == H5O_TYPE_DATASET) {
+      static_cast<std::vector<std::string>*>(out)->push_back(std::string("/") + name);
+    }
+    return 0;
+  };
+  if (H5Ovisit2(file_, H5_INDEX_NAME, H5_ITER_INC, visit, &names, H5O_INFO_BASIC) < 0) {
+    Corrupt("/", "the list of datasets");
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+H5Reader::TypeClass H5Reader::DatasetType(const std::string& name) const {
+  if (!Has(name)) throw InputError(path_ + ": missing dataset " + name);
+  hid_t ds = H5Dopen2(file_, name.c_str(), H5P_DEFAULT);
+  if (ds < 0) throw InputError(path_ + ": cannot open dataset " + name);
+  hid_t t = H5Dget_type(ds);
+  const H5T_class_t cls = H5Tget_class(t);
+  H5Tclose(t);
+  H5Dclose(ds);
+  switch (cls) {
+    case H5T_FLOAT: return TypeClass::kFloat;
+    case H5T_INTEGER: return TypeClass::kInteger;
+    case H5T_STRING: return TypeClass::kString;
+    default: return TypeClass::kOther;
+  }
 }
 
 }  // namespace dimer

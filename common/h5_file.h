@@ -1,7 +1,18 @@
 #pragma once
-// Thin RAII layer over the HDF5 C API, for the layouts of FORMATS.md. Dataset names are absolute
-// ("/events/t"); missing parent groups are created. Object timestamps are disabled so identical
-// content gives identical bytes (determinism). Every failure names the file.
+// Thin RAII layer over the HDF5 C API, for the layouts of docs/FORMATS.md. Dataset names are
+// absolute ("/events/t"); missing parent groups are created. Object timestamps are disabled so
+// identical content gives identical bytes (determinism). Every failure names the file.
+//
+// Integrity (docs/FORMATS.md, "Storage and integrity"): every non-empty dataset is chunked and
+// passes through shuffle + deflate + Fletcher32, in that order, so a flipped byte anywhere in a
+// dataset's stored data fails the checksum on reading (the checksum is over the compressed
+// bytes, checked before inflating) and the reader names the dataset instead of returning wrong
+// numbers. Strings are stored fixed-length (null-terminated, UTF-8) so that they too live inside the
+// checksummed chunks (variable-length strings would sit in an unchecked heap); string attributes
+// likewise stay in their object header. The file uses the HDF5 1.10 format, whose superblock,
+// object headers and chunk indexes carry their own checksums, so a flipped byte outside the
+// data is an error too (or lands in padding). All three filters are built into every HDF5
+// library: h5py, MATLAB and h5dump read the files with no plugin (HDF5 >= 1.10).
 #include <hdf5.h>
 
 #include <cstdint>
@@ -13,16 +24,28 @@ namespace dimer {
 
 using Dims = std::vector<hsize_t>;
 
+// Deflate level used by default: the knee of the size/speed table in docs/BENCHMARKS.md
+// ("HDF5 compression level", bench/bench_h5_compression.cc).
+constexpr int kDefaultDeflateLevel = 1;
+
+struct H5WriteOptions {
+  int deflate_level = kDefaultDeflateLevel;  // 0..9 (0: shuffle and checksum only)
+  size_t chunk_bytes = 256 * 1024;           // target size of one chunk before compression, bytes
+};
+
 class H5Writer {
  public:
   explicit H5Writer(const std::string& path);  // creates or truncates
+  H5Writer(const std::string& path, const H5WriteOptions& options);
   ~H5Writer();
   H5Writer(const H5Writer&) = delete;
   H5Writer& operator=(const H5Writer&) = delete;
 
-  // `units` is stored as the dataset's `units` attribute when non-empty.
+  // `units` is stored as the dataset's `units` attribute when non-empty (one unit for all
+  // values, or one per column, comma-separated); `columns` (comma-separated names, one per
+  // column of an N x k dataset) as its `columns` attribute when non-empty.
   void WriteDoubles(const std::string& name, const std::vector<double>& data, const Dims& dims,
-                    const std::string& units = "");
+                    const std::string& units = "", const std::string& columns = "");
   void WriteUint8(const std::string& name, const std::vector<uint8_t>& data, const Dims& dims);
   void WriteInt8(const std::string& name, const std::vector<int8_t>& data, const Dims& dims);
   void WriteInt64(const std::string& name, const std::vector<int64_t>& data, const Dims& dims);
@@ -43,6 +66,7 @@ class H5Writer {
   void EnsureParents(const std::string& name);
   hid_t OpenObject(const std::string& object);
   std::string path_;
+  H5WriteOptions options_;
   hid_t file_ = -1;
 };
 
@@ -55,20 +79,32 @@ class H5Reader {
 
   const std::string& path() const { return path_; }
   bool Has(const std::string& name) const;
-  // The Read* functions throw InputError naming the file and dataset if it is missing.
+  // The Read* functions throw InputError naming the file and dataset if it is missing, or if
+  // its stored data fails its checksum or cannot be decoded (the HDF5 reason is appended).
   std::vector<double> ReadDoubles(const std::string& name, Dims* dims = nullptr) const;
   std::vector<uint8_t> ReadUint8(const std::string& name, Dims* dims = nullptr) const;
   std::vector<int8_t> ReadInt8(const std::string& name, Dims* dims = nullptr) const;
   std::vector<int64_t> ReadInt64(const std::string& name, Dims* dims = nullptr) const;
   std::vector<std::string> ReadStrings(const std::string& name) const;
 
+  // Attributes: nullopt when absent (or, for AttrDouble, not a number; for AttrString, not a
+  // string); InputError when the file's structure around them is corrupt.
   std::optional<double> AttrDouble(const std::string& object, const std::string& key) const;
   std::optional<std::string> AttrString(const std::string& object, const std::string& key) const;
   std::vector<std::string> AttrNames(const std::string& object) const;
 
+  // Every dataset in the file (absolute names, sorted), for tools and the schema test.
+  std::vector<std::string> DatasetNames() const;
+  enum class TypeClass { kFloat, kInteger, kString, kOther };
+  TypeClass DatasetType(const std::string& name) const;  // InputError if missing
+
  private:
   template <typename T>
   std::vector<T> Read(const std::string& name, hid_t mem_type, Dims* dims) const;
+  // The attribute, or -1 when it (or its object) does not exist; InputError when the file is
+  // too corrupt to tell.
+  hid_t OpenAttr(const std::string& object, const std::string& key) const;
+  [[noreturn]] void Corrupt(const std::string& object, const std::string& what) const;
   std::string path_;
   hid_t file_ = -1;
 };

@@ -1,19 +1,25 @@
 #include "common/progress.h"
 
-#include <cstdio>
+#include <unistd.h>
 
 namespace dimer {
 
 using Clock = std::chrono::steady_clock;
 
 ProgressMeter::ProgressMeter(std::string label, std::string unit, double total, bool enabled)
+    : ProgressMeter(std::move(label), std::move(unit), total, enabled, stderr,
+                    isatty(STDERR_FILENO) == 1) {}
+
+ProgressMeter::ProgressMeter(std::string label, std::string unit, double total, bool enabled,
+                             FILE* out, bool live, double plain_interval_s)
     : label_(std::move(label)), unit_(std::move(unit)), total_(total), enabled_(enabled),
+      out_(out), live_(live), interval_s_(live ? kLiveIntervalS : plain_interval_s),
       start_(Clock::now()), last_print_(start_) {}
 
 void ProgressMeter::Update(double done) {
   if (!enabled_) return;
   auto now = Clock::now();
-  if (now - last_print_ < std::chrono::milliseconds(250)) return;
+  if (std::chrono::duration<double>(now - last_print_).count() < interval_s_) return;
   last_print_ = now;
   Print(done, false);
 }
@@ -23,18 +29,28 @@ void ProgressMeter::Finish(double done) {
 }
 
 void ProgressMeter::Print(double done, bool final_line) {
-  double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-  double rate = elapsed > 0 ? done / elapsed : 0.0;
+  const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+  const double rate = elapsed > 0 ? done / elapsed : 0.0;
+  std::string text;
+  char buf[256];
   if (total_ > 0) {
-    double eta = rate > 0 ? (total_ - done) / rate : 0.0;
-    std::fprintf(stderr, "\r%s: %.0f/%.0f %s, %.0f %s/s, ETA %.1f s   ", label_.c_str(), done,
-                 total_, unit_.c_str(), rate, unit_.c_str(), final_line ? 0.0 : eta);
+    const double eta = rate > 0 ? (total_ - done) / rate : 0.0;
+    std::snprintf(buf, sizeof buf, "%s: %.0f/%.0f %s, %.0f %s/s, ", label_.c_str(), done, total_,
+                  unit_.c_str(), rate, unit_.c_str());
+    text = buf;
+    std::snprintf(buf, sizeof buf, final_line ? "%.1f s" : "ETA %.1f s", final_line ? elapsed : eta);
+    text += buf;
   } else {
-    std::fprintf(stderr, "\r%s: %.0f %s, %.0f %s/s   ", label_.c_str(), done, unit_.c_str(), rate,
-                 unit_.c_str());
+    std::snprintf(buf, sizeof buf, "%s: %.0f %s, %.0f %s/s", label_.c_str(), done, unit_.c_str(),
+                  rate, unit_.c_str());
+    text = buf;
   }
-  if (final_line) std::fprintf(stderr, "\n");
-  std::fflush(stderr);
+  if (live_) {
+    std::fprintf(out_, "\r%s   %s", text.c_str(), final_line ? "\n" : "");
+  } else {
+    std::fprintf(out_, "%s\n", text.c_str());
+  }
+  std::fflush(out_);
 }
 
 }  // namespace dimer

@@ -23,6 +23,8 @@ std::string IsoTimestampNow() {
 
 }  // namespace dimer
 
+#include <stdexcept>
+
 #include "common/h5_file.h"
 
 namespace dimer {
@@ -33,6 +35,22 @@ void WriteProvenance(H5Writer& w, const std::string& kind, const AttrList& param
   w.SetAttr("/", "created", IsoTimestampNow());
   for (const auto& [key, value] : params) {
     std::visit([&](const auto& v) { w.SetAttr("/", key, v); }, value);
+  }
+}
+
+void WriteProvenance(H5Writer& w, const std::string& kind, const AttrList& params,
+                     const AttrUnits& units, const AttrCodes& codes) {
+  WriteProvenance(w, kind, params);
+  w.SetAttr("/", "format", "dimerlab " + kind + " file, documented in docs/FORMATS.md");
+  for (const auto& [key, value] : params) {
+    if (std::holds_alternative<std::string>(value)) continue;
+    const auto unit = units.find(key);
+    const auto code = codes.find(key);
+    if (unit == units.end() && code == codes.end()) {
+      throw std::logic_error("WriteProvenance: root attribute '" + key + "' has no unit");
+    }
+    if (unit != units.end()) w.SetAttr("/", key + "_units", unit->second);
+    if (code != codes.end()) w.SetAttr("/", key + "_codes", code->second);
   }
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// The trajectory shared by `track` and `sim` files (FORMATS.md), so that `compare` reads one type.
+// The trajectory shared by `track` and `sim` files (docs/FORMATS.md, "Trajectory"), so that `compare` reads one type.
 // Lab frame, SI units: x to the right, z up, z measured from the plate's mean surface.
 // "left" is the sphere with the smaller x in the first sample where both are known; the
 // identity is kept through the sequence. Missing values are NaN.

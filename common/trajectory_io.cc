@@ -33,10 +33,18 @@ void WriteTrajectory(H5Writer& w, const Trajectory& traj) {
   traj.CheckConsistent();
   const hsize_t n = traj.size();
   w.WriteDoubles("/t", traj.t, {n}, "s");
-  w.WriteDoubles("/tips/left", Flatten(traj.tip_left), {n, 2}, "m");
-  w.WriteDoubles("/tips/right", Flatten(traj.tip_right), {n, 2}, "m");
+  w.SetAttr("/t", "description", "time of each sample");
+  w.WriteDoubles("/tips/left", Flatten(traj.tip_left), {n, 2}, "m", "x,z");
+  w.SetAttr("/tips/left", "description",
+            "centre of the left sphere, lab frame (x right, z up from the plate's mean surface)");
+  w.WriteDoubles("/tips/right", Flatten(traj.tip_right), {n, 2}, "m", "x,z");
+  w.SetAttr("/tips/right", "description",
+            "centre of the right sphere, lab frame (x right, z up from the plate's mean surface)");
   w.WriteDoubles("/plate_z", traj.plate_z, {n}, "m");
+  w.SetAttr("/plate_z", "description", "height of the plate surface under the dimer");
   w.WriteDoubles("/theta", traj.theta, {n}, "rad");
+  w.SetAttr("/theta", "description",
+            "axis angle from the left to the right sphere, counter-clockwise from +x");
 }
 
 Trajectory ReadTrajectory(const H5Reader& r) {

@@ -1,6 +1,6 @@
 #pragma once
 // Reading and writing the shared trajectory datasets (/t, /tips/left, /tips/right, /plate_z,
-// /theta) of FORMATS.md, each with its `units` attribute.
+// /theta) of docs/FORMATS.md, each with its `units` attribute.
 #include <string>
 
 #include "common/h5_file.h"

@@ -1,5 +1,5 @@
 #pragma once
-// The event log of a run (FORMATS.md /events/*) and per-period statistics used to say which
+// The event log of a run (docs/FORMATS.md, /events/*) and per-period statistics used to say which
 // mode a run settled in.
 #include <cstdint>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Flight: no contact. The motion is analytic in the plate frame (MODEL.md, phase 1): the CM
+// Flight: no contact. The motion is analytic in the plate frame (docs/MODEL.md, phase 1): the CM
 // falls under -g cos(alpha) (normal) and -g sin(alpha) (along the plate) minus the plate's own
 // displacement, and the dimer spins uniformly.
 //

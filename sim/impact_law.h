@@ -1,5 +1,5 @@
 #pragma once
-// Frictional impacts of one or two spheres with the plate (MODEL.md, phases 2 and 4).
+// Frictional impacts of one or two spheres with the plate (docs/MODEL.md, phases 2 and 4).
 //
 // Single contact: Routh's method. The accumulated normal impulse P_N is the independent
 // variable; while the contact slides, dP_T = -sgn(U) mu_hat dP_N; when U reaches 0 the contact

@@ -31,7 +31,7 @@ InitialCondition OnPeriodOneOrbit(const Model& m, const SimOptions& o) {
     std::ostringstream s;
     s << "--init jump: no period-1 orbit at --gamma " << o.gamma << " with --eps " << o.eps
       << "; it needs Gamma >= pi(1-eps)/(1+eps) = " << M_PI * (1 - o.eps) / (1 + o.eps);
-    throw InputError(s.str());
+    throw UsageError(s.str());
   }
   InitialCondition ic;
   ic.t0 = TimeAtPhase(m, phase);
@@ -52,7 +52,7 @@ InitialCondition MakeInitialCondition(const Model& m, const SimOptions& o) {
     ic.q = PlateFromLab(m, 0, lab);
     for (int sp = 0; sp < 2; ++sp) {
       if (Gap(m, ic.q, sp) < -1e-9 * m.R) {
-        throw InputError("--init-state: sphere " + std::string(sp ? "right" : "left") +
+        throw UsageError("--init-state: sphere " + std::string(sp ? "right" : "left") +
                          " starts below the plate surface");
       }
     }
@@ -83,6 +83,62 @@ InitialCondition MakeInitialCondition(const Model& m, const SimOptions& o) {
       return ic;
   }
   return ic;
+}
+
+namespace {
+
+// Why the asked-for mode was likely not reached, from the paper's ranges (docs/MODEL.md).
+std::string LikelyReason(const SimOptions& o, const std::string& reached) {
+  std::ostringstream why;
+  switch (o.init) {
+    case InitKind::kFlutter:
+      why << "the flutter launch does not lead to the flutter mode at --gamma " << o.gamma;
+      if (o.gamma < 1) {
+        why << " (below Gamma 1, as at the paper's 0.9, flutter is not reachable from the "
+               "default launch; at a larger --gamma start from a state on the flutter orbit "
+               "with --init-state)";
+      } else {
+        why << " (the launch is outside the flutter orbit's basin here; try --init-state with "
+               "a state on the orbit)";
+      }
+      break;
+    case InitKind::kDrift:
+      if (o.ar < 2.5) {
+        why << "the drift mode is unstable below A_r 2.5 (paper)";
+      } else if (o.gamma < 0.5) {
+        why << "below Gamma 0.5 the drift mode collapses to rest (paper: drift from 0.5 to 1.1)";
+      } else if (o.gamma > 1.1) {
+        why << "above Gamma 1.1 the drift mode gives way to jump and flutter (paper)";
+      } else {
+        why << "the release (--lift " << o.EffectiveLift() << " d, --release-phase "
+            << o.release_phase << ") does not lead to drift here; try another --lift";
+      }
+      break;
+    case InitKind::kJump:
+      why << "the period-1 bouncing orbit is not stable at --gamma " << o.gamma << " with --eps "
+          << o.eps << "; the jump mode is the paper's Gamma < 1 regime";
+      break;
+    case InitKind::kRest:
+      why << (o.gamma >= 1 ? "at Gamma >= 1 the plate accelerates down faster than gravity and "
+                             "throws the dimer off"
+                           : "the tilt is steeper than the friction angle (tan alpha > mu_s)");
+      break;
+  }
+  if (reached == "irregular") why << "; irregular may also mean the run is still settling";
+  return why.str();
+}
+
+}  // namespace
+
+std::string ModeNote(const SimOptions& o, const std::string& settled_mode, long periods) {
+  if (o.init_state || settled_mode == ToString(o.init)) return "";
+  std::string note = "--init " + ToString(o.init) + " settled in " + settled_mode +
+                     " mode, not " + ToString(o.init) + ": " + LikelyReason(o, settled_mode);
+  if (periods < 20) {
+    note += " (only " + std::to_string(periods) + " periods: the mode is judged on the last " +
+            "half of the run; a longer run may settle)";
+  }
+  return note;
 }
 
 }  // namespace dimer::sim

@@ -1,7 +1,7 @@
 #pragma once
 // The immutable description of one simulated experiment: geometry of the dimer, the drive of the
-// plate, friction and restitution (MODEL.md), plus the numerical knobs that trade speed for
-// accuracy. SimOptions is what the user gives (CLI flags of FORMATS.md, SI units or fractions);
+// plate, friction and restitution (docs/MODEL.md), plus the numerical knobs that trade speed for
+// accuracy. SimOptions is what the user gives (CLI flags of docs/FORMATS.md, SI units or fractions);
 // Model is what the stages read (derived quantities, all SI).
 //
 // Frames: the simulator works in the plate frame (x' along the plate, z' along its normal,
@@ -18,9 +18,9 @@
 
 namespace dimer::sim {
 
-inline constexpr double kGravity = 9.81;  // m/s^2 (MODEL.md)
+inline constexpr double kGravity = 9.81;  // m/s^2 (docs/MODEL.md)
 // The paper's release lifts one end by "a fraction of the sphere diameter"; 0.3 d at its
-// base frequency of 25 Hz (FORMATS.md default).
+// base frequency of 25 Hz (docs/MODEL.md, "Default lift").
 inline constexpr double kDefaultLift = 0.3;
 inline constexpr double kDefaultLiftFreqHz = 25.0;
 
@@ -67,6 +67,13 @@ struct SimOptions {
   // Every invalid field at once, as "--flag: value: expected ..." lines; empty if valid.
   std::vector<std::string> Check() const;
   double Duration() const { return duration_s > 0 ? duration_s : cycles / freq_hz; }
+  // Output samples of the run, defined once (docs/FORMATS.md, "Samples"): sample k is at
+  // exactly t_start + k / fps for k = 0 .. n-1, n = floor(Duration() fps + kSampleCountSlack) + 1,
+  // so the end time is included whenever Duration() fps is a whole number up to its rounding
+  // (3 periods at 25 Hz and 2000/s give 240.00000000000003 or 239.99999999999997: 241
+  // samples either way). 0 when fps == 0 (events only).
+  long SampleCount() const;
+  static constexpr double kSampleCountSlack = 1e-6;  // samples
   double EffectiveLift() const;
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// Persistent contact ("rolling", MODEL.md phase 3): one or both spheres stay on the plate with
+// Persistent contact ("rolling", docs/MODEL.md phase 3): one or both spheres stay on the plate with
 // V_s = 0 and normal force N_s >= 0; each such contact either sticks (U_s = 0, |F_T| <= mu_s N)
 // or slides (F_T = -sgn(U_s) mu N). Forces are per unit mass.
 //

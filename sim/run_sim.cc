@@ -7,6 +7,7 @@
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/progress.h"
+#include "sim/initial_conditions.h"
 #include "sim/sim_file.h"
 #include "sim/simulator.h"
 
@@ -21,13 +22,13 @@ std::array<double, 6> ParseInitState(const std::string& text) {
     char* end = nullptr;
     const double x = std::strtod(item.c_str(), &end);
     if (n >= 6 || end == item.c_str() || *end != '\0') {
-      throw InputError("--init-state: \"" + text +
+      throw UsageError("--init-state: \"" + text +
                        "\": expected six comma-separated numbers x,z,theta,u,v,omega");
     }
     v[n++] = x;
   }
   if (n != 6) {
-    throw InputError("--init-state: \"" + text +
+    throw UsageError("--init-state: \"" + text +
                      "\": expected six comma-separated numbers x,z,theta,u,v,omega");
   }
   return v;
@@ -35,13 +36,13 @@ std::array<double, 6> ParseInitState(const std::string& text) {
 
 int RunSim(const SimRunArgs& args) {
   // Check the output path before spending time on the run.
-  if (args.output.empty()) throw InputError("sim: -o/--output is required");
+  if (args.output.empty()) throw UsageError("sim: -o/--output is required");
   {
     std::vector<std::string> errors = args.options.Check();
     if (!errors.empty()) {
       std::string msg = "invalid simulation parameters: ";
       for (size_t i = 0; i < errors.size(); ++i) msg += (i ? "; " : "") + errors[i];
-      throw InputError(msg);
+      throw UsageError(msg);
     }
   }
   CheckCanWrite(args.output, args.force);
@@ -64,6 +65,10 @@ int RunSim(const SimRunArgs& args) {
                 ms.drift_speed * args.options.freq_hz / kGravity);
   }
   std::printf("\n");
+  if (r.error.empty() && !r.interrupted) {
+    const std::string note = ModeNote(args.options, ms.label, static_cast<long>(r.periods.size()));
+    if (!note.empty()) std::fprintf(stderr, "dimerlab: warning: %s\n", note.c_str());
+  }
   if (!r.error.empty()) {
     throw std::runtime_error(r.error + " (partial run written to " + args.output + ")");
   }

@@ -4,11 +4,23 @@
 #include "common/h5_file.h"
 #include "common/trajectory_io.h"
 #include "sim/frames.h"
+#include "sim/initial_conditions.h"
 
 namespace dimer::sim {
 
 namespace {
 std::string RestitutionName(RestitutionLaw law);
+
+constexpr const char* kStateUnits = "m,m,rad,m/s,m/s,rad/s";
+constexpr const char* kStateColumns = "x,z,theta,u,v,omega";
+constexpr const char* kEventKindCodes =
+    "impact=one sphere hits the plate,"
+    "double_impact=both spheres in one impact (or one hits while the other rests),"
+    "collapse=an impact slower than v_c: the sphere stays on the plate,"
+    "liftoff=a resting sphere leaves the plate,"
+    "stick=a resting sphere stops sliding,"
+    "slip=a resting sphere starts sliding,"
+    "painleve=an impact without collision resolving a Painleve configuration";
 }  // namespace
 
 AttrList SimParameters(const SimOptions& o) {
@@ -73,11 +85,44 @@ void WriteEvents(H5Writer& w, const Model& m, const std::vector<EventRecord>& ev
     after.push_back(LabFromPlate(m, e.t_local, e.after));
   }
   w.WriteDoubles("/events/t", t, {n}, "s");
+  w.SetAttr("/events/t", "description", "time of each event");
   w.WriteStrings("/events/kind", kind);
+  w.SetAttr("/events/kind", "description", "what happened");
+  w.SetAttr("/events/kind", "codes", kEventKindCodes);
   w.WriteStrings("/events/detail", detail);
+  w.SetAttr("/events/detail", "description",
+            "impacts: how the slip evolved, per sphere (continuous_slide | slip_stick | "
+            "slip_reversal); empty for other events");
   w.WriteInt8("/events/sphere", sphere, {n});
-  w.WriteDoubles("/events/before", StateRows(before), {n, 6}, "m,m,rad,m/s,m/s,rad/s");
-  w.WriteDoubles("/events/after", StateRows(after), {n, 6}, "m,m,rad,m/s,m/s,rad/s");
+  w.SetAttr("/events/sphere", "description", "the sphere(s) of the event");
+  w.SetAttr("/events/sphere", "codes", "0=left,1=right,2=both");
+  w.WriteDoubles("/events/before", StateRows(before), {n, 6}, kStateUnits, kStateColumns);
+  w.SetAttr("/events/before", "description", "lab-frame state just before the event");
+  w.WriteDoubles("/events/after", StateRows(after), {n, 6}, kStateUnits, kStateColumns);
+  w.SetAttr("/events/after", "description", "lab-frame state just after the event");
+}
+
+// Units of the root attributes: every parameter and every result.
+AttrUnits SimAttrUnits() {
+  return {{"ar", "1"}, {"diameter", "m"}, {"freq", "Hz"}, {"gamma", "1"}, {"tilt_deg", "deg"},
+          {"plate_phase", "period"}, {"eps", "1"}, {"mu", "1"}, {"mu_s", "1"}, {"mu_hat", "1"},
+          {"mu_hat_s", "1"}, {"lift", "d"}, {"release_phase", "period"}, {"cycles", "period"},
+          {"duration", "s"}, {"fps", "1/s"}, {"collapse_vc", "g/f"}, {"contact_tol", "1"},
+          {"gap_tol", "m"}, {"max_events_per_period", "1/period"}, {"t_start", "s"},
+          {"t_end", "s"}, {"drift_speed", "m/s"}, {"drift_speed_err", "m/s"},
+          {"drift_scaled", "1"}, {"mode_window_periods", "period"},
+          {"mode_impacts_per_period_left", "1/period"},
+          {"mode_impacts_per_period_right", "1/period"}, {"mode_rest_fraction_left", "1"},
+          {"mode_rest_fraction_right", "1"}, {"events_per_period", "1/period"},
+          {"max_events_in_period", "1"}, {"max_penetration_m", "m"}, {"impact_failures", "1"},
+          {"capped_searches", "1"}, {"step_underflows", "1"}, {"painleve_events", "1"},
+          {"newton_energy_gain_impacts", "1"}, {"newton_max_relative_gain", "1"}};
+}
+
+AttrCodes SimAttrCodes() {
+  return {{"bouncing_sphere", "-1=none (not in drift mode),0=left,1=right"},
+          {"interrupted", "0=complete run,1=stopped early (Ctrl-C): t_end is the last time "
+                          "reached"}};
 }
 
 }  // namespace
@@ -95,7 +140,10 @@ void WriteSimFile(const std::string& path, bool force, const SimOptions& o, cons
                   PlateSurfaceZ(m, r.t[i], q.x), q.th);
     }
     WriteTrajectory(w, traj);
-    w.WriteDoubles("/state", StateRows(r.lab), {r.lab.size(), 6}, "m,m,rad,m/s,m/s,rad/s");
+    w.WriteDoubles("/state", StateRows(r.lab), {r.lab.size(), 6}, kStateUnits, kStateColumns);
+    w.SetAttr("/state", "description",
+              "lab-frame state at each sample: centre of mass (x, z), axis angle theta, their "
+              "rates (u, v, omega)");
     WriteEvents(w, m, r.events);
     AttrList attrs = SimParameters(o);
     const SimDiagnostics& d = r.diag;
@@ -104,6 +152,7 @@ void WriteSimFile(const std::string& path, bool force, const SimOptions& o, cons
                  {{"t_start", r.t_start},
                   {"t_end", r.t_end},
                   {"settled_mode", r.mode.label},
+                  {"mode_note", ModeNote(o, r.mode.label, static_cast<long>(r.periods.size()))},
                   {"bouncing_sphere", int64_t{r.mode.bouncing_sphere}},
                   {"drift_speed", r.mode.drift_speed},
                   {"drift_speed_err", r.mode.drift_speed_err},
@@ -124,7 +173,7 @@ void WriteSimFile(const std::string& path, bool force, const SimOptions& o, cons
                   {"newton_max_relative_gain", d.max_newton_gain},
                   {"interrupted", int64_t{r.interrupted}},
                   {"error", r.error}});
-    WriteProvenance(w, "sim", attrs);
+    WriteProvenance(w, "sim", attrs, SimAttrUnits(), SimAttrCodes());
     w.Close();
   }
   out.Commit();

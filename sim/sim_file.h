@@ -1,5 +1,5 @@
 #pragma once
-// The sim file (FORMATS.md, kind = sim): the shared trajectory, /state, /events/*, every
+// The sim file (docs/FORMATS.md, kind = sim): the shared trajectory, /state, /events/*, every
 // parameter as a root attribute, the settled mode and drift speed, and the run's diagnostics.
 // Written atomically (common/atomic_output.h).
 #include <string>

@@ -26,28 +26,29 @@ struct EventStorm : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Output samples at t_start + k / fps (absolute times, never accumulated). The runner works in
-// a local time that is re-based every period (see Runner), so Next() and Record() speak local
-// time and `offset` converts.
+// Output samples k = 0 .. n-1 at exactly t_start + k / fps (absolute times, never accumulated;
+// n = SimOptions::SampleCount(), defined once). The runner works in a local time that is
+// re-based every period (see Runner), so Next() and Record() speak local time and `offset`
+// converts.
 class Sampler : public SampleSink {
  public:
-  Sampler(const Model& m, double t0, double t_end, double fps, const double* offset,
-          SimResult* res)
-      : m_(&m), t0_(t0), t_end_(t_end), fps_(fps), offset_(offset), res_(res) {
-    next_ = fps > 0 ? t0 : kInf;
+  Sampler(const Model& m, double t0, long n, double fps, const double* offset, SimResult* res)
+      : m_(&m), t0_(t0), fps_(fps), n_(n), offset_(offset), res_(res) {
+    next_ = n > 0 ? t0 : kInf;
   }
   double Next() const override { return next_ - *offset_; }
   void Record(double t_local, const State& q) override {
     res_->t.push_back(next_);
     res_->lab.push_back(LabFromPlate(*m_, t_local, q));
     ++k_;
-    next_ = t0_ + k_ / fps_;
-    if (next_ > t_end_) next_ = kInf;
+    next_ = k_ < n_ ? t0_ + k_ / fps_ : kInf;
   }
+  long pending() const { return n_ - k_; }
 
  private:
   const Model* m_;
-  double t0_, t_end_, fps_;
+  double t0_, fps_;
+  long n_;
   const double* offset_;
   SimResult* res_;
   long k_ = 0;
@@ -68,6 +69,7 @@ class Runner {
   void DoImpact(std::array<bool, 2> touching);
   void Log(EventKind kind, int sphere, const State& before, std::string detail = "");
   void StartPeriod();
+  void FinishSamples();
   void TrackPenetration(const State& q, const ContactConfig& cfg);
 
   const SimOptions& o_;
@@ -272,6 +274,21 @@ void Runner::StartPeriod() {
   period_end_ = res_.t_start + m_.period;  // local time: every period starts at t_start
 }
 
+// After the loop. A complete run may still owe its last sample: t_start + (n-1)/fps can exceed
+// the end time reached by an ulp, which the stages never step past; it is the end state. A run
+// that stopped early ends where it stopped: t_end is the last time reached, not the one asked.
+void Runner::FinishSamples() {
+  const double t_reached = offset_ + t_;
+  if (res_.interrupted || !res_.error.empty()) {
+    res_.t_end = t_reached;
+    return;
+  }
+  const double rounding = 1e-9 * m_.period;
+  while (sampler_.pending() > 0 && sampler_.Next() + offset_ <= t_reached + rounding) {
+    sampler_.Record(t_, q_);
+  }
+}
+
 SimResult Runner::Run() {
   const InitialCondition ic = MakeInitialCondition(m_, o_);
   res_.model = m_;
@@ -279,7 +296,7 @@ SimResult Runner::Run() {
   q_ = ic.q;
   res_.t_start = t_;
   res_.t_end = t_ + o_.Duration();
-  sampler_ = Sampler(m_, t_, res_.t_end, o_.fps, &offset_, &res_);
+  sampler_ = Sampler(m_, t_, o_.SampleCount(), o_.fps, &offset_, &res_);
   h_ = 1e-3 * m_.period;
   StartPeriod();
   std::array<bool, 2> touching{};
@@ -336,6 +353,7 @@ SimResult Runner::Run() {
   }
   // Mode over the project's settled window (common/modes.h).
   const State lab = LabFromPlate(m_, t_, q_);
+  FinishSamples();  // the last sample and t_end (t_, q_ unchanged)
   std::array<int, 2> dir{};
   for (int s = 0; s < 2; ++s) {
     const double dx = TipLab(m_, lab, s).x() - TipLab(m_, lab, 1 - s).x();
@@ -354,7 +372,7 @@ SimResult RunSimulation(const SimOptions& options, const RunControls& controls) 
   if (!errors.empty()) {
     std::string msg = "invalid simulation parameters: ";
     for (size_t i = 0; i < errors.size(); ++i) msg += (i ? "; " : "") + errors[i];
-    throw InputError(msg);
+    throw UsageError(msg);
   }
   Runner runner(options, controls);
   return runner.Run();

@@ -1,5 +1,5 @@
 #pragma once
-// The event-driven simulator loop (MODEL.md "Phases of motion"). One step of the loop is a list
+// The event-driven simulator loop (docs/MODEL.md, "How a run proceeds"). One step of the loop is a list
 // of named stages:
 //   1. Settle: decide which spheres rest on the plate and how (stick / slide), resolving
 //      Painleve's paradox by an impact without collision.

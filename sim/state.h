@@ -2,7 +2,7 @@
 // The mutable state of the dimer, in the plate frame (model.h): CM position (x, z) with z from
 // the plate surface, axis angle th (counter-clockwise, left -> right sphere), and velocities
 // relative to the plate. Contact geometry of sphere s (0 left, 1 right) lives here too, since
-// every stage needs it (MODEL.md, "Contact kinematics").
+// every stage needs it (docs/MODEL.md, "Contact kinematics").
 #include <array>
 #include <cmath>
 

@@ -12,6 +12,7 @@
 #include <iterator>
 
 #include "common/error.h"
+#include "tracking/png_check.h"
 
 namespace dimer::tracking {
 namespace fs = std::filesystem;
@@ -209,6 +210,14 @@ Frame DecodeImageFile(const std::string& path, size_t index, const std::string& 
   if (bytes.empty()) {
     f.error = "empty file (0 bytes)";
     return f;
+  }
+  if (LooksLikePng(bytes.data(), bytes.size())) {
+    // A broken PNG is reported here, in one line, before libpng could print its own message.
+    const std::string problem = PngStructureProblem(bytes.data(), bytes.size());
+    if (!problem.empty()) {
+      f.error = "not a decodable image: PNG " + problem;
+      return f;
+    }
   }
   try {
     f.image = cv::imdecode(bytes, kDecodeFlags);

@@ -1,5 +1,5 @@
 #pragma once
-// Mapping between lab metres and image pixels (FORMATS.md). The renderer shifts columns by
+// Mapping between lab metres and image pixels (docs/FORMATS.md, "Conventions"). The renderer shifts columns by
 // `col_offset` so that a trajectory at any x fits the frame; the tracker writes
 // x = col * m_per_px (col_offset 0), so a rendered sequence maps back with
 // x_true = (col - col_offset) * m_per_px.

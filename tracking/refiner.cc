@@ -493,7 +493,7 @@ Method ParseMethod(const std::string& name, const std::string& option) {
   for (const auto& [value, n] : kMethodNames) {
     if (name == n) return value;
   }
-  throw InputError(option + " '" + name + "': expected centroid or discfit");
+  throw UsageError(option + " '" + name + "': expected centroid or discfit");
 }
 
 SphereMeasurement MeasureSphere(const cv::Mat& frame, const Eigen::Vector2d& guess,

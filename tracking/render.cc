@@ -75,14 +75,22 @@ std::string RenderJson(const RenderArgs& a, const RenderPlan& p, double diameter
   add("blur_samples", std::to_string(a.blur_samples));
   add("bit_depth", std::to_string(a.image.bit_depth));
   add("format", "\"" + a.format + "\"");
-  add("seed", std::to_string(a.image.seed), true);
+  add("seed", std::to_string(a.image.seed));
+  add("units",
+      "{\"m_per_px\": \"m/px\", \"row0\": \"px\", \"col_offset\": \"px\", "
+      "\"diameter\": \"m\", \"radius_px\": \"px\", \"rod_diameter\": \"m\", "
+      "\"noise\": \"grey levels (8-bit scale)\", \"gradient\": \"1\", "
+      "\"exposure\": \"frame intervals\", \"width\": \"px\", \"height\": \"px\"}");
+  add("format_doc", "\"docs/FORMATS.md, render folder\"", true);
   return j + "}\n";
 }
 
 void WriteTruth(const std::string& path, const RenderArgs& a, const RenderPlan& p,
                 const Trajectory& traj, size_t n) {
   std::ofstream out(path);
-  out << "# dimerlab render truth: exact pixel centres (col, row) at each frame's sample time\n"
+  out << "# dimerlab render truth: exact pixel centres (col, row) at each frame's sample time; "
+         "units: t s, *_col *_row plate_row px (0-based pixel centres, rows growing downward); "
+         "docs/FORMATS.md\n"
       << "# m_per_px=" << Num(p.map.m_per_px) << " row0=" << Num(p.map.row0)
       << " col_offset=" << Num(p.map.col_offset) << " radius_px=" << Num(p.radius_px)
       << " lighting=" << ToString(a.image.lighting) << " noise=" << Num(a.image.noise)
@@ -143,7 +151,7 @@ void RenderArgs::Check() const {
   need(blur_samples >= 1 && blur_samples <= 64, "--blur-samples must be 1..64");
   need(format == "png" || format == "tiff", "--format '" + format + "': expected png or tiff");
   need(threads >= 0 && threads <= 256, "--threads must be 0 (all cores) .. 256");
-  if (!bad.empty()) throw InputError(bad);
+  if (!bad.empty()) throw UsageError(bad);
   image.Check();
 }
 
@@ -208,6 +216,10 @@ void RunRender(const RenderArgs& args) {
   WriteTruth(out.temp_path() + "/truth.csv", args, plan, traj, n);
   std::ofstream(out.temp_path() + "/render.json") << RenderJson(args, plan, diameter, n);
   out.Commit();
+  // The one-line summary every subcommand ends with (stdout; -q silences progress only).
+  std::printf("%s: %zu frames %dx%d, %d-bit %s, %s lighting, %.3g m/px; truth.csv, render.json\n",
+              args.output.c_str(), n, args.image.width, args.image.height, args.image.bit_depth,
+              args.format.c_str(), ToString(args.image.lighting).c_str(), args.m_per_px);
 }
 
 }  // namespace dimer::tracking

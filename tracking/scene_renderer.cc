@@ -174,7 +174,7 @@ Lighting ParseLighting(const std::string& name, const std::string& option) {
   for (const auto& [value, n] : kLightingNames) {
     if (name == n) return value;
   }
-  throw InputError(option + " '" + name + "': expected one of disc, backlit, reflect");
+  throw UsageError(option + " '" + name + "': expected one of disc, backlit, reflect");
 }
 
 void RenderOptions::Check() const {
@@ -190,7 +190,7 @@ void RenderOptions::Check() const {
   need(bit_depth == 8 || bit_depth == 16,
        "--bit-depth " + std::to_string(bit_depth) + ": expected 8 or 16");
   need(supersample >= 1 && supersample <= 16, "--supersample must be 1..16");
-  if (!bad.empty()) throw InputError(bad);
+  if (!bad.empty()) throw UsageError(bad);
 }
 
 cv::Mat RenderRadiance(const SceneGeometry& scene, const RenderOptions& options) {

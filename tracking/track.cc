@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <deque>
 #include <future>
+#include <mutex>
+#include <set>
 #include <thread>
 
 #include "common/atomic_output.h"
@@ -12,6 +14,7 @@
 #include "common/h5_file.h"
 #include "common/interrupt.h"
 #include "common/progress.h"
+#include "common/stderr_capture.h"
 #include "common/provenance.h"
 #include "common/trajectory_io.h"
 
@@ -99,8 +102,8 @@ void Stitch(const std::vector<FrameTrack>& done, std::vector<FrameTrack>* chunk)
 
 void SequenceOptions::Check() const {
   tracker.Check();
-  if (threads < 0 || threads > 256) throw InputError("--threads must be 0 (all cores) .. 256");
-  if (chunk_frames < 1) throw InputError("--chunk-frames must be >= 1");
+  if (threads < 0 || threads > 256) throw UsageError("--threads must be 0 (all cores) .. 256");
+  if (chunk_frames < 1) throw UsageError("--chunk-frames must be >= 1");
 }
 
 SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options,
@@ -184,7 +187,7 @@ void TrackArgs::Check() const {
   } catch (const InputError& e) {
     need(false, e.what());
   }
-  if (!bad.empty()) throw InputError(bad);
+  if (!bad.empty()) throw UsageError(bad);
   sequence.Check();
 }
 
@@ -264,17 +267,80 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                    {"chunk_frames", int64_t(args.sequence.chunk_frames)},
                    {"width", int64_t(r.width)}, {"height", int64_t(r.height)},
                    {"frames_tracked", int64_t(n)}, {"frames_skipped", int64_t(r.skipped.size())},
-                   {"complete", int64_t(r.complete)}});
+                   {"complete", int64_t(r.complete)}},
+                  {{"fps", "1/s"}, {"m_per_px", "m/px"}, {"row0", "px"}, {"diameter", "m"},
+                   {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
+                   {"frames_tracked", "1"}, {"frames_skipped", "1"}},
+                  {{"m_per_px_given", "0=calibrated from --diameter,1=given by --m-per-px"},
+                   {"complete", "0=interrupted (Ctrl-C): the frames tracked so far,1=complete"}});
   WriteTrajectory(w, traj);
-  w.WriteDoubles("/pixels/left", px[0], {n, 2}, "px");
-  w.WriteDoubles("/pixels/right", px[1], {n, 2}, "px");
+  w.WriteDoubles("/pixels/left", px[0], {n, 2}, "px", "col,row");
+  w.SetAttr("/pixels/left", "description",
+            "sub-pixel centre of the left sphere: 0-based column and row of pixel centres, rows "
+            "growing downward; NaN where not found");
+  w.WriteDoubles("/pixels/right", px[1], {n, 2}, "px", "col,row");
+  w.SetAttr("/pixels/right", "description",
+            "sub-pixel centre of the right sphere: 0-based column and row of pixel centres, rows "
+            "growing downward; NaN where not found");
   w.WriteDoubles("/pixels/plate_row", plate_row, {n}, "px");
+  w.SetAttr("/pixels/plate_row", "description", "row of the plate's top surface");
   w.WriteInt64("/frame_index", index, {n});
+  w.SetAttr("/frame_index", "units", "1");
+  w.SetAttr("/frame_index", "description",
+            "0-based index of the frame in the source's sorted frame list");
   w.WriteStrings("/frame_files", r.names);
+  w.SetAttr("/frame_files", "description", "file name of each tracked frame (FILE#PAGE in a stack)");
   w.WriteUint8("/found", found, {n, 2});
+  w.SetAttr("/found", "columns", "left,right");
+  w.SetAttr("/found", "codes", "0=not found (its tips and pixels are NaN),1=found");
+  w.SetAttr("/found", "description", "whether each sphere was found in the frame");
   w.WriteStrings("/skipped/files", skipped_names);
+  w.SetAttr("/skipped/files", "description", "frames that could not be used");
   w.WriteStrings("/skipped/reasons", skipped_reasons);
+  w.SetAttr("/skipped/reasons", "description", "why each skipped frame could not be used");
   w.Close();
+}
+
+// Decoders (libpng, libjpeg, libtiff, OpenCV's codecs) may print their own messages on stderr.
+// While frames are decoded they are captured and each distinct one becomes one dimerlab warning
+// (common/stderr_capture.h); our own progress and warnings go to the real stderr.
+SequenceResult TrackWithLibraryMessagesCaptured(const TrackArgs& args, const SequenceOptions& seq,
+                                                FrameSource& source) {
+  std::mutex seen_mutex;
+  std::set<std::string> seen;
+  size_t repeats = 0;
+  auto on_library_line = [&](const std::string& line) {
+    std::lock_guard<std::mutex> lock(seen_mutex);
+    if (!seen.insert(line).second) {
+      ++repeats;
+      return;
+    }
+    std::fprintf(StderrCapture::Diagnostics(), "dimerlab: warning: %s: decoder message: %s\n",
+                 args.input.c_str(), line.c_str());
+  };
+  SequenceResult r;
+  {
+    StderrCapture capture(on_library_line);
+    FILE* diag = StderrCapture::Diagnostics();
+    const bool live = StderrCapture::DiagnosticsIsTerminal();
+    ProgressMeter progress("track", "frames", double(source.size()), !args.quiet, diag, live);
+    r = TrackSequence(
+        source, seq,
+        [&](size_t done) {
+          progress.Update(double(done));
+          if (args.on_progress) args.on_progress(done);
+        },
+        [&](const SkippedFrame& s) {
+          std::fprintf(diag, "%sdimerlab: warning: %s: %s; skipped\n",
+                       args.quiet || !live ? "" : "\n", s.name.c_str(), s.reason.c_str());
+        });
+    progress.Finish(double(r.frames.size() + r.skipped.size()));
+  }
+  if (repeats > 0) {
+    std::fprintf(stderr, "dimerlab: warning: %s: %zu repeated decoder messages not shown\n",
+                 args.input.c_str(), repeats);
+  }
+  return r;
 }
 
 }  // namespace
@@ -286,25 +352,21 @@ void RunTrack(const TrackArgs& args) {
   seq.tracker.polarity = args.polarity == "bright" ? 1 : args.polarity == "dark" ? -1 : 0;
   AtomicOutput out(args.output, args.force);  // refuses an existing output before any work
   auto source = FrameSource::Open(args.input);
-  ProgressMeter progress("track", "frames", double(source->size()), !args.quiet);
-  const SequenceResult r = TrackSequence(
-      *source, seq,
-      [&](size_t done) {
-        progress.Update(double(done));
-        if (args.on_progress) args.on_progress(done);
-      },
-      [&](const SkippedFrame& s) {
-        std::fprintf(stderr, "%sdimerlab: warning: %s: %s; skipped\n", args.quiet ? "" : "\n",
-                     s.name.c_str(), s.reason.c_str());
-      });
-  progress.Finish(double(r.frames.size() + r.skipped.size()));
+  const SequenceResult r = TrackWithLibraryMessagesCaptured(args, seq, *source);
   if (r.frames.empty()) {
     if (!r.complete) throw Interrupted();
     throw InputError(args.input + ": no readable frame (all " +
                      std::to_string(r.skipped.size()) + " were skipped)");
   }
-  WriteTrackFile(out.temp_path(), args, r, Calibrate(args, r));
+  const Calibration cal = Calibrate(args, r);
+  WriteTrackFile(out.temp_path(), args, r, cal);
   out.Commit();
+  // The one-line summary every subcommand ends with (stdout; -q silences progress only).
+  size_t both = 0;
+  for (const auto& f : r.frames) both += f.found[0] && f.found[1];
+  std::printf("%s: %zu frames tracked, %zu skipped, both spheres found in %zu, %s, %.4g m/px%s\n",
+              args.output.c_str(), r.frames.size(), r.skipped.size(), both, args.method.c_str(),
+              cal.m_per_px, r.complete ? "" : " (interrupted: partial)");
   if (!r.complete) throw Interrupted();
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // `dimerlab track FRAMES -o track.h5`: the tracker over a whole source, in parallel, and the
-// track file of FORMATS.md.
+// track file of docs/FORMATS.md.
 //
 // Parallelism with deterministic results: the sequence is cut into chunks of a fixed number of
 // frames; each chunk is decoded and tracked by its own worker with its own SequenceTracker

@@ -32,7 +32,7 @@ void TrackerOptions::Check() const {
   std::string bad;
   if (polarity < -1 || polarity > 1) bad += "polarity must be -1, 0 or +1; ";
   if (!std::isnan(radius_px) && !(radius_px >= 3)) bad += "sphere radius must be >= 3 px; ";
-  if (!bad.empty()) throw InputError(bad.substr(0, bad.size() - 2));
+  if (!bad.empty()) throw UsageError(bad.substr(0, bad.size() - 2));
 }
 
 SequenceTracker::SequenceTracker(const TrackerOptions& options)

@@ -7,7 +7,7 @@
 //      the other sphere and the plate;
 //   4. if a sphere is lost (missing, clipped) or nothing is locked yet, acquire on the whole
 //      frame (detector.h) and give each detection the identity of the nearest last position;
-//      with no history, `left` is the one with the smaller column (FORMATS.md).
+//      with no history, `left` is the one with the smaller column (docs/FORMATS.md).
 // The tracker keeps only the last positions, so memory does not depend on sequence length.
 #include <opencv2/core.hpp>
 

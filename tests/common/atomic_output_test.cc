@@ -78,3 +78,41 @@ TEST(AtomicOutput, MissingParentFolderIsAClearError) {
 
 }  // namespace
 }  // namespace dimer
+
+namespace dimer {
+namespace {
+
+TEST(CheckCanWrite, RefusesAFolderWhereAFileIsAskedEvenWithForce) {
+  testing::TempDir dir;
+  fs::create_directory(dir / "results");
+  EXPECT_THROW(CheckCanWrite(dir / "results", true), InputError);
+  EXPECT_THROW(AtomicOutput(dir / "results", true), InputError);
+  std::ofstream(dir / "file.h5") << "x";
+  EXPECT_NO_THROW(CheckCanWrite(dir / "file.h5", true));
+  EXPECT_THROW(CheckCanWrite(dir / "file.h5", true, AtomicOutput::Kind::kDirectory), InputError);
+  EXPECT_NO_THROW(CheckCanWrite(dir / "results", true, AtomicOutput::Kind::kDirectory));
+  EXPECT_TRUE(fs::exists(dir / "results"));  // a check never removes anything
+}
+
+TEST(CheckCanWrite, RefusesAFolderThatTakesNoNewFiles) {
+  // /proc exists and is a folder, but no file can be created in it, even by root (for whom
+  // permission bits would prove nothing).
+  if (!fs::is_directory("/proc")) GTEST_SKIP() << "no /proc";
+  try {
+    CheckCanWrite("/proc/out.h5", false);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot create files in folder /proc"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(CheckCanWrite, LeavesNoProbeBehind) {
+  testing::TempDir dir;
+  CheckCanWrite(dir / "out.h5", false);
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+}
+
+}  // namespace
+}  // namespace dimer

@@ -35,7 +35,7 @@ Model WithImpactLaw(double ar, double mu_hat, double mu_hat_s, double eps) {
   return Model::FromOptions(o);
 }
 
-// MODEL.md check 2, the paper's displayed formula.
+// docs/MODEL.md check 2, the paper's displayed formula.
 double PaperSlipReversal(double A, double mu, double eps, double ub, double vb) {
   const double pre = (5 * mu * A * A - 5 * A + 7 * mu) / (10 * A * A - 5 * mu * A + 2);
   const double k = (10 * A * A + 5 * mu * A + 2) / (5 * mu * A * A + 5 * A + 7 * mu);
@@ -167,7 +167,7 @@ TEST(ImpactLaw, ReducesToTheSingleContactLawWhenTheOtherContactSeparates) {
   EXPECT_GT(compared, 200);
 }
 
-// MODEL.md check 3 at the level of one impact: random geometry and velocities.
+// docs/MODEL.md check 3 at the level of one impact: random geometry and velocities.
 struct EnergyCase {
   double eps, mu_hat, mu_hat_s;
   bool conserved;  // eps = 1 and no friction: conserved to round-off

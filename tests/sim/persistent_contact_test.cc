@@ -10,7 +10,7 @@
 namespace dimer::sim {
 namespace {
 
-// Contact-point accelerations from the CM accelerations (MODEL.md kinematics), computed here
+// Contact-point accelerations from the CM accelerations (docs/MODEL.md, "Contact kinematics"), computed here
 // independently of the solver.
 struct ContactAcc {
   double udot, vdot;
@@ -68,7 +68,7 @@ TEST(PersistentContact, SlideObeysCoulombAndKeepsTheNormalConstraint) {
   }
 }
 
-// MODEL.md check 4 at the force level: a flat dimer on a still plate tilted by alpha sticks
+// docs/MODEL.md check 4 at the force level: a flat dimer on a still plate tilted by alpha sticks
 // iff tan(alpha) <= mu_s; the normal forces carry the weight and the friction its slope part.
 TEST(PersistentContact, FlatDimerOnATiltSticksBelowTheFrictionAngle) {
   for (double factor : {0.5, 0.99, 1.01, 2.0}) {

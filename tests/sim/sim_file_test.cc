@@ -92,3 +92,35 @@ TEST(SimFile, BadInitStateIsAClearError) {
 
 }  // namespace
 }  // namespace dimer::sim
+
+namespace dimer::sim {
+namespace {
+
+// An initial condition that does not reach its mode says so: the mode reached and the likely
+// reason, on stderr and in the file's `mode_note`; a run that does reach it says nothing.
+TEST(SimFile, AnInitThatMissesItsModeSaysWhichModeAndWhy) {
+  dimer::testing::TempDir dir;
+  SimRunArgs a;
+  a.options.init = InitKind::kFlutter;  // at the paper's Gamma 0.9
+  a.options.cycles = 40;
+  a.output = dir / "flutter.h5";
+  a.progress = false;
+  ASSERT_EQ(RunSim(a), 0);
+  H5Reader h(a.output);
+  const std::string settled = h.AttrString("/", "settled_mode").value_or("");
+  ASSERT_NE(settled, "flutter");
+  const std::string note = h.AttrString("/", "mode_note").value_or("");
+  EXPECT_NE(note.find("--init flutter settled in " + settled + " mode"), std::string::npos)
+      << note;
+  EXPECT_NE(note.find("not reachable from the default launch"), std::string::npos) << note;
+  SimRunArgs drift = a;
+  drift.options.init = InitKind::kDrift;
+  drift.output = dir / "drift.h5";
+  ASSERT_EQ(RunSim(drift), 0);
+  H5Reader hd(drift.output);
+  EXPECT_EQ(hd.AttrString("/", "settled_mode"), "drift");
+  EXPECT_EQ(hd.AttrString("/", "mode_note"), "");
+}
+
+}  // namespace
+}  // namespace dimer::sim

@@ -21,7 +21,7 @@ SimOptions EventsOnly(SimOptions o) {
   return o;
 }
 
-// MODEL.md check 1: a flat, non-rotating dimer hitting with both spheres at once is a bouncing
+// docs/MODEL.md check 1: a flat, non-rotating dimer hitting with both spheres at once is a bouncing
 // ball; on the period-1 orbit every impact is at the same plate phase and leaves at gT/2.
 TEST(Simulator, JumpModeFollowsTheBouncingBallPeriodOneOrbit) {
   SimOptions o = EventsOnly({});
@@ -39,7 +39,7 @@ TEST(Simulator, JumpModeFollowsTheBouncingBallPeriodOneOrbit) {
     const State lab = LabFromPlate(m, e.t, e.after);
     EXPECT_NEAR(lab.v, takeoff, 1e-9 * takeoff) << "impact at t = " << e.t;
     EXPECT_NEAR(lab.w, 0.0, 1e-9);
-    // Lab-frame identity of MODEL.md: w - V_p = eps g T / (1 + eps).
+    // Lab-frame identity of docs/MODEL.md: w - V_p = eps g T / (1 + eps).
     EXPECT_NEAR(lab.v - m.PlateV(e.t), m.eps * kGravity * m.period / (1 + m.eps), 1e-9 * takeoff);
   }
   EXPECT_EQ(r.mode.label, "jump");
@@ -47,7 +47,7 @@ TEST(Simulator, JumpModeFollowsTheBouncingBallPeriodOneOrbit) {
 
 double TotalEnergy(const Model& m, const State& q) { return Energy(m, q); }
 
-// MODEL.md check 3: with a still plate, eps = 1 and no friction, kinetic + potential energy is
+// docs/MODEL.md check 3: with a still plate, eps = 1 and no friction, kinetic + potential energy is
 // the same after any number of impacts; with dissipation it never increases.
 struct EnergyRun {
   double eps, mu_hat, mu;
@@ -111,7 +111,7 @@ INSTANTIATE_TEST_SUITE_P(Laws, SimulatorEnergy,
                                   std::to_string(int(p.param.mu * 100));
                          });
 
-// MODEL.md check 4: a flat dimer stays on a plate with Gamma < 1, and does not slide on a
+// docs/MODEL.md check 4: a flat dimer stays on a plate with Gamma < 1, and does not slide on a
 // still plate tilted below the friction angle.
 TEST(Simulator, FlatDimerRestsBelowGammaOne) {
   for (double gamma : {0.0, 0.5, 0.9, 0.999}) {
@@ -217,6 +217,29 @@ TEST(Simulator, InvalidParametersAreReportedTogether) {
   EXPECT_THROW(RunSimulation(jump), InputError);
 }
 
+TEST(SimOptions, OnlyTheRootCauseIsReported) {
+  // The default lift depends on --freq and its bound on --ar: a bad --ar or --freq must not add
+  // a --lift error for a flag never given.
+  SimOptions bad_ar;
+  bad_ar.ar = 0.5;
+  ASSERT_EQ(bad_ar.Check().size(), 1u);
+  EXPECT_EQ(bad_ar.Check()[0].rfind("--ar", 0), 0u) << bad_ar.Check()[0];
+  SimOptions bad_freq;
+  bad_freq.freq_hz = 0;
+  ASSERT_EQ(bad_freq.Check().size(), 1u);
+  EXPECT_EQ(bad_freq.Check()[0].rfind("--freq", 0), 0u) << bad_freq.Check()[0];
+  // A valid but low --freq makes the derived lift too large: reported, saying it is the default.
+  SimOptions low_freq;
+  low_freq.freq_hz = 2;
+  ASSERT_EQ(low_freq.Check().size(), 1u);
+  EXPECT_NE(low_freq.Check()[0].find("default lift"), std::string::npos) << low_freq.Check()[0];
+  // An explicit lift is still checked against a valid --ar.
+  SimOptions high_lift;
+  high_lift.lift = 5;
+  ASSERT_EQ(high_lift.Check().size(), 1u);
+  EXPECT_EQ(high_lift.Check()[0].rfind("--lift", 0), 0u);
+}
+
 TEST(Simulator, SameInputsGiveBitIdenticalResults) {
   SimOptions o;
   o.cycles = 30;
@@ -261,7 +284,7 @@ namespace {
 
 // Dynamic similarity: with lengths scaled as g T^2 (diameter ~ 1/f^2, same lift in diameters)
 // the model is the same in units of g and T, so <u> f / g must not depend on f. (At a fixed
-// diameter it does, by a few per cent: a finite-size effect, see the note on issue 2.)
+// diameter it does, by a few per cent: a finite-size effect, see docs/MODEL.md, "Finite size".)
 TEST(Simulator, DriftIsDynamicallySimilarWhenTheDiameterScalesAsOneOverFSquared) {
   double scaled[3];
   const double freqs[3] = {25, 50, 75};

@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "common/error.h"
 #include "common/h5_file.h"
@@ -317,6 +318,58 @@ TEST(RunTrack, CtrlCLeavesAValidPartialFileAndNoTemporary) {
   for (const auto& e : std::filesystem::directory_iterator(dir.path())) {
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
   }
+}
+
+}  // namespace
+}  // namespace dimer::tracking
+
+namespace dimer::tracking {
+namespace {
+
+// Bitwise CRC-32 (the PNG/zlib polynomial): the test's own, to forge a chunk's CRC.
+uint32_t Crc32(const std::string& bytes) {
+  uint32_t c = 0xFFFFFFFFu;
+  for (unsigned char b : bytes) {
+    c ^= b;
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+  }
+  return c ^ 0xFFFFFFFFu;
+}
+
+// Decoder libraries print their own complaints on stderr (libpng: "libpng error: ..."). A PNG
+// whose compressed data is garbage but whose CRCs are right passes the structure check and
+// reaches libpng; during `track` its message is captured and becomes a dimerlab warning: every
+// line on stderr is dimerlab's own.
+TEST(RunTrack, LibraryMessagesBecomeDimerlabWarnings) {
+  dimer::testing::TempDir dir;
+  RenderDrift(dir, 6, Lighting::kBacklit);
+  {
+    const std::string path = dir / "frames/frame_000002.png";
+    std::ifstream in(path, std::ios::binary);
+    std::string png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t idat = png.find("IDAT");
+    ASSERT_NE(idat, std::string::npos);
+    const uint32_t length = (uint32_t(uint8_t(png[idat - 4])) << 24) |
+                            (uint32_t(uint8_t(png[idat - 3])) << 16) |
+                            (uint32_t(uint8_t(png[idat - 2])) << 8) | uint8_t(png[idat - 1]);
+    for (size_t i = idat + 4 + 2; i < idat + 4 + length; i += 3) png[i] = char(png[i] ^ 0x6b);
+    const uint32_t crc = Crc32(png.substr(idat, 4 + length));
+    for (int k = 0; k < 4; ++k) png[idat + 4 + length + k] = char(crc >> (24 - 8 * k));
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << png;
+  }
+  TrackArgs t = Track(dir);
+  ::testing::internal::CaptureStderr();
+  RunTrack(t);
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  std::istringstream lines(err);
+  int library_lines = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty()) continue;
+    EXPECT_EQ(line.rfind("dimerlab: warning: ", 0), 0u) << "not ours: " << line;
+    library_lines += line.find("decoder message: libpng") != std::string::npos;
+  }
+  EXPECT_GE(library_lines, 1) << "stderr was:\n" << err;  // libpng spoke, through us
+  EXPECT_NE(err.find("frame_000002.png: not a decodable image"), std::string::npos) << err;
 }
 
 }  // namespace
