@@ -240,10 +240,7 @@ FitResult FitCoefficients(const Analysis& track, const sim::SimOptions& scene,
   // Global first (the objective has local minima where the impact type changes), then local
   // polish from the best of the global search and of the start, then a restart (Nelder-Mead
   // can stall on a collapsed simplex).
-  // Stage 1 searches all five over their box (DIRECT-L: deterministic, global; the objective
-  // has local minima where impact types change); stage 2 polishes with Nelder-Mead from the
-  // best of stage 1 and of the start. eps starts at the measured apparent restitution of the
-  // bouncing end (v_after / -v_before).
+  // eps starts at the measured apparent restitution of the bouncing end (v_after / -v_before).
   for (const Observable& o : obj.observed()) {
     if (o.name.find("restitution_ratio") != std::string::npos && std::isfinite(o.value)) {
       x[0] = std::clamp(o.value, Specs()[0].lo, Specs()[0].hi);
@@ -251,11 +248,12 @@ FitResult FitCoefficients(const Analysis& track, const sim::SimOptions& scene,
     }
   }
   const std::vector<size_t> all = {0, 1, 2, 3, 4};
-  const std::vector<double> start = x;
-  const double chi2_start = obj.Chi2(start);
-  x = Minimise(&obj, x, options.global_evaluations, NLOPT_G_MLSL_LDS, all);
-  if (obj.Chi2(x) > chi2_start) x = start;
-  x = Minimise(&obj, x, options.max_evaluations, NLOPT_LN_NELDERMEAD, all);
+  // A local search from the start (the user's scene: the paper's coefficients by default), a
+  // multi-start search over the box polished the same way, the better of the two, a restart.
+  const std::vector<double> local = Minimise(&obj, x, options.max_evaluations, NLOPT_LN_NELDERMEAD, all);
+  std::vector<double> global = Minimise(&obj, x, options.global_evaluations, NLOPT_G_MLSL_LDS, all);
+  global = Minimise(&obj, global, options.max_evaluations, NLOPT_LN_NELDERMEAD, all);
+  x = obj.Chi2(global) < obj.Chi2(local) ? global : local;
   x = Minimise(&obj, x, options.max_evaluations / 2, NLOPT_LN_NELDERMEAD, all);
   FitResult r;
   r.chi2 = obj.Chi2(x, &r.simulated);

@@ -7,10 +7,11 @@
 //   slip after / before the bouncing end's impact. (Jump/flutter: each sphere's take-off speed
 //   and impact phase.)
 //   chi2 = sum ((sim - track) / sigma)^2, sigma^2 = sigma_track^2 + sigma_sim^2 + floor^2.
-// The optimiser is NLopt's: a global DIRECT-L search over the box (eps starting at the
-// measured apparent restitution), then a bounded Nelder-Mead polish; both derivative-free and
-// deterministic (the objective is piecewise smooth, with jumps where the impact type changes,
-// and has local minima). Uncertainties and identifiability come
+// The optimiser is NLopt's bounded Nelder-Mead, run from the start (the given coefficients,
+// eps at the measured apparent restitution) and from the best of a multi-start search (NLopt
+// MLSL over a Sobol sequence), keeping the better; derivative-free and deterministic (the
+// objective is piecewise smooth, with jumps where the impact type changes, and has local
+// minima: a start far from the truth can end in one, which chi2/dof then shows). Uncertainties and identifiability come
 // from a slice of chi2 through the optimum along each parameter (the others held at the
 // optimum): the range where chi2 <= chi2_min + max(1, chi2_min / dof). A range that reaches
 // both bounds means the scene does not constrain the parameter: it is reported as
@@ -47,8 +48,8 @@ struct FitResult {
 };
 
 struct FitOptions {
-  int global_evaluations = 400;  // global search budget, simulations (NLopt DIRECT-L)
-  int max_evaluations = 150;     // local optimiser budget (simulations), twice: start + restart
+  int global_evaluations = 300;  // multi-start search budget, simulations (NLopt MLSL-LDS)
+  int max_evaluations = 150;     // budget of each local Nelder-Mead search, simulations
   int slice_points = 15;         // points per parameter slice
   int transient_periods = 30;    // simulated before the measured part
   int measured_periods = 60;     // simulated and analysed (<= the track's)
