@@ -1,6 +1,7 @@
 #include "compare/compare_file.h"
 
 #include <cmath>
+#include <type_traits>
 
 #include "common/h5_file.h"
 
@@ -9,9 +10,46 @@ namespace {
 
 using Rows = std::vector<double>;
 
-void WriteModes(H5Writer& w, const Periods& p) {
+// Every dataset says what it is (docs/FORMATS.md, "Self-description").
+class Out {
+ public:
+  explicit Out(H5Writer& w) : w_(w) {}
+  void Doubles(const std::string& name, const Rows& v, const Dims& dims, const std::string& units,
+               const std::string& description, const std::string& columns = "") {
+    w_.WriteDoubles(name, v, dims, units, columns);
+    w_.SetAttr(name, "description", description);
+  }
+  template <typename T>
+  void Ints(const std::string& name, const std::vector<T>& v, const Dims& dims, const std::string& units,
+            const std::string& codes, const std::string& description, const std::string& columns = "") {
+    if constexpr (std::is_same_v<T, uint8_t>) w_.WriteUint8(name, v, dims);
+    else if constexpr (std::is_same_v<T, int8_t>) w_.WriteInt8(name, v, dims);
+    else w_.WriteInt64(name, v, dims);
+    if (!units.empty()) w_.SetAttr(name, "units", units);
+    if (!codes.empty()) w_.SetAttr(name, "codes", codes);
+    if (!columns.empty()) w_.SetAttr(name, "columns", columns);
+    w_.SetAttr(name, "description", description);
+  }
+  void Strings(const std::string& name, const std::vector<std::string>& v, const std::string& description,
+               const std::string& codes = "") {
+    w_.WriteStrings(name, v);
+    if (!codes.empty()) w_.SetAttr(name, "codes", codes);
+    w_.SetAttr(name, "description", description);
+  }
+  H5Writer& w() { return w_; }
+
+ private:
+  H5Writer& w_;
+};
+
+constexpr const char* kSphereCodes = "0=left,1=right";
+constexpr const char* kModeCodes = "rest=both on the plate,drift=one end bounces once per period while the other "
+                                   "rests,jump=both hit once per period,flutter=each hits every other period,"
+                                   "irregular=none of these";
+
+void WriteModes(Out& o, const Periods& p) {
   const hsize_t k = p.timeline.size();
-  Rows t0, t1, ipp, rf, drift;
+  Rows t0, t1, ipp, rf, drift, err;
   std::vector<std::string> label;
   std::vector<int8_t> bouncing;
   for (const ModeWindow& m : p.timeline) {
@@ -24,20 +62,22 @@ void WriteModes(H5Writer& w, const Periods& p) {
       rf.push_back(m.summary.rest_fraction[s]);
     }
     drift.push_back(m.summary.drift_speed);
+    err.push_back(m.summary.drift_speed_err);
   }
-  w.WriteDoubles("/modes/t_start", t0, {k}, "s");
-  w.WriteDoubles("/modes/t_end", t1, {k}, "s");
-  w.WriteStrings("/modes/label", label);
-  w.WriteInt8("/modes/bouncing_sphere", bouncing, {k});
-  w.SetAttr("/modes/bouncing_sphere", "codes", "-1 none, 0 left, 1 right");
-  w.WriteDoubles("/modes/impacts_per_period", ipp, {k, 2}, "1/period");
-  w.SetAttr("/modes/impacts_per_period", "columns", "left,right");
-  w.WriteDoubles("/modes/rest_fraction", rf, {k, 2}, "1");
-  w.SetAttr("/modes/rest_fraction", "columns", "left,right");
-  w.WriteDoubles("/modes/drift_speed", drift, {k}, "m/s");
+  o.Doubles("/modes/t_start", t0, {k}, "s", "start of each window of the mode timeline");
+  o.Doubles("/modes/t_end", t1, {k}, "s", "end of each window");
+  o.Strings("/modes/label", label, "mode of each window (the project's one definition, common/modes.h)", kModeCodes);
+  o.Ints("/modes/bouncing_sphere", bouncing, {k}, "", "-1=none (not drift),0=left,1=right",
+         "the bouncing end of each drift window");
+  o.Doubles("/modes/impacts_per_period", ipp, {k, 2}, "1/period", "impacts per period of each sphere",
+            "left,right");
+  o.Doubles("/modes/rest_fraction", rf, {k, 2}, "1", "fraction of the window each sphere rests", "left,right");
+  o.Doubles("/modes/drift_speed", drift, {k}, "m/s",
+            "mean CM velocity over the window, positive toward the bouncing end in drift");
+  o.Doubles("/modes/drift_speed_err", err, {k}, "m/s", "standard error of drift_speed (period scatter)");
 }
 
-void WritePeriods(H5Writer& w, const Periods& p) {
+void WritePeriods(Out& o, const Periods& p) {
   const hsize_t k = p.rows.size();
   Rows t0, x0, rest, elev, energy, missing;
   std::vector<int64_t> impacts;
@@ -54,45 +94,47 @@ void WritePeriods(H5Writer& w, const Periods& p) {
       elev.push_back(r.elevation_m[s]);
     }
   }
-  w.WriteDoubles("/periods/t_start", t0, {k}, "s");
-  w.WriteDoubles("/periods/x_start", x0, {k}, "m");
-  w.WriteInt64("/periods/impacts", impacts, {k, 2});
-  w.SetAttr("/periods/impacts", "columns", "left,right");
-  w.WriteDoubles("/periods/rest_time", rest, {k, 2}, "s");
-  w.SetAttr("/periods/rest_time", "columns", "left,right");
-  w.WriteDoubles("/periods/elevation", elev, {k, 2}, "m");
-  w.SetAttr("/periods/elevation", "columns", "left,right");
-  w.WriteDoubles("/periods/energy", energy, {k}, "g T^2");
-  w.WriteDoubles("/periods/missing_fraction", missing, {k}, "1");
-  w.WriteUint8("/periods/complete", complete, {k});
+  o.Doubles("/periods/t_start", t0, {k}, "s", "start of each whole plate period");
+  o.Doubles("/periods/x_start", x0, {k}, "m", "CM lab x at the period start");
+  o.Ints("/periods/impacts", impacts, {k, 2}, "1", "", "impacts of each sphere in the period", "left,right");
+  o.Doubles("/periods/rest_time", rest, {k, 2}, "s", "time each sphere rests in the period", "left,right");
+  o.Doubles("/periods/elevation", elev, {k, 2}, "m", "highest gap of each sphere above its contact level",
+            "left,right");
+  o.Doubles("/periods/energy", energy, {k}, "g T^2",
+            "the paper's energy measure: sum of the two elevations, in units of g T^2");
+  o.Doubles("/periods/missing_fraction", missing, {k}, "1", "fraction of the period's frames without both tips");
+  o.Ints("/periods/complete", complete, {k}, "", "0=more than 5 % missing: not labelled,1=complete",
+         "whether the period enters the mode windows");
 }
 
-void WriteContacts(H5Writer& w, const Analysis& a) {
+void WriteContacts(Out& o, const Analysis& a) {
   const hsize_t n = a.run.n;
-  Rows gap(2 * n);
+  Rows gap(2 * n), t(n);
   std::vector<uint8_t> resting(2 * n);
   for (size_t i = 0; i < n; ++i) {
+    t[i] = a.run.Time(i);
     for (int s = 0; s < 2; ++s) {
       gap[2 * i + s] = a.contacts.sphere[s].gap[i];
       resting[2 * i + s] = a.contacts.sphere[s].resting[i];
     }
   }
-  Rows t(n);
-  for (size_t i = 0; i < n; ++i) t[i] = a.run.Time(i);
-  w.WriteDoubles("/contacts/t", t, {n}, "s");
-  w.WriteDoubles("/contacts/gap", gap, {n, 2}, "m");
-  w.SetAttr("/contacts/gap", "columns", "left,right");
-  w.WriteUint8("/contacts/resting", resting, {n, 2});
-  w.SetAttr("/contacts/resting", "columns", "left,right");
+  o.Doubles("/contacts/t", t, {n}, "s", "time of each frame of the analysis grid");
+  o.Doubles("/contacts/gap", gap, {n, 2}, "m", "height of each sphere's lowest point above the plate",
+            "left,right");
+  o.Ints("/contacts/resting", resting, {n, 2}, "", "0=not resting,1=resting (3+ frames within thr of the level)",
+         "whether each sphere rests on the plate", "left,right");
+  Rows lvl, thr, noise;
   for (int s = 0; s < 2; ++s) {
-    const std::string side = s ? "right" : "left";
-    w.SetAttr("/contacts/gap", "level_" + side, a.contacts.sphere[s].level_m);
-    w.SetAttr("/contacts/gap", "threshold_" + side, a.contacts.sphere[s].threshold_m);
-    w.SetAttr("/contacts/gap", "noise_" + side, a.contacts.sphere[s].noise_m);
+    lvl.push_back(a.contacts.sphere[s].level_m);
+    thr.push_back(a.contacts.sphere[s].threshold_m);
+    noise.push_back(a.contacts.sphere[s].noise_m);
   }
+  o.Doubles("/contacts/level", lvl, {2}, "m", "measured contact level of the gap, per sphere (left, right)");
+  o.Doubles("/contacts/threshold", thr, {2}, "m", "contact threshold thr, per sphere (left, right)");
+  o.Doubles("/contacts/noise", noise, {2}, "m", "position noise of the gap from the data, per sphere (left, right)");
   const std::vector<Impact> imps = a.contacts.AllImpacts();
   const hsize_t m = imps.size();
-  Rows it, ph, vb, va, lvl;
+  Rows it, ph, vb, va, lv;
   std::vector<int8_t> sph;
   std::vector<uint8_t> bounce;
   for (const Impact& i : imps) {
@@ -100,40 +142,37 @@ void WriteContacts(H5Writer& w, const Analysis& a) {
     ph.push_back(i.plate_phase);
     vb.push_back(i.v_before);
     va.push_back(i.v_after);
-    lvl.push_back(i.level_m);
+    lv.push_back(i.level_m);
     sph.push_back(static_cast<int8_t>(i.sphere));
     bounce.push_back(i.bounce);
   }
-  w.WriteDoubles("/impacts/t", it, {m}, "s");
-  w.WriteInt8("/impacts/sphere", sph, {m});
-  w.SetAttr("/impacts/sphere", "codes", "0 left, 1 right");
-  w.WriteDoubles("/impacts/plate_phase", ph, {m}, "period");
-  w.WriteDoubles("/impacts/v_before", vb, {m}, "m/s");
-  w.WriteDoubles("/impacts/v_after", va, {m}, "m/s");
-  w.WriteDoubles("/impacts/level", lvl, {m}, "m");
-  w.WriteUint8("/impacts/bounce", bounce, {m});
-  w.SetAttr("/impacts/bounce", "codes", "1 bounce (flight after), 0 landing to rest");
+  o.Doubles("/impacts/t", it, {m}, "s", "impact time (sub-frame: fitted approach and departure meet)");
+  o.Ints("/impacts/sphere", sph, {m}, "", kSphereCodes, "the sphere that hit");
+  o.Doubles("/impacts/plate_phase", ph, {m}, "period", "plate phase at the impact, 0..1 (0: mid-height rising)");
+  o.Doubles("/impacts/v_before", vb, {m}, "m/s", "normal velocity relative to the plate before the impact");
+  o.Doubles("/impacts/v_after", va, {m}, "m/s", "normal velocity relative to the plate after (NaN: landed)");
+  o.Doubles("/impacts/level", lv, {m}, "m", "gap at the fitted impact point");
+  o.Ints("/impacts/bounce", bounce, {m}, "", "0=landing to rest,1=bounce (flight after)", "how the impact ended");
 }
 
-void WriteSlip(H5Writer& w, const SlipResult& s, const SampledRun& run) {
+void WriteSlip(Out& o, const SlipResult& s, const SampledRun& run) {
   const hsize_t n = run.n, k = s.phase.size();
   Rows t(n);
   for (size_t i = 0; i < n; ++i) t[i] = run.Time(i);
-  w.WriteDoubles("/slip/t", t, {n}, "s");
-  w.WriteDoubles("/slip/U", s.U, {n}, "m/s");
-  w.SetAttr("/slip/U", "sign", "positive toward the bouncing end");
-  w.SetAttr("/slip/U", "resting_sphere", int64_t{s.resting_sphere});
-  w.SetAttr("/slip/U", "half_window_frames", int64_t{s.half_window});
-  w.WriteDoubles("/slip/phase", s.phase, {k}, "period");
-  w.WriteDoubles("/slip/profile", s.profile, {k}, "m/s");
-  w.WriteDoubles("/slip/profile_err", s.profile_err, {k}, "m/s");
+  o.Doubles("/slip/t", t, {n}, "s", "time of each frame");
+  o.Doubles("/slip/U", s.U, {n}, "m/s",
+            "slip velocity u - omega r_z of the resting sphere's contact point, positive toward the "
+            "bouncing end (NaN where it does not rest)");
+  o.Doubles("/slip/phase", s.phase, {k}, "period", "centre of each plate-phase bin, 0..1");
+  o.Doubles("/slip/profile", s.profile, {k}, "m/s", "mean slip in each phase bin");
+  o.Doubles("/slip/profile_err", s.profile_err, {k}, "m/s", "standard error of the mean slip in each bin");
   std::vector<int64_t> count(s.profile_count.begin(), s.profile_count.end());
-  w.WriteInt64("/slip/profile_count", count, {k});
+  o.Ints("/slip/profile_count", count, {k}, "1", "", "frames in each phase bin");
 }
 
-void WriteComparison(H5Writer& w, const Comparison& c) {
+void WriteComparison(Out& o, const Comparison& c) {
   const hsize_t n = c.t.size();
-  w.WriteDoubles("/comparison/t", c.t, {n}, "s");
+  o.Doubles("/comparison/t", c.t, {n}, "s", "track time of each compared frame");
   for (int s = 0; s < 2; ++s) {
     const std::string side = s ? "right" : "left";
     Rows sim(2 * n), res(2 * n);
@@ -141,20 +180,16 @@ void WriteComparison(H5Writer& w, const Comparison& c) {
       sim[2 * i] = c.sim_x[s][i], sim[2 * i + 1] = c.sim_z[s][i];
       res[2 * i] = c.res_x[s][i], res[2 * i + 1] = c.res_z[s][i];
     }
-    w.WriteDoubles("/comparison/sim_tips/" + side, sim, {n, 2}, "m");
-    w.SetAttr("/comparison/sim_tips/" + side, "columns", "x,z");
-    w.WriteDoubles("/comparison/residual/" + side, res, {n, 2}, "m");
-    w.SetAttr("/comparison/residual/" + side, "columns", "x,z");
+    o.Doubles("/comparison/sim_tips/" + side, sim, {n, 2}, "m",
+              "aligned simulated " + side + " tip in the track's frame", "x,z");
+    o.Doubles("/comparison/residual/" + side, res, {n, 2}, "m", "track minus simulation, " + side + " tip", "x,z");
   }
   const SlipResult& ss = c.sim.slip;
-  w.WriteDoubles("/comparison/sim_slip_profile", ss.profile, {ss.profile.size()}, "m/s");
-  w.SetAttr("/comparison/t", "sim", c.sim_path);
-  w.SetAttr("/comparison/t", "time_offset", c.time_offset_s);
-  w.SetAttr("/comparison/t", "x_offset", c.x_offset_m);
-  w.SetAttr("/comparison/t", "mirrored", int64_t{c.mirrored});
+  o.Doubles("/comparison/sim_slip_profile", ss.profile, {ss.profile.size()}, "m/s",
+            "the simulation's phase-averaged slip, same bins as /slip/profile");
 }
 
-void WriteFit(H5Writer& w, const FitResult& f) {
+void WriteFit(Out& o, const FitResult& f) {
   std::vector<std::string> names, status;
   Rows value, err, lo, hi, rlo, rhi;
   for (const FitParameter& p : f.params) {
@@ -163,27 +198,31 @@ void WriteFit(H5Writer& w, const FitResult& f) {
     value.push_back(p.status == "constrained" ? p.value : kNaN);
     err.push_back(p.status == "constrained" ? p.err : kNaN);
     lo.push_back(p.lo), hi.push_back(p.hi), rlo.push_back(p.range_lo), rhi.push_back(p.range_hi);
-    w.WriteDoubles("/fit/slices/" + p.name + "/x", p.slice_x, {p.slice_x.size()}, "1");
-    w.WriteDoubles("/fit/slices/" + p.name + "/chi2", p.slice_chi2, {p.slice_chi2.size()}, "1");
+    o.Doubles("/fit/slices/" + p.name + "/x", p.slice_x, {p.slice_x.size()}, "1",
+              "values of " + p.name + " along its chi2 slice through the optimum");
+    o.Doubles("/fit/slices/" + p.name + "/chi2", p.slice_chi2, {p.slice_chi2.size()}, "1", "chi2 along the slice");
   }
   const hsize_t k = names.size();
-  w.WriteStrings("/fit/name", names);
-  w.WriteStrings("/fit/status", status);
-  w.WriteDoubles("/fit/value", value, {k}, "1");
-  w.WriteDoubles("/fit/err", err, {k}, "1");
-  w.WriteDoubles("/fit/bound_lo", lo, {k}, "1");
-  w.WriteDoubles("/fit/bound_hi", hi, {k}, "1");
-  w.WriteDoubles("/fit/range_lo", rlo, {k}, "1");
-  w.WriteDoubles("/fit/range_hi", rhi, {k}, "1");
+  o.Strings("/fit/name", names, "fitted coefficient", "eps=restitution,mu_hat=impact sliding friction,"
+            "mu_hat_s=impact static friction,mu=contact sliding friction,mu_s=contact static friction");
+  o.Strings("/fit/status", status, "what the scene says of each coefficient",
+            "constrained=value and error,bounded_below=only a lower bound (range_lo),bounded_above=only an "
+            "upper bound (range_hi),unconstrained=no information in the searched bounds");
+  o.Doubles("/fit/value", value, {k}, "1", "optimum (NaN unless constrained)");
+  o.Doubles("/fit/err", err, {k}, "1", "half-width of the chi2 range (NaN unless constrained)");
+  o.Doubles("/fit/bound_lo", lo, {k}, "1", "lower bound searched");
+  o.Doubles("/fit/bound_hi", hi, {k}, "1", "upper bound searched");
+  o.Doubles("/fit/range_lo", rlo, {k}, "1", "lowest value with chi2 within the threshold of the minimum");
+  o.Doubles("/fit/range_hi", rhi, {k}, "1", "highest value with chi2 within the threshold of the minimum");
   const hsize_t m = f.observable_names.size();
-  w.WriteStrings("/fit/observables/name", f.observable_names);
-  w.WriteDoubles("/fit/observables/observed", f.observed, {m}, "mixed");
-  w.WriteDoubles("/fit/observables/observed_err", f.observed_err, {m}, "mixed");
-  w.WriteDoubles("/fit/observables/simulated", f.simulated, {m}, "mixed");
-  w.SetAttr("/fit/name", "chi2", f.chi2);
-  w.SetAttr("/fit/name", "dof", int64_t{f.dof});
-  w.SetAttr("/fit/name", "threshold", f.threshold);
-  w.SetAttr("/fit/name", "evaluations", int64_t{f.evaluations});
+  o.Strings("/fit/observables/name", f.observable_names, "observable compared (velocities in g/f, phases in periods)");
+  o.Doubles("/fit/observables/observed", f.observed, {m}, "1", "the track's value (dimensionless)");
+  o.Doubles("/fit/observables/observed_err", f.observed_err, {m}, "1", "its error, with the analysis floor");
+  o.Doubles("/fit/observables/simulated", f.simulated, {m}, "1", "the simulation's value at the optimum");
+  // (No wall time: files are bit-identical on rerun; it is printed on stderr.)
+  Rows summary = {f.chi2, static_cast<double>(f.dof), f.threshold, static_cast<double>(f.evaluations)};
+  o.Doubles("/fit/summary", summary, {1, 4}, "1", "chi2 at the optimum, degrees of freedom, chi2 range "
+            "threshold (rise above the minimum), simulations run", "chi2,dof,threshold,evaluations");
 }
 
 AttrList Headline(const Analysis& a, const Comparison* c) {
@@ -219,13 +258,39 @@ AttrList Headline(const Analysis& a, const Comparison* c) {
       {"slip_after_err", a.slip.after_err},
       {"slip_before", a.slip.before},
       {"slip_before_err", a.slip.before_err},
+      {"outliers", static_cast<int64_t>(a.outliers.size())},
   };
   if (c) {
     h.push_back({"sim_settled_mode", c->sim.periods.settled.summary.label});
     h.push_back({"sim_drift_speed", c->sim.drift.speed});
     h.push_back({"modes_agree", int64_t{c->modes_agree}});
+    h.push_back({"time_offset", c->time_offset_s});
+    h.push_back({"x_offset", c->x_offset_m});
+    h.push_back({"mirrored", int64_t{c->mirrored}});
   }
   return h;
+}
+
+AttrUnits HeadlineUnits() {
+  return {{"mode_window_periods", "periods"}, {"drift_speed", "m/s"}, {"drift_speed_err", "m/s"},
+          {"drift_scaled", "1"}, {"drift_scaled_err", "1"}, {"travel_mm", "mm"}, {"travel_time", "s"},
+          {"freq", "Hz"}, {"freq_err", "Hz"}, {"gamma", "1"}, {"gamma_err", "1"}, {"plate_amplitude", "m"},
+          {"plate_phase", "rad"}, {"plate_phase_err", "rad"}, {"plate_residual_rms", "m"}, {"ar_measured", "1"},
+          {"diameter", "m"}, {"fps", "1/s"}, {"g_fit", "m/s^2"}, {"g_fit_err", "m/s^2"}, {"slip_after", "m/s"},
+          {"slip_after_err", "m/s"}, {"slip_before", "m/s"}, {"slip_before_err", "m/s"}, {"outliers", "1"},
+          {"sim_drift_speed", "m/s"}, {"time_offset", "s"}, {"x_offset", "m"},
+          // parameters (run_compare.cc)
+          {"mode_window", "periods"}, {"phase_bins", "1"}, {"option_freq", "Hz"}, {"option_gamma", "1"},
+          {"transient_periods", "periods"}, {"scene_eps", "1"}, {"scene_mu", "1"}, {"scene_mu_s", "1"},
+          {"scene_mu_hat", "1"}, {"scene_mu_hat_s", "1"}};
+}
+
+AttrCodes HeadlineCodes() {
+  return {{"bouncing_sphere", "-1=none (not in drift mode),0=left,1=right"},
+          {"modes_agree", "0=the settled modes differ,1=equal"},
+          {"mirrored", "0=no,1=simulation mirrored (x -> -x, left <-> right)"},
+          {"simulate", "0=no,1=the scene was simulated (--simulate)"},
+          {"fit", "0=no,1=coefficients fitted (--fit)"}};
 }
 
 }  // namespace
@@ -235,13 +300,14 @@ void WriteCompareFile(const std::string& path, const Analysis& a, const Comparis
   H5Writer w(path);
   AttrList attrs = Headline(a, comparison);
   attrs.insert(attrs.end(), params.begin(), params.end());
-  WriteProvenance(w, "compare", attrs);
-  WriteModes(w, a.periods);
-  WritePeriods(w, a.periods);
-  WriteContacts(w, a);
-  WriteSlip(w, a.slip, a.run);
-  if (comparison) WriteComparison(w, *comparison);
-  if (fit) WriteFit(w, *fit);
+  WriteProvenance(w, "compare", attrs, HeadlineUnits(), HeadlineCodes());
+  Out o(w);
+  WriteModes(o, a.periods);
+  WritePeriods(o, a.periods);
+  WriteContacts(o, a);
+  WriteSlip(o, a.slip, a.run);
+  if (comparison) WriteComparison(o, *comparison);
+  if (fit) WriteFit(o, *fit);
   w.Close();
 }
 

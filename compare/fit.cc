@@ -17,6 +17,7 @@ namespace {
 constexpr double kMissingPenalty = 25;     // chi2 of an observable the trial lacks (a 5 sigma miss)
 constexpr double kFailedTrial = 1e6;      // chi2 of a trial that could not be simulated
 constexpr double kXtolRel = 1e-3;         // optimiser stop: relative parameter change
+constexpr unsigned long kNloptSeed = 20050725;  // any fixed value
 constexpr int kEdgeBisections = 6;        // range ends to 1/64 of a slice step
 constexpr double kLocalXtolRel = 1e-2;    // multi-start: each local search, coarse
 constexpr int kLocalEvaluations = 60;     // multi-start: budget of each local search
@@ -127,6 +128,7 @@ std::vector<double> Minimise(Objective* obj, std::vector<double> start, int max_
   const auto& specs = Specs();
   NloptData data{obj, start, free_index};
   const unsigned n = static_cast<unsigned>(data.free_index.size());
+  nlopt_srand(kNloptSeed);  // NLopt's own random numbers: fixed, so reruns are identical
   nlopt_opt opt = nlopt_create(algo, n);
   std::vector<double> lo, hi, x, step;
   for (size_t k : data.free_index) {

@@ -242,8 +242,8 @@ void Fitting(const FitResult& f, std::ostringstream& o) {
   }
   o << "\nchi2 = " << Num(f.chi2) << " with " << f.dof << " degrees of freedom; a parameter's "
     << "range is where its slice stays within chi2 + " << Num(f.threshold) << " = "
-    << Num(f.chi2 + f.threshold) << "; " << f.evaluations << " simulations in "
-    << Num(f.seconds, "%.1f") << " s.\n\n";
+    << Num(f.chi2 + f.threshold) << "; " << f.evaluations
+    << " simulations (their wall time is on stderr, so that reports are identical on rerun).\n\n";
   if (f.observable_names.empty()) return;
   o << "| observable | track | simulation at the optimum |\n|---|---|---|\n";
   for (size_t k = 0; k < f.observable_names.size(); ++k) {

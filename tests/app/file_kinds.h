@@ -6,6 +6,9 @@
 
 #include "sim/run_sim.h"
 #include "tests/common/test_tmpdir.h"
+#ifdef DIMERLAB_HAVE_COMPARE
+#include "compare/run_compare.h"
+#endif
 #ifdef DIMERLAB_HAVE_TRACKING
 #include "tracking/render.h"
 #include "tracking/track.h"
@@ -38,6 +41,25 @@ inline std::vector<FileOfKind> MakeEveryFileKind(const TempDir& dir) {
   track.quiet = true;
   tracking::RunTrack(track);
   files.push_back({"track", track.output});
+#endif
+#ifdef DIMERLAB_HAVE_COMPARE
+  // compare with every optional part: a simulation beside it and a (small) coefficient fit.
+  sim::SimRunArgs longer = sim;  // long enough to settle in drift, so that the fit runs
+  longer.options.cycles = 8;
+  longer.output = dir / "sim_for_compare.h5";
+  sim::RunSim(longer);
+  compare::CompareArgs cmp;
+  cmp.input = longer.output;
+  cmp.sim_path = longer.output;
+  cmp.fit = true;
+  cmp.fit_options.global_evaluations = 8;
+  cmp.fit_options.max_evaluations = 8;
+  cmp.fit_options.slice_points = 3;
+  cmp.fit_options.transient_periods = 2;
+  cmp.output = dir / "report";
+  cmp.quiet = true;
+  compare::RunCompare(cmp);
+  files.push_back({"compare", cmp.output + "/compare.h5"});
 #endif
   return files;
 }

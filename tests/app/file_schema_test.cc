@@ -16,7 +16,9 @@ namespace {
 TEST(FileSchema, EveryDatasetOfEveryFileKindDescribesItself) {
   testing::TempDir dir;
   const auto files = testing::MakeEveryFileKind(dir);
-#ifdef DIMERLAB_HAVE_TRACKING
+#if defined(DIMERLAB_HAVE_COMPARE)
+  ASSERT_EQ(files.size(), 3u);  // sim, track and compare
+#elif defined(DIMERLAB_HAVE_TRACKING)
   ASSERT_EQ(files.size(), 2u);  // sim and track
 #endif
   for (const auto& f : files) {
