@@ -36,7 +36,11 @@ void AddCompareOptions(CLI::App* c, CompareCli* cli) {
   c->add_option("--mu-s", a.scene.mu_s, "static friction, persistent contact")->capture_default_str();
   c->add_option("--mu-hat", a.scene.mu_hat, "sliding friction, impacts")->capture_default_str();
   c->add_option("--mu-hat-s", a.scene.mu_hat_s, "static friction, impacts")->capture_default_str();
-  c->add_option("--fit-evaluations", a.fit_options.max_evaluations, "optimiser budget, simulations")
+  c->add_option("--fit-evaluations", a.fit_options.max_evaluations,
+                "budget of each local search of the fit, simulations")
+      ->capture_default_str();
+  c->add_option("--fit-global-evaluations", a.fit_options.global_evaluations,
+                "budget of the fit's multi-start search, simulations (0: local search only)")
       ->capture_default_str();
   c->add_option("--overlay-frames", a.overlay.max_frames, "frames in overlay.avi")->capture_default_str();
   c->add_option("--scene", cli->scene, "scene file: these options, one `name = value` per line");

@@ -31,6 +31,9 @@ inline constexpr double kRestingFraction = 0.20;     // drift: the resting end
 inline constexpr double kNotRestingFraction = 0.05;  // a bouncing end
 inline constexpr double kOnePerPeriodMin = 0.8, kOnePerPeriodMax = 1.2;
 inline constexpr double kEveryOtherMin = 0.35, kEveryOtherMax = 0.65;
+// An impact counts when it approaches the plate faster than this fraction of g/f: the
+// micro-bounces of a resting end (the inelastic collapse) are far slower.
+inline constexpr double kSignificantImpactRel = 0.05;
 
 struct PeriodStats {
   std::array<int, 2> impacts{};       // impacts per sphere (0 left, 1 right) in this period

@@ -253,9 +253,12 @@ FitResult FitCoefficients(const Analysis& track, const sim::SimOptions& scene,
   // A local search from the start (the user's scene: the paper's coefficients by default), a
   // multi-start search over the box polished the same way, the better of the two, a restart.
   const std::vector<double> local = Minimise(&obj, x, options.max_evaluations, NLOPT_LN_NELDERMEAD, all);
-  std::vector<double> global = Minimise(&obj, x, options.global_evaluations, NLOPT_G_MLSL_LDS, all);
-  global = Minimise(&obj, global, options.max_evaluations, NLOPT_LN_NELDERMEAD, all);
-  x = obj.Chi2(global) < obj.Chi2(local) ? global : local;
+  x = local;
+  if (options.global_evaluations > 0) {  // (NLopt reads a budget of 0 as "no limit")
+    std::vector<double> global = Minimise(&obj, x, options.global_evaluations, NLOPT_G_MLSL_LDS, all);
+    global = Minimise(&obj, global, options.max_evaluations, NLOPT_LN_NELDERMEAD, all);
+    if (obj.Chi2(global) < obj.Chi2(local)) x = global;
+  }
   x = Minimise(&obj, x, options.max_evaluations / 2, NLOPT_LN_NELDERMEAD, all);
   FitResult r;
   r.chi2 = obj.Chi2(x, &r.simulated);

@@ -80,8 +80,11 @@ Periods AnalyzePeriods(const SampledRun& run, const PlateDrive& plate, const Con
       }
     }
     for (int s = 0; s < 2; ++s) {
-      for (const Impact& imp : contacts.sphere[s].impacts)
-        if (imp.t >= row.t_start && imp.t < t_end) ++row.stats.impacts[s];
+      for (const Impact& imp : contacts.sphere[s].impacts) {
+        // The simulator's rule (common/modes.h): slow micro-bounces do not count.
+        const bool significant = !(std::abs(imp.v_before) < kSignificantImpactRel * kGravity * p.period_s);
+        if (significant && imp.t >= row.t_start && imp.t < t_end) ++row.stats.impacts[s];
+      }
     }
     row.energy_gT2 = (row.elevation_m[0] + row.elevation_m[1]) / (kGravity * p.period_s * p.period_s);
     row.missing_fraction = static_cast<double>(missing) / std::max<long>(1, b - a);

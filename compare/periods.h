@@ -2,6 +2,8 @@
 // Plate periods of a sampled trajectory and the modes over them, with the project's one
 // definition of the modes (common/modes.h).
 //
+// Impacts count as the simulator counts them: approaching faster than kSignificantImpactRel g/f
+// (common/modes.h); an impact whose approach could not be fitted counts.
 // Periods start at the first frame and last 1/f each (a sim file's periods start at its
 // t_start, its first sample, so compare's windows are the simulator's). Per period: impacts and
 // rest time per sphere (contacts.h), the CM's lab x at its start (interpolated to the exact

@@ -95,8 +95,7 @@ void CompareInto(const CompareArgs& args, const std::string& dir, const std::str
   if (compared) comparison = CompareWithSimulation(track, SimulationFor(args, track, dir, &notes));
   FitResult fit;
   if (args.fit) {
-    Say(args.quiet, "fitting the coefficients by simulation (up to " +
-                        std::to_string(args.fit_options.max_evaluations * 3 / 2) + " simulations + slices)");
+    Say(args.quiet, "fitting the coefficients by simulation (a few hundred simulations)");
     fit = FitCoefficients(track, args.scene, args.fit_options);
     Say(args.quiet, "fit done: " + std::to_string(fit.evaluations) + " simulations in " +
                         std::to_string(static_cast<int>(std::lround(fit.seconds))) + " s");
@@ -125,11 +124,17 @@ void CompareArgs::Check() const {
   std::vector<std::string> e = analysis.Check();
   if (output.empty()) e.push_back("-o/--output: the report folder is required");
   if (!sim_path.empty() && simulate) e.push_back("--sim and --simulate: give one of them");
+  if (fit_options.max_evaluations < 1)
+    e.push_back("--fit-evaluations: " + std::to_string(fit_options.max_evaluations) + ": expected >= 1");
+  if (fit_options.global_evaluations < 0)
+    e.push_back("--fit-global-evaluations: " + std::to_string(fit_options.global_evaluations) + ": expected >= 0");
   if (transient_periods < 0) e.push_back("--transient: " + std::to_string(transient_periods) + ": expected >= 0");
   const std::vector<std::string> s = scene.Check();
   e.insert(e.end(), s.begin(), s.end());
   if (!frames_dir.empty()) {
-    const std::vector<std::string> o = overlay.Check();
+    OverlayOptions ov = overlay;
+    ov.frames_dir = frames_dir;
+    const std::vector<std::string> o = ov.Check();
     e.insert(e.end(), o.begin(), o.end());
   }
   if (!e.empty()) throw InputError("invalid compare options: " + JoinErrors(e));
@@ -150,6 +155,7 @@ int RunAnalyze(const AnalyzeArgs& args) {
   AtomicOutput out(args.compare.output, args.compare.force, AtomicOutput::Kind::kDirectory);
   tracking::TrackArgs t = args.track;
   t.output = out.temp_path() + "/track.h5";
+  t.output_label = args.compare.output + "/track.h5";
   t.force = false;
   t.quiet = args.compare.quiet;
   tracking::RunTrack(t);

@@ -18,9 +18,8 @@ namespace dimer::sim {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// An impact counts toward the mode statistics when it approaches faster than this (of g/f):
-// the micro-bounces of a resting end are far slower.
-constexpr double kSignificantImpactRel = 0.05;
+// An impact counts toward the mode statistics when it approaches faster than
+// kSignificantImpactRel g/f (common/modes.h, shared with compare).
 
 struct EventStorm : std::runtime_error {
   using std::runtime_error::runtime_error;

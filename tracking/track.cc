@@ -365,7 +365,8 @@ void RunTrack(const TrackArgs& args) {
   size_t both = 0;
   for (const auto& f : r.frames) both += f.found[0] && f.found[1];
   std::printf("%s: %zu frames tracked, %zu skipped, both spheres found in %zu, %s, %.4g m/px%s\n",
-              args.output.c_str(), r.frames.size(), r.skipped.size(), both, args.method.c_str(),
+              (args.output_label.empty() ? args.output : args.output_label).c_str(), r.frames.size(),
+              r.skipped.size(), both, args.method.c_str(),
               cal.m_per_px, r.complete ? "" : " (interrupted: partial)");
   if (!r.complete) throw Interrupted();
 }

@@ -51,6 +51,7 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
 struct TrackArgs {
   std::string input;            // folder of frames, multi-page TIFF or video
   std::string output;           // track.h5
+  std::string output_label;     // how messages name the output (empty: `output`)
   bool force = false;           // replace an existing output
   double fps = 2000.0;          // frame rate, frames/s
   double m_per_px = std::numeric_limits<double>::quiet_NaN();  // m/px; NaN: from --diameter
