@@ -128,7 +128,8 @@ void Draw(const Analysis& a, const Comparison* c, size_t i, const std::string& e
   for (int s = 0; s < 2; ++s) {
     if (c != nullptr && i < c->sim_x[s].size() && i < c->sim_z[s].size() &&
         std::isfinite(c->sim_x[s][i]) && std::isfinite(c->sim_z[s][i])) {
-      cv::circle(*img, pixel(c->sim_x[s][i], c->sim_z[s][i]), radius, kSimColour, line,
+      // Just outside the tracked circle: where they agree (to micrometres) both stay visible.
+      cv::circle(*img, pixel(c->sim_x[s][i], c->sim_z[s][i]), radius + 2 * line, kSimColour, line,
                  cv::LINE_AA);
     }
     if (!std::isfinite(r.x[s][i]) || !std::isfinite(r.z[s][i])) continue;

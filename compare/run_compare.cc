@@ -142,7 +142,7 @@ void CompareArgs::Check() const {
 
 int RunCompare(const CompareArgs& args) {
   args.Check();
-  CheckCanWrite(args.output, args.force);
+  CheckCanWrite(args.output, args.force, AtomicOutput::Kind::kDirectory);
   AtomicOutput out(args.output, args.force, AtomicOutput::Kind::kDirectory);
   CompareInto(args, out.temp_path(), args.output, args.input);
   out.Commit();
@@ -151,7 +151,7 @@ int RunCompare(const CompareArgs& args) {
 
 int RunAnalyze(const AnalyzeArgs& args) {
   args.compare.Check();
-  CheckCanWrite(args.compare.output, args.compare.force);
+  CheckCanWrite(args.compare.output, args.compare.force, AtomicOutput::Kind::kDirectory);
   AtomicOutput out(args.compare.output, args.compare.force, AtomicOutput::Kind::kDirectory);
   tracking::TrackArgs t = args.track;
   t.output = out.temp_path() + "/track.h5";
