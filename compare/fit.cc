@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
 #include <cmath>
 
 #include "common/error.h"
@@ -69,6 +70,7 @@ class Objective {
   double Chi2(const std::vector<double>& values, std::vector<double>* simulated = nullptr) {
     if (InterruptRequested()) throw Interrupted();
     ++evaluations_;
+    if (fo_.progress) fo_.progress(evaluations_);
     Analysis a;
     try {
       a = SimulateAndAnalyze(Options(values), view_, "fit trial");
@@ -113,12 +115,22 @@ struct NloptData {
   Objective* objective;
   std::vector<double> full;        // all parameter values
   std::vector<size_t> free_index;  // which of them the optimiser moves
+  nlopt_opt opt = nullptr;         // to stop it
+  std::exception_ptr error;        // an exception (Ctrl-C included) waiting to be rethrown
 };
 
+// NLopt is C: no exception may cross it. One raised here (Ctrl-C is Interrupted) stops the
+// optimiser and is rethrown once nlopt_optimize has returned.
 double NloptObjective(unsigned n, const double* x, double*, void* data) {
   auto* d = static_cast<NloptData*>(data);
   for (unsigned k = 0; k < n; ++k) d->full[d->free_index[k]] = x[k];
-  return d->objective->Chi2(d->full);
+  try {
+    return d->objective->Chi2(d->full);
+  } catch (...) {
+    d->error = std::current_exception();
+    nlopt_force_stop(d->opt);
+    return HUGE_VAL;
+  }
 }
 
 // NLopt over the free parameters from `start` with algorithm `algo` (a global DIRECT-L search
@@ -126,10 +138,11 @@ double NloptObjective(unsigned n, const double* x, double*, void* data) {
 std::vector<double> Minimise(Objective* obj, std::vector<double> start, int max_eval, nlopt_algorithm algo,
                              const std::vector<size_t>& free_index) {
   const auto& specs = Specs();
-  NloptData data{obj, start, free_index};
+  NloptData data{obj, start, free_index, nullptr, nullptr};
   const unsigned n = static_cast<unsigned>(data.free_index.size());
   nlopt_srand(kNloptSeed);  // NLopt's own random numbers: fixed, so reruns are identical
   nlopt_opt opt = nlopt_create(algo, n);
+  data.opt = opt;
   std::vector<double> lo, hi, x, step;
   for (size_t k : data.free_index) {
     lo.push_back(specs[k].lo), hi.push_back(specs[k].hi);
@@ -148,13 +161,14 @@ std::vector<double> Minimise(Objective* obj, std::vector<double> start, int max_
     nlopt_set_xtol_rel(local, kLocalXtolRel);
     nlopt_set_maxeval(local, kLocalEvaluations);
     nlopt_set_initial_step(local, step.data());
-    nlopt_set_local_optimizer(opt, local);
+    nlopt_set_local_optimizer(opt, local);  // (NLopt copies it: force_stop on opt reaches it)
     nlopt_set_population(opt, kStartsPerRound);
   }
   double best = 0;
   const nlopt_result rc = nlopt_optimize(opt, x.data(), &best);
   nlopt_destroy(opt);
   if (local) nlopt_destroy(local);
+  if (data.error) std::rethrow_exception(data.error);
   if (rc < 0 && rc != NLOPT_ROUNDOFF_LIMITED) {
     if (InterruptRequested()) throw Interrupted();
     throw InputError("fit: the optimiser failed (NLopt code " + std::to_string(rc) + ")");

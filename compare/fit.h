@@ -16,6 +16,7 @@
 // optimum): the range where chi2 <= chi2_min + max(1, chi2_min / dof). A range that reaches
 // both bounds means the scene does not constrain the parameter: it is reported as
 // unconstrained, with no value.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,11 @@ struct FitOptions {
   int slice_points = 15;         // points per parameter slice
   int transient_periods = 30;    // simulated before the measured part
   int measured_periods = 60;     // simulated and analysed (<= the track's)
+  std::function<void(int simulations)> progress;  // called after each simulation (may be empty)
+  // An upper estimate of the simulations a fit runs, for progress meters.
+  int EstimatedSimulations() const {
+    return global_evaluations + max_evaluations * 5 / 2 + 5 * (slice_points + 13);
+  }
 };
 
 // chi2 of one trial: `coefficients` supplies eps, mu_hat, mu_hat_s, mu, mu_s; the rest is the

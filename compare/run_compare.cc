@@ -95,8 +95,11 @@ void CompareInto(const CompareArgs& args, const std::string& dir, const std::str
   if (compared) comparison = CompareWithSimulation(track, SimulationFor(args, track, dir, &notes));
   FitResult fit;
   if (args.fit) {
-    Say(args.quiet, "fitting the coefficients by simulation (a few hundred simulations)");
-    fit = FitCoefficients(track, args.scene, args.fit_options);
+    ProgressMeter meter("fit", "simulations", args.fit_options.EstimatedSimulations(), !args.quiet);
+    FitOptions fo = args.fit_options;
+    fo.progress = [&](int done) { meter.Update(done); };
+    fit = FitCoefficients(track, args.scene, fo);
+    meter.Finish(fit.evaluations);
     Say(args.quiet, "fit done: " + std::to_string(fit.evaluations) + " simulations in " +
                         std::to_string(static_cast<int>(std::lround(fit.seconds))) + " s");
   }
