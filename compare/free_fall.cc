@@ -1,6 +1,7 @@
 #include "compare/free_fall.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -35,7 +36,8 @@ FreeFall FitFreeFall(const SampledRun& run, const Contacts& contacts) {
     if (!run.Valid(i)) return false;
     for (int s = 0; s < 2; ++s) {
       const SphereContacts& c = contacts.sphere[s];
-      if (!(c.gap[i] > c.level_m + c.threshold_m)) return false;
+      const double clear = std::max(c.threshold_m, kFreeFlightMinGapRel * run.diameter_m);
+      if (!(c.gap[i] - c.level_m > clear)) return false;
     }
     return true;
   };
@@ -71,7 +73,8 @@ FreeFall FitFreeFall(const SampledRun& run, const Contacts& contacts) {
     i = j;
   }
   if (ff.flights == 0) {
-    ff.note = "no free flight: never both spheres in the air for " +
+    ff.note = "no free flight: never both spheres " + std::to_string(kFreeFlightMinGapRel) .substr(0, 4) +
+              " d or more above the plate for " +
               std::to_string(kMinFreeFlightFrames + 2 * kFreeFlightTrimFrames) + " frames";
     return ff;
   }

@@ -1,5 +1,5 @@
 #pragma once
-// Figures drawn by gnuplot from a table written beside them (STYLE.md: every figure is drawn
+// Figures drawn by gnuplot from a table written beside them (docs/DESIGN.md: every figure is drawn
 // from a table). For a figure NAME the folder gets NAME.dat (the numbers), NAME.gp (the script,
 // which reads only NAME.dat) and NAME.png, so a user can edit the script and replot with
 // `gnuplot NAME.gp` in that folder.
