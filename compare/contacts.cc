@@ -113,7 +113,11 @@ class ImpactFinder {
         while (end + 1 < n && std::isfinite(g[end + 1]) && g[end + 1] - lvl <= thr) ++end;
         const bool bounce = end - i + 1 < kMinRestFrames && end + 1 < n &&
                             std::isfinite(g[end + 1]) && g[end + 1] > lvl + thr;
-        AddImpact(i, end, bounce);
+        // A touch too short to be a rest, with no frame after it (the data ends or has a gap),
+        // is unresolved: the impact may be at the data's edge or beyond. Not counted.
+        const bool unresolved = !bounce && end - i + 1 < kMinRestFrames &&
+                                (end + 1 >= n || !std::isfinite(g[end + 1]));
+        if (!unresolved) AddImpact(i, end, bounce);
       }
       in_flight = false;
       peak = -INFINITY;

@@ -8,6 +8,14 @@ namespace {
 
 // A boundary this close to a frame (fraction of a frame) is that frame.
 constexpr double kOnFrame = 1e-6;
+constexpr double kBoundarySlack = 1e-6;  // of a period
+
+// The period an event at time t belongs to. An impact on a boundary (a jump orbit started at
+// an impact has all its impacts there) belongs to the period it starts, whatever the last bits
+// of its fitted time say.
+long PeriodOf(const SampledRun& run, double period_s, double t) {
+  return static_cast<long>(std::floor((t - run.t0) / period_s + kBoundarySlack));
+}
 
 double CentreX(const SampledRun& run, long i) { return 0.5 * (run.x[0][i] + run.x[1][i]); }
 
@@ -83,7 +91,7 @@ Periods AnalyzePeriods(const SampledRun& run, const PlateDrive& plate, const Con
       for (const Impact& imp : contacts.sphere[s].impacts) {
         // The simulator's rule (common/modes.h): slow micro-bounces do not count.
         const bool significant = !(std::abs(imp.v_before) < kSignificantImpactRel * kGravity * p.period_s);
-        if (significant && imp.t >= row.t_start && imp.t < t_end) ++row.stats.impacts[s];
+        if (significant && PeriodOf(run, p.period_s, imp.t) == k) ++row.stats.impacts[s];
       }
     }
     row.energy_gT2 = (row.elevation_m[0] + row.elevation_m[1]) / (kGravity * p.period_s * p.period_s);
