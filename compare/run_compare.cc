@@ -140,7 +140,7 @@ void CompareArgs::Check() const {
     const std::vector<std::string> o = ov.Check();
     e.insert(e.end(), o.begin(), o.end());
   }
-  if (!e.empty()) throw InputError("invalid compare options: " + JoinErrors(e));
+  if (!e.empty()) throw UsageError("invalid compare options: " + JoinErrors(e));
 }
 
 int RunCompare(const CompareArgs& args) {

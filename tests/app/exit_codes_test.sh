@@ -50,6 +50,9 @@ expect 2 "^dimerlab: error: invalid simulation parameters: --freq: 0: [^;]*$" si
 expect 2 "--output is required" sim --cycles 1
 expect 2 "--init-state" sim --init-state "1,2,3" -o x.h5
 expect 2 "--fps" sim --fps abc -o x.h5
+expect 2 "unknown subcommand 'compre'; did you mean 'compare'" compre ok.h5 -o r
+expect 2 "--phase-bins: 1: expected 2..1000" compare ok.h5 -o r --phase-bins 1
+expect 2 "--sim and --simulate: give one of them" compare ok.h5 -o r --sim ok.h5 --simulate
 
 # 1: bad input (files) and failed runs.
 echo "not HDF5" >not-hdf5.h5
@@ -60,6 +63,10 @@ expect 1 "a_folder: is a folder" sim --cycles 1 -o a_folder --force
 expect 1 "no_dir/x.h5: folder no_dir does not exist" sim --cycles 1 -o no_dir/x.h5
 expect 1 "event storm" sim --max-events-per-period 10 --cycles 5 -q -o storm.h5 --force
 expect 1 "no_frames: no such file or folder" track no_frames -o t.h5
+expect 1 "not-hdf5.h5: not an HDF5 file" compare not-hdf5.h5 -o r
+expect 0 '' sim --cycles 1.5 --fps 200 -q -o short.h5
+expect 1 "short.h5: 1.5 plate periods long; at least 2 are needed" compare short.h5 -o r
+expect 1 "no_frames: no such file or folder" analyze no_frames -o r2
 
 # 130: interrupted (SIGINT, as Ctrl-C), with a valid partial file.
 "$BIN" sim --cycles 10000000 -q -o long.h5 >/dev/null 2>err.txt &
