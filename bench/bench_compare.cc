@@ -45,7 +45,7 @@ std::string MakeTrack(const std::string& dir, double cycles, double eps, double 
   ra.force = true;
   ra.quiet = true;
   ra.m_per_px = 4e-4;
-  ra.image.width = 400 + static_cast<int>(cycles);  // room for the drift (~0.9 mm per period)
+  ra.image.width = 400 + static_cast<int>(2.5 * cycles);  // room for the drift (~0.9 mm = 2.2 px per period)
   ra.image.height = 128;
   ra.image.lighting = tracking::Lighting::kBacklit;
   tracking::RunRender(ra);

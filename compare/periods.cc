@@ -109,15 +109,12 @@ Periods AnalyzePeriods(const SampledRun& run, const PlateDrive& plate, const Con
     for (int k = first; k < first + w; ++k) ok = ok && p.rows[k].complete;
     if (ok) p.timeline.push_back(Window(run, p, x_bound, first, w));
   }
-  // Settled: the last SettledWindow(n) periods, shortened to the complete ones at the end.
-  int count = SettledWindow(n), first = n - count;
-  for (int k = n - 1; k >= first; --k) {
-    if (!p.rows[k].complete) {
-      first = k + 1;
-      break;
-    }
-  }
-  count = n - first;
+  // Settled: SettledWindow(n) periods ending at the last complete one, shortened to the
+  // complete periods before it (a track whose last frames are lost is judged where it is good).
+  int last = n - 1;
+  while (last >= 0 && !p.rows[last].complete) --last;
+  int first = last + 1, count = 0;
+  while (first > 0 && count < SettledWindow(n) && p.rows[first - 1].complete) --first, ++count;
   if (count > 0) p.settled = Window(run, p, x_bound, first, count);
   return p;
 }

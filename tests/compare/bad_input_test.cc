@@ -145,5 +145,19 @@ TEST_F(BadInput, GapsAreAnalysedAroundAndListed) {
   EXPECT_EQ(r.AttrString("/", "settled_mode").value_or(""), "drift");
 }
 
+TEST_F(BadInput, ATrackWhoseEndIsLostIsJudgedWhereItIsGood) {
+  // The dimer drifts out of the frame: the last 300 frames have no right sphere.
+  const std::string sim = WriteSim(dir, "sim.h5", 3.9, 40);
+  const std::string track = WriteTrack(dir, "leaves.h5", sim, [](Trajectory* t) {
+    for (size_t i = t->size() - 300; i < t->size(); ++i) t->tip_right[i].setConstant(NAN);
+  });
+  CompareArgs a = Args(track);
+  a.quiet = true;
+  ASSERT_EQ(RunCompare(a), 0);
+  H5Reader r(dir / "report/compare.h5");
+  EXPECT_EQ(r.AttrString("/", "settled_mode").value_or(""), "drift");
+  EXPECT_TRUE(std::isfinite(r.AttrDouble("/", "drift_speed").value_or(NAN)));
+}
+
 }  // namespace
 }  // namespace dimer::compare
