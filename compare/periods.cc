@@ -27,20 +27,15 @@ std::array<int, 2> BounceDir(const SampledRun& run, double t) {
   return {-right_of, right_of};
 }
 
-ModeWindow Window(const SampledRun& run, const Periods& p, const std::vector<double>& x_bound,
-                  int first, int count) {
+ModeWindow Window(const SampledRun& run, const Periods& p, const std::vector<PeriodStats>& stats,
+                  const std::vector<double>& x_bound, int first, int count) {
   ModeWindow w;
   w.first = first;
   w.count = count;
   w.t_start = p.rows[first].t_start;
   w.t_end = w.t_start + count * p.period_s;
-  w.summary = ClassifyPeriods(
-      [&] {
-        std::vector<PeriodStats> st;
-        for (const PeriodRow& r : p.rows) st.push_back(r.stats);
-        return st;
-      }(),
-      first, count, p.period_s, x_bound[first + count], BounceDir(run, w.t_end));
+  w.summary = ClassifyPeriods(stats, first, count, p.period_s, x_bound[first + count],
+                              BounceDir(run, w.t_end));
   return w;
 }
 
@@ -101,13 +96,15 @@ Periods AnalyzePeriods(const SampledRun& run, const PlateDrive& plate, const Con
   }
   if (whole == 0) return p;
   p.x_end = x_bound[whole];
+  std::vector<PeriodStats> stats;  // the rows' statistics, once (windows only index into them)
+  for (const PeriodRow& r : p.rows) stats.push_back(r.stats);
   // Timeline: consecutive windows; a window with an incomplete period is not labelled.
   const int n = static_cast<int>(whole);
   const int w = std::max(1, window_periods);
   for (int first = 0; first + w <= n; first += w) {
     bool ok = true;
     for (int k = first; k < first + w; ++k) ok = ok && p.rows[k].complete;
-    if (ok) p.timeline.push_back(Window(run, p, x_bound, first, w));
+    if (ok) p.timeline.push_back(Window(run, p, stats, x_bound, first, w));
   }
   // Settled: SettledWindow(n) periods ending at the last complete one, shortened to the
   // complete periods before it (a track whose last frames are lost is judged where it is good).
@@ -115,7 +112,7 @@ Periods AnalyzePeriods(const SampledRun& run, const PlateDrive& plate, const Con
   while (last >= 0 && !p.rows[last].complete) --last;
   int first = last + 1, count = 0;
   while (first > 0 && count < SettledWindow(n) && p.rows[first - 1].complete) --first, ++count;
-  if (count > 0) p.settled = Window(run, p, x_bound, first, count);
+  if (count > 0) p.settled = Window(run, p, stats, x_bound, first, count);
   return p;
 }
 
