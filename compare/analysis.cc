@@ -1,9 +1,9 @@
 #include "compare/analysis.h"
 
 #include <cmath>
-#include <sstream>
 
 #include "common/error.h"
+#include "compare/text.h"
 
 namespace dimer::compare {
 namespace {
@@ -11,13 +11,6 @@ namespace {
 constexpr double kMinPeriods = 2.0;
 constexpr double kGFitWarn = 0.02;       // |g_fit/g - 1| above this (and 2 sigma): calibration warning
 constexpr double kHarmonicWarn = 0.05;   // a harmonic above 5 % of the drive: not sinusoidal
-
-std::string Fmt(double v, int prec = 4) {
-  std::ostringstream s;
-  s.precision(prec);
-  s << v;
-  return s.str();
-}
 
 // A drive from --freq/--gamma when the plate is not visible. The phase comes from the lower
 // envelope of the spheres (a resting sphere sits on the plate): a sinusoid at the known
@@ -78,8 +71,8 @@ Drift MeasureDrift(const SampledRun& run, const Periods& p, double travel_mm) {
       return d;
     }
   }
-  d.travel_note = "the dimer moved " + Fmt(moved * 1e3, 3) + " mm after the settled window's start, less than " +
-                  Fmt(travel_mm, 3) + " mm: no travel time";
+  d.travel_note = "the dimer moved " + Num(moved * 1e3, 3) + " mm after the settled window's start, less than " +
+                  Num(travel_mm, 3) + " mm: no travel time";
   return d;
 }
 
@@ -88,13 +81,13 @@ Drift MeasureDrift(const SampledRun& run, const Periods& p, double travel_mm) {
 std::vector<std::string> AnalysisOptions::Check() const {
   std::vector<std::string> e;
   if (!std::isnan(freq_hz) && !(freq_hz > 0 && std::isfinite(freq_hz)))
-    e.push_back("--freq: " + Fmt(freq_hz) + ": expected a frequency > 0 Hz");
+    e.push_back("--freq: " + Num(freq_hz) + ": expected a frequency > 0 Hz");
   if (!std::isnan(gamma) && !(gamma > 0 && std::isfinite(gamma)))
-    e.push_back("--gamma: " + Fmt(gamma) + ": expected Gamma > 0");
+    e.push_back("--gamma: " + Num(gamma) + ": expected Gamma > 0");
   if (window_periods < 1) e.push_back("--mode-window: " + std::to_string(window_periods) + ": expected >= 1 period");
   if (phase_bins < 2 || phase_bins > 1000)
     e.push_back("--phase-bins: " + std::to_string(phase_bins) + ": expected 2..1000");
-  if (!(travel_mm > 0)) e.push_back("--travel-mm: " + Fmt(travel_mm) + ": expected > 0 mm");
+  if (!(travel_mm > 0)) e.push_back("--travel-mm: " + Num(travel_mm) + ": expected > 0 mm");
   return e;
 }
 
@@ -122,20 +115,20 @@ Analysis Analyze(const SampledRun& input, const AnalysisOptions& options) {
         throw InputError(run.path + ": no plate motion visible in the track; give the drive with --freq and --gamma");
       }
       a.plate = DriveFromOptions(run, options);
-      a.warnings.push_back("no plate motion visible: drive taken from --freq " + Fmt(options.freq_hz) +
-                           " Hz and --gamma " + Fmt(options.gamma) +
+      a.warnings.push_back("no plate motion visible: drive taken from --freq " + Num(options.freq_hz) +
+                           " Hz and --gamma " + Num(options.gamma) +
                            ", its phase estimated from the spheres' lowest points");
     } else {
       for (int k = 0; k < 3; ++k) {
         if (a.plate.harmonic_rel[k] > kHarmonicWarn)
           a.warnings.push_back("the drive is not sinusoidal: harmonic " + std::to_string(k + 2) + "f is " +
-                               Fmt(100 * a.plate.harmonic_rel[k], 3) + " % of the fundamental");
+                               Num(100 * a.plate.harmonic_rel[k], 3) + " % of the fundamental");
       }
     }
   }
   const double duration = run.Time(run.n - 1) - run.t0;
   if (duration * a.plate.freq_hz < kMinPeriods - 1e-9) {
-    throw InputError(run.path + ": " + Fmt(duration * a.plate.freq_hz, 3) +
+    throw InputError(run.path + ": " + Num(duration * a.plate.freq_hz, 3) +
                      " plate periods long; at least 2 are needed");
   }
   // 2. Contacts and impacts; 3. free fall; 4. periods and modes; 5. drift; 6. slip.
@@ -143,7 +136,7 @@ Analysis Analyze(const SampledRun& input, const AnalysisOptions& options) {
   a.free_fall = FitFreeFall(run, a.contacts);
   const double g_dev = std::abs(a.free_fall.g_fit - kGravity);
   if (std::isfinite(g_dev) && g_dev > kGFitWarn * kGravity && g_dev > 2 * a.free_fall.g_fit_err) {
-    a.warnings.push_back("fitted free fall g_fit/g = " + Fmt(a.free_fall.g_fit / kGravity) +
+    a.warnings.push_back("fitted free fall g_fit/g = " + Num(a.free_fall.g_fit / kGravity) +
                          ": the length calibration (m/px) is likely off by that factor");
   }
   a.periods = AnalyzePeriods(run, a.plate, a.contacts, options.window_periods);

@@ -1,22 +1,16 @@
 #include "compare/comparison.h"
 
 #include <cmath>
-#include <sstream>
+#include <utility>
 
 #include "common/error.h"
+#include "compare/text.h"
 
 namespace dimer::compare {
 namespace {
 
 constexpr double kMaxArMismatch = 0.03;    // relative
 constexpr double kMaxRateMismatch = 0.01;  // relative: frame rates, drive frequencies
-
-std::string Num(double v) {
-  std::ostringstream s;
-  s.precision(4);
-  s << v;
-  return s.str();
-}
 
 void CheckSameExperiment(const Analysis& a, const Analysis& b) {
   const std::string who = a.run.path + " and " + b.run.path;
@@ -55,11 +49,12 @@ int BouncingDirection(const Analysis& a) {
 
 }  // namespace
 
-Comparison CompareWithSimulation(const Analysis& track, const Analysis& sim) {
-  CheckSameExperiment(track, sim);
+Comparison CompareWithSimulation(const Analysis& track, Analysis sim_analysis) {
+  CheckSameExperiment(track, sim_analysis);
   Comparison c;
-  c.sim_path = sim.run.path;
-  c.sim = sim;
+  c.sim_path = sim_analysis.run.path;
+  c.sim = std::move(sim_analysis);
+  const Analysis& sim = c.sim;
   const SampledRun& tr = track.run;
   const SampledRun& sr = sim.run;
   // Time: equal plate phase; the whole-period shift that ends the track at the sim's end.

@@ -31,6 +31,7 @@ struct Comparison {
 
 // InputError (naming both files) when they cannot describe the same experiment: A_r differing
 // by more than 3 %, sample rates or drive frequencies differing by more than 1 %.
-Comparison CompareWithSimulation(const Analysis& track, const Analysis& sim);
+// `sim` is kept in the result (passed by value: move a temporary in).
+Comparison CompareWithSimulation(const Analysis& track, Analysis sim);
 
 }  // namespace dimer::compare

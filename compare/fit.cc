@@ -135,7 +135,12 @@ double NloptObjective(unsigned n, const double* x, double*, void* data) {
 
 // NLopt over the free parameters from `start` with algorithm `algo` (a global DIRECT-L search
 // over the whole box, or a bounded Nelder-Mead polish); returns the best point found.
-std::vector<double> Minimise(Objective* obj, std::vector<double> start, int max_eval, nlopt_algorithm algo,
+struct Minimum {
+  std::vector<double> x;  // all parameter values
+  double chi2;            // at x, as the optimiser evaluated it
+};
+
+Minimum Minimise(Objective* obj, std::vector<double> start, int max_eval, nlopt_algorithm algo,
                              const std::vector<size_t>& free_index) {
   const auto& specs = Specs();
   NloptData data{obj, start, free_index, nullptr, nullptr};
@@ -174,7 +179,7 @@ std::vector<double> Minimise(Objective* obj, std::vector<double> start, int max_
     throw InputError("fit: the optimiser failed (NLopt code " + std::to_string(rc) + ")");
   }
   for (unsigned k = 0; k < n; ++k) start[data.free_index[k]] = x[k];
-  return start;
+  return {start, best};
 }
 
 // The chi2 slice through `best` along parameter k, and what it says about k.
@@ -266,14 +271,15 @@ FitResult FitCoefficients(const Analysis& track, const sim::SimOptions& scene,
   const std::vector<size_t> all = {0, 1, 2, 3, 4};
   // A local search from the start (the user's scene: the paper's coefficients by default), a
   // multi-start search over the box polished the same way, the better of the two, a restart.
-  const std::vector<double> local = Minimise(&obj, x, options.max_evaluations, NLOPT_LN_NELDERMEAD, all);
-  x = local;
+  const Minimum local = Minimise(&obj, x, options.max_evaluations, NLOPT_LN_NELDERMEAD, all);
   if (options.global_evaluations > 0) {  // (NLopt reads a budget of 0 as "no limit")
-    std::vector<double> global = Minimise(&obj, x, options.global_evaluations, NLOPT_G_MLSL_LDS, all);
-    global = Minimise(&obj, global, options.max_evaluations, NLOPT_LN_NELDERMEAD, all);
-    if (obj.Chi2(global) < obj.Chi2(local)) x = global;
+    const Minimum spread = Minimise(&obj, x, options.global_evaluations, NLOPT_G_MLSL_LDS, all);
+    const Minimum global = Minimise(&obj, spread.x, options.max_evaluations, NLOPT_LN_NELDERMEAD, all);
+    x = global.chi2 < local.chi2 ? global.x : local.x;
+  } else {
+    x = local.x;
   }
-  x = Minimise(&obj, x, options.max_evaluations / 2, NLOPT_LN_NELDERMEAD, all);
+  x = Minimise(&obj, x, options.max_evaluations / 2, NLOPT_LN_NELDERMEAD, all).x;
   FitResult r;
   r.chi2 = obj.Chi2(x, &r.simulated);
   r.dof = std::max(1, obj.usable() - static_cast<int>(Specs().size()));

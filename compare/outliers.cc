@@ -18,18 +18,6 @@ double LocalMedian(const std::vector<double>& v, long i) {
   return w[w.size() / 2];
 }
 
-void RebuildGaps(SampledRun* run) {
-  for (int s = 0; s < 2; ++s) {
-    auto& gaps = run->gaps[s];
-    gaps.clear();
-    for (size_t i = 0; i < run->n; ++i) {
-      if (std::isfinite(run->x[s][i]) && std::isfinite(run->z[s][i])) continue;
-      if (!gaps.empty() && gaps.back().first + gaps.back().count == i) ++gaps.back().count;
-      else gaps.push_back({i, 1});
-    }
-  }
-}
-
 }  // namespace
 
 std::vector<Outlier> RejectOutliers(SampledRun* run) {
@@ -55,7 +43,7 @@ std::vector<Outlier> RejectOutliers(SampledRun* run) {
   std::sort(out.begin(), out.end(), [](const Outlier& a, const Outlier& b) { return a.frame < b.frame; });
   if (!out.empty()) {
     for (const Outlier& o : out) run->theta[o.frame] = NAN;
-    RebuildGaps(run);
+    FindGaps(run);
   }
   return out;
 }

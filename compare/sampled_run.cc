@@ -21,9 +21,12 @@ double MedianOf(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+}  // namespace
+
 void FindGaps(SampledRun* run) {
   for (int s = 0; s < 2; ++s) {
     auto& gaps = run->gaps[s];
+    gaps.clear();
     for (size_t i = 0; i < run->n; ++i) {
       const bool missing = !std::isfinite(run->x[s][i]) || !std::isfinite(run->z[s][i]);
       if (!missing) continue;
@@ -35,8 +38,6 @@ void FindGaps(SampledRun* run) {
     }
   }
 }
-
-}  // namespace
 
 bool SampledRun::Valid(size_t i) const {
   return std::isfinite(x[0][i]) && std::isfinite(z[0][i]) && std::isfinite(x[1][i]) &&

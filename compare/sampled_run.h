@@ -50,6 +50,9 @@ struct SampledRun {
 // trajectory kind, has non-increasing or irregular times, or a tip that is NaN throughout.
 SampledRun LoadSampledRun(const std::string& path);
 
+// Recomputes run->gaps from the NaN tips (after tips are removed, e.g. as outliers).
+void FindGaps(SampledRun* run);
+
 // The same from a trajectory in memory (simulations run by compare itself): `fps` > 0 sets the
 // grid, `diameter_m` the sphere size. Throws InputError naming `label` like LoadSampledRun.
 SampledRun SampleTrajectory(const Trajectory& traj, double fps, double diameter_m,

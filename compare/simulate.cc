@@ -1,23 +1,12 @@
 #include "compare/simulate.h"
 
 #include <cmath>
-#include <sstream>
 
 #include "common/error.h"
+#include "compare/text.h"
 #include "sim/frames.h"
 
 namespace dimer::compare {
-namespace {
-
-std::string Num(double v) {
-  std::ostringstream s;
-  s.precision(5);
-  s << v;
-  return s.str();
-}
-
-}  // namespace
-
 sim::SimOptions SceneFromTrack(const Analysis& track, const sim::SimOptions& given,
                                int transient_periods, std::vector<std::string>* notes) {
   sim::SimOptions o = given;
