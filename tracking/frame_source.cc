@@ -12,6 +12,7 @@
 #include <iterator>
 
 #include "common/error.h"
+#include "tracking/cine_source.h"
 #include "tracking/png_check.h"
 
 namespace dimer::tracking {
@@ -249,13 +250,14 @@ std::unique_ptr<FrameSource> FrameSource::Open(const std::string& path) {
   if (!fs::exists(path, ec)) throw InputError(path + ": no such file or folder");
   if (fs::is_directory(path, ec)) return OpenFolder(path);
   const std::string ext = Lower(fs::path(path).extension().string());
+  if (ext == ".cine") return OpenCine(path);
   if (IsVideoExt(ext)) return std::make_unique<VideoSource>(path);
   if (IsImageExt(ext)) {
     std::vector<Entry> entries;
     AddEntries(fs::path(path), &entries);
     return std::make_unique<ListSource>(std::move(entries));
   }
-  throw InputError(path + ": not a folder of frames, an image or a video (.avi .mp4 .mov .mkv)");
+  throw InputError(path + ": not a folder of frames, an image, a .cine or a video (.avi .mp4 .mov .mkv)");
 }
 
 }  // namespace dimer::tracking

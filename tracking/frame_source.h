@@ -1,6 +1,7 @@
 #pragma once
 // Where frames come from: a folder of images (PNG, TIFF including multi-page, BMP, JPEG; 8- or
-// 16-bit), one multi-page TIFF, or a video file read through OpenCV. Folder entries are sorted
+// 16-bit), one multi-page TIFF, a Phantom .cine file (cine_source.h), or a video file read
+// through OpenCV. Folder entries are sorted
 // naturally (frame_2 before frame_10). Frames are decoded on demand, never held for the whole
 // sequence, so memory does not grow with its length.
 //
@@ -10,6 +11,7 @@
 #include <opencv2/core.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,10 +28,21 @@ struct Frame {
   std::string error;     // why the frame is unusable, empty when fine
 };
 
+// What a source's own header says about the recording (a .cine file); `known` false otherwise.
+struct RecordingInfo {
+  bool known = false;
+  double fps = 0;                 // frames/s
+  int64_t exposure_ns = 0;        // exposure (shutter open) time, ns
+  int64_t trigger_seconds = 0;    // trigger time: seconds since 1970-01-01 UTC
+  int64_t trigger_fraction = 0;   // trigger time: fraction of a second, units of 2^-32 s
+  int64_t first_image_no = 0;     // camera number of the source's first frame (0 = trigger)
+  int real_bpp = 0;               // bits per pixel the camera delivered
+};
+
 class FrameSource {
  public:
   virtual ~FrameSource() = default;
-  // Opens a folder, a multi-page TIFF or a video (by extension). Throws InputError naming the
+  // Opens a folder, a multi-page TIFF, a .cine file or a video (by extension). Throws InputError naming the
   // path when it does not exist, holds no frames, or cannot be opened.
   static std::unique_ptr<FrameSource> Open(const std::string& path);
 
@@ -41,6 +54,8 @@ class FrameSource {
   virtual Frame Read(size_t index) const = 0;
   // The next frame in order; false at the end. Every source supports it (one thread).
   virtual bool Next(Frame* frame) = 0;
+  // The recording's header values, when the source has a header that says them.
+  virtual RecordingInfo recording() const { return {}; }
 };
 
 // Frames already in memory (benchmarks, tests): random access, names "memory#i".

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <deque>
 #include <future>
 #include <mutex>
@@ -17,6 +18,7 @@
 #include "common/stderr_capture.h"
 #include "common/provenance.h"
 #include "common/trajectory_io.h"
+#include "tracking/frame_range.h"
 
 namespace dimer::tracking {
 namespace {
@@ -177,7 +179,12 @@ void TrackArgs::Check() const {
   };
   need(!input.empty(), "input: a folder of frames, a TIFF or a video is required");
   need(!output.empty(), "-o: the output track file is required");
-  need(fps > 0 && std::isfinite(fps), "--fps must be > 0 frames/s");
+  need(std::isnan(fps) || (fps > 0 && std::isfinite(fps)), "--fps must be > 0 frames/s");
+  try {
+    ParseFrameRange(frames);
+  } catch (const InputError& e) {
+    need(false, e.what());
+  }
   need(std::isnan(m_per_px) || m_per_px > 0, "--m-per-px must be > 0 m/px");
   need(diameter > 0 && std::isfinite(diameter), "--diameter must be > 0 m");
   need(polarity == "auto" || polarity == "bright" || polarity == "dark",
@@ -228,8 +235,27 @@ Calibration Calibrate(const TrackArgs& args, const SequenceResult& r) {
   return cal;
 }
 
+// Where the frame rate came from, and the recording's header values (a .cine's) when known.
+struct Recording {
+  std::string fps_from;  // option | header | default
+  RecordingInfo info;
+};
+
+// TIME64 (seconds since 1970 and 2^-32 s fractions) as ISO 8601 UTC with nanoseconds.
+std::string TriggerTimeText(int64_t seconds, int64_t fraction) {
+  const std::time_t t = static_cast<std::time_t>(seconds);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char day[32];
+  std::strftime(day, sizeof day, "%Y-%m-%dT%H:%M:%S", &tm);
+  const long long ns = (static_cast<long long>(fraction) * 1000000000LL) >> 32;
+  char out[64];
+  std::snprintf(out, sizeof out, "%s.%09lldZ", day, ns);
+  return out;
+}
+
 void WriteTrackFile(const std::string& path, const TrackArgs& args, const SequenceResult& r,
-                    const Calibration& cal) {
+                    const Calibration& cal, const Recording& rec) {
   const size_t n = r.frames.size();
   Trajectory traj;
   traj.Reserve(n);
@@ -257,9 +283,27 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
     skipped_names.push_back(s.name);
     skipped_reasons.push_back(s.reason);
   }
+  AttrList attrs = {{"source", args.input}, {"frames", args.frames.empty() ? "all" : args.frames},
+                    {"method", args.method}, {"fps", args.fps}, {"fps_source", rec.fps_from}};
+  AttrUnits units = {{"fps", "1/s"}, {"m_per_px", "m/px"}, {"row0", "px"}, {"diameter", "m"},
+                     {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
+                     {"frames_tracked", "1"}, {"frames_skipped", "1"}};
+  if (rec.info.known) {  // the .cine header's values, exactly as stored
+    attrs.push_back({"exposure_ns", rec.info.exposure_ns});
+    attrs.push_back({"trigger_time", TriggerTimeText(rec.info.trigger_seconds,
+                                                     rec.info.trigger_fraction)});
+    attrs.push_back({"trigger_time_seconds", rec.info.trigger_seconds});
+    attrs.push_back({"trigger_time_fraction", rec.info.trigger_fraction});
+    attrs.push_back({"first_image_no", rec.info.first_image_no});
+    attrs.push_back({"real_bpp", int64_t(rec.info.real_bpp)});
+    units["exposure_ns"] = "ns";
+    units["trigger_time_seconds"] = "s";
+    units["trigger_time_fraction"] = "2^-32 s";
+    units["first_image_no"] = "1";
+    units["real_bpp"] = "bit";
+  }
   H5Writer w(path);
-  WriteProvenance(w, "track",
-                  {{"source", args.input}, {"method", args.method}, {"fps", args.fps},
+  AttrList rest = {
                    {"m_per_px", cal.m_per_px}, {"row0", cal.row0}, {"diameter", args.diameter},
                    {"polarity", std::string(r.polarity > 0 ? "bright" : "dark")},
                    {"polarity_requested", args.polarity},
@@ -267,10 +311,9 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                    {"chunk_frames", int64_t(args.sequence.chunk_frames)},
                    {"width", int64_t(r.width)}, {"height", int64_t(r.height)},
                    {"frames_tracked", int64_t(n)}, {"frames_skipped", int64_t(r.skipped.size())},
-                   {"complete", int64_t(r.complete)}},
-                  {{"fps", "1/s"}, {"m_per_px", "m/px"}, {"row0", "px"}, {"diameter", "m"},
-                   {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
-                   {"frames_tracked", "1"}, {"frames_skipped", "1"}},
+                   {"complete", int64_t(r.complete)}};
+  attrs.insert(attrs.end(), rest.begin(), rest.end());
+  WriteProvenance(w, "track", attrs, units,
                   {{"m_per_px_given", "0=calibrated from --diameter,1=given by --m-per-px"},
                    {"complete", "0=interrupted (Ctrl-C): the frames tracked so far,1=complete"}});
   WriteTrajectory(w, traj);
@@ -343,6 +386,23 @@ SequenceResult TrackWithLibraryMessagesCaptured(const TrackArgs& args, const Seq
   return r;
 }
 
+// The frame rate: --fps when given (warning when a .cine header says another), else the
+// header's, else kDefaultFps.
+Recording ResolveFps(const RecordingInfo& info, TrackArgs* args) {
+  Recording rec{"option", info};
+  const bool header = info.known && info.fps > 0;
+  if (std::isnan(args->fps)) {
+    args->fps = header ? info.fps : kDefaultFps;
+    rec.fps_from = header ? "header" : "default";
+  } else if (header && args->fps != info.fps) {
+    std::fprintf(stderr,
+                 "dimerlab: warning: %s: --fps %.10g differs from the .cine header's %.10g "
+                 "frames/s; using --fps %.10g\n",
+                 args->input.c_str(), args->fps, info.fps, args->fps);
+  }
+  return rec;
+}
+
 }  // namespace
 
 void RunTrack(const TrackArgs& args) {
@@ -351,15 +411,18 @@ void RunTrack(const TrackArgs& args) {
   seq.tracker.method = ParseMethod(args.method);
   seq.tracker.polarity = args.polarity == "bright" ? 1 : args.polarity == "dark" ? -1 : 0;
   AtomicOutput out(args.output, args.force);  // refuses an existing output before any work
-  auto source = FrameSource::Open(args.input);
-  const SequenceResult r = TrackWithLibraryMessagesCaptured(args, seq, *source);
+  auto source = SelectFrames(FrameSource::Open(args.input), ParseFrameRange(args.frames),
+                             args.input);
+  TrackArgs resolved = args;
+  const Recording rec = ResolveFps(source->recording(), &resolved);
+  const SequenceResult r = TrackWithLibraryMessagesCaptured(resolved, seq, *source);
   if (r.frames.empty()) {
     if (!r.complete) throw Interrupted();
     throw InputError(args.input + ": no readable frame (all " +
                      std::to_string(r.skipped.size()) + " were skipped)");
   }
   const Calibration cal = Calibrate(args, r);
-  WriteTrackFile(out.temp_path(), args, r, cal);
+  WriteTrackFile(out.temp_path(), resolved, r, cal, rec);
   out.Commit();
   // The one-line summary every subcommand ends with (stdout; -q silences progress only).
   size_t both = 0;

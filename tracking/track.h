@@ -48,12 +48,17 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
                              const std::function<void(size_t)>& on_progress = {},
                              const std::function<void(const SkippedFrame&)>& on_skip = {});
 
+inline constexpr double kDefaultFps = 2000.0;
+
 struct TrackArgs {
-  std::string input;            // folder of frames, multi-page TIFF or video
+  std::string input;            // folder of frames, multi-page TIFF, .cine or video
+  std::string frames;           // --frames A:B (frame_range.h); empty: all
   std::string output;           // track.h5
   std::string output_label;     // how messages name the output (empty: `output`)
   bool force = false;           // replace an existing output
-  double fps = 2000.0;          // frame rate, frames/s
+  // Frame rate, frames/s. NaN (not given): the .cine header's, else kDefaultFps. Given and
+  // different from a .cine header's: a warning, and this value is used.
+  double fps = std::numeric_limits<double>::quiet_NaN();
   double m_per_px = std::numeric_limits<double>::quiet_NaN();  // m/px; NaN: from --diameter
   double diameter = 9.5e-3;     // sphere diameter, m (calibration when m_per_px is not given)
   double row0 = std::numeric_limits<double>::quiet_NaN();      // z = 0 row, px; NaN: plate median
