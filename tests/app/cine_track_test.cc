@@ -1,0 +1,134 @@
+// `dimerlab track run.cine` end to end (RunTrack, what the command calls): the same track as the
+// same frames in a PNG folder; bit-identical for 1 and 2 threads; the header's frame rate,
+// exposure and trigger time in the track file; --frames keeps the original frame indices.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "common/h5_file.h"
+#include "tests/common/schema_check.h"
+#include "tests/common/test_tmpdir.h"
+#include "tests/tracking/synthetic.h"
+#include "tracking/cine_writer.h"
+#include "tracking/render.h"
+#include "tracking/track.h"
+
+namespace dimer::tracking {
+namespace {
+
+using dimer::testing::TempDir;
+
+constexpr size_t kFrames = 24;
+
+// Renders drift frames as PNG into dir/frames and writes the same frames as dir/run.cine.
+void MakeInputs(const TempDir& dir) {
+  testing::WriteSimFile(dir / "sim.h5", testing::DriftTrajectory(kFrames, 2000.0), 2000.0);
+  RenderArgs a;
+  a.input = dir / "sim.h5";
+  a.output = dir / "frames";
+  a.quiet = true;
+  a.image.lighting = Lighting::kReflect;
+  RunRender(a);
+  auto folder = FrameSource::Open(dir / "frames");
+  ASSERT_EQ(folder->size(), kFrames);
+  std::vector<cv::Mat> frames;
+  for (size_t i = 0; i < kFrames; ++i) frames.push_back(folder->Read(i).image);
+  CineWriteOptions o;
+  o.frame_rate = 2000;
+  o.exposure_ns = 125000;
+  o.trigger_seconds = 1763900000u;   // 2025-11-23T12:13:20Z
+  o.trigger_fraction = 0x80000000u;  // + 0.5 s
+  o.first_image_no = -100;
+  WriteCine(dir / "run.cine", frames, o);
+}
+
+TrackArgs Args(const TempDir& dir, const std::string& input, const std::string& out, int threads) {
+  TrackArgs t;
+  t.input = dir / input;
+  t.output = dir / out;
+  t.quiet = true;
+  t.sequence.chunk_frames = 7;  // several chunks, one not full
+  t.sequence.threads = threads;
+  return t;
+}
+
+template <typename T>
+bool Bitwise(const std::vector<T>& a, const std::vector<T>& b) {  // NaN == NaN, -0 != +0
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+void ExpectSameTrack(const std::string& a_path, const std::string& b_path) {
+  H5Reader a(a_path), b(b_path);
+  for (const char* name : {"/t", "/pixels/left", "/pixels/right", "/pixels/plate_row"}) {
+    EXPECT_TRUE(Bitwise(a.ReadDoubles(name), b.ReadDoubles(name))) << name;
+  }
+  EXPECT_TRUE(Bitwise(a.ReadUint8("/found"), b.ReadUint8("/found")));
+  EXPECT_TRUE(Bitwise(a.ReadInt64("/frame_index"), b.ReadInt64("/frame_index")));
+  EXPECT_EQ(a.AttrDouble("/", "m_per_px"), b.AttrDouble("/", "m_per_px"));
+  EXPECT_EQ(a.AttrDouble("/", "fps"), b.AttrDouble("/", "fps"));
+}
+
+TEST(TrackCine, SameTrackAsThePngFolderAndIdenticalForOneAndTwoThreads) {
+  TempDir dir;
+  MakeInputs(dir);
+  TrackArgs png = Args(dir, "frames", "png.h5", 2);
+  png.fps = 2000;
+  RunTrack(png);
+  RunTrack(Args(dir, "run.cine", "cine1.h5", 1));
+  RunTrack(Args(dir, "run.cine", "cine2.h5", 2));
+  ExpectSameTrack(dir / "png.h5", dir / "cine1.h5");
+  ExpectSameTrack(dir / "cine1.h5", dir / "cine2.h5");
+
+  H5Reader h(dir / "cine2.h5");
+  EXPECT_EQ(h.ReadInt64("/frame_index").size(), kFrames);
+  EXPECT_EQ(h.AttrDouble("/", "fps"), 2000.0);
+  EXPECT_EQ(h.AttrString("/", "fps_source"), "header");
+  EXPECT_EQ(h.AttrDouble("/", "exposure_ns"), 125000.0);
+  EXPECT_EQ(h.AttrString("/", "trigger_time"), "2025-11-23T12:13:20.500000000Z");
+  EXPECT_EQ(h.AttrDouble("/", "trigger_time_seconds"), 1763900000.0);
+  EXPECT_EQ(h.AttrDouble("/", "trigger_time_fraction"), 2147483648.0);
+  EXPECT_EQ(h.AttrDouble("/", "first_image_no"), -100.0);
+  EXPECT_EQ(h.ReadStrings("/frame_files")[3], "run.cine#3");
+  EXPECT_EQ(H5Reader(dir / "png.h5").AttrString("/", "fps_source"), "option");
+  EXPECT_TRUE(dimer::testing::SchemaProblems(dir / "cine2.h5").empty());
+  for (const auto& p : dimer::testing::SchemaProblems(dir / "cine2.h5")) ADD_FAILURE() << p;
+}
+
+TEST(TrackCine, GivenFpsWinsWithAWarning) {
+  TempDir dir;
+  MakeInputs(dir);
+  TrackArgs t = Args(dir, "run.cine", "t.h5", 2);
+  t.fps = 1000;
+  ::testing::internal::CaptureStderr();
+  RunTrack(t);
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("dimerlab: warning: " + t.input +
+                     ": --fps 1000 differs from the .cine header's 2000 frames/s; using --fps 1000"),
+            std::string::npos)
+      << err;
+  H5Reader h(t.output);
+  EXPECT_EQ(h.AttrDouble("/", "fps"), 1000.0);
+  EXPECT_EQ(h.AttrString("/", "fps_source"), "option");
+  EXPECT_EQ(h.ReadDoubles("/t")[1], 1.0 / 1000);
+}
+
+TEST(TrackCine, FrameRangeKeepsTheOriginalIndicesForCineAndFolder) {
+  TempDir dir;
+  MakeInputs(dir);
+  for (const std::string input : {"run.cine", "frames"}) {
+    TrackArgs t = Args(dir, input, input + ".h5", 2);
+    t.frames = "5:17";
+    t.fps = 2000;
+    RunTrack(t);
+    H5Reader h(t.output);
+    const auto index = h.ReadInt64("/frame_index");
+    ASSERT_EQ(index.size(), 12u) << input;
+    EXPECT_EQ(index.front(), 5);
+    EXPECT_EQ(index.back(), 16);
+    EXPECT_EQ(h.ReadDoubles("/t")[0], 5 / 2000.0);
+    EXPECT_EQ(h.AttrString("/", "frames"), "5:17");
+  }
+}
+
+}  // namespace
+}  // namespace dimer::tracking
