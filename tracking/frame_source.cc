@@ -12,6 +12,7 @@
 #include <iterator>
 
 #include "common/error.h"
+#include "tracking/bmp_decode.h"
 #include "tracking/cine_source.h"
 #include "tracking/png_check.h"
 
@@ -220,6 +221,8 @@ Frame DecodeImageFile(const std::string& path, size_t index, const std::string& 
       return f;
     }
   }
+  // Grey 8-bit BMP, the common export of camera software: decoded directly (bmp_decode.h).
+  if (DecodeGreyBmp(bytes.data(), bytes.size(), &f.image)) return f;
   try {
     f.image = cv::imdecode(bytes, kDecodeFlags);
   } catch (const cv::Exception&) {
