@@ -15,6 +15,7 @@
 #include "tracking/bmp_decode.h"
 #include "tracking/cine_source.h"
 #include "tracking/png_check.h"
+#include "tracking/tiff_decode.h"
 
 namespace dimer::tracking {
 namespace fs = std::filesystem;
@@ -126,6 +127,7 @@ class VideoSource : public FrameSource {
 
 // Pages of a TIFF (1 for single-page or unreadable files: those are then reported on read).
 int TiffPages(const std::string& path) {
+  if (TiffHasOnePage(path)) return 1;  // the common case, without opening libtiff
   try {
     const size_t n = cv::imcount(path, kDecodeFlags);
     return n > 1 ? int(n) : 1;
@@ -221,8 +223,10 @@ Frame DecodeImageFile(const std::string& path, size_t index, const std::string& 
       return f;
     }
   }
-  // Grey 8-bit BMP, the common export of camera software: decoded directly (bmp_decode.h).
+  // Grey 8-bit BMP and plain grey TIFF, the common exports of camera software: decoded
+  // directly (bmp_decode.h, tiff_decode.h); the same pixels as through OpenCV, less CPU.
   if (DecodeGreyBmp(bytes.data(), bytes.size(), &f.image)) return f;
+  if (DecodePlainTiff(bytes.data(), bytes.size(), &f.image)) return f;
   try {
     f.image = cv::imdecode(bytes, kDecodeFlags);
   } catch (const cv::Exception&) {
