@@ -177,7 +177,7 @@ void TrackArgs::Check() const {
   auto need = [&](bool ok, const std::string& what) {
     if (!ok) bad += (bad.empty() ? "" : "; ") + what;
   };
-  need(!input.empty(), "input: a folder of frames, a TIFF or a video is required");
+  need(!input.empty(), "input: a folder of frames, a TIFF, a .cine or a video is required");
   need(!output.empty(), "-o: the output track file is required");
   need(std::isnan(fps) || (fps > 0 && std::isfinite(fps)), "--fps must be > 0 frames/s");
   try {
@@ -303,15 +303,15 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
     units["real_bpp"] = "bit";
   }
   H5Writer w(path);
-  AttrList rest = {
-                   {"m_per_px", cal.m_per_px}, {"row0", cal.row0}, {"diameter", args.diameter},
-                   {"polarity", std::string(r.polarity > 0 ? "bright" : "dark")},
-                   {"polarity_requested", args.polarity},
-                   {"m_per_px_given", int64_t(!std::isnan(args.m_per_px))},
-                   {"chunk_frames", int64_t(args.sequence.chunk_frames)},
-                   {"width", int64_t(r.width)}, {"height", int64_t(r.height)},
-                   {"frames_tracked", int64_t(n)}, {"frames_skipped", int64_t(r.skipped.size())},
-                   {"complete", int64_t(r.complete)}};
+  const AttrList rest = {
+      {"m_per_px", cal.m_per_px}, {"row0", cal.row0}, {"diameter", args.diameter},
+      {"polarity", std::string(r.polarity > 0 ? "bright" : "dark")},
+      {"polarity_requested", args.polarity},
+      {"m_per_px_given", int64_t(!std::isnan(args.m_per_px))},
+      {"chunk_frames", int64_t(args.sequence.chunk_frames)},
+      {"width", int64_t(r.width)}, {"height", int64_t(r.height)},
+      {"frames_tracked", int64_t(n)}, {"frames_skipped", int64_t(r.skipped.size())},
+      {"complete", int64_t(r.complete)}};
   attrs.insert(attrs.end(), rest.begin(), rest.end());
   WriteProvenance(w, "track", attrs, units,
                   {{"m_per_px_given", "0=calibrated from --diameter,1=given by --m-per-px"},
