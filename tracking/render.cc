@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
+#include <memory>
 #include <mutex>
 #include <thread>
 
@@ -16,6 +18,8 @@
 #include "common/progress.h"
 #include "common/provenance.h"
 #include "common/trajectory_io.h"
+#include "tracking/cine_writer.h"
+#include "tracking/track.h"
 
 namespace dimer::tracking {
 namespace {
@@ -28,10 +32,28 @@ Eigen::Vector2d Lerp(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double 
   return a + u * (b - a);
 }
 
+// The one .cine file of a `--format cine` folder; its frames are named FILE#i.
+constexpr char kCineFile[] = "frames.cine";
+
 std::string FrameName(size_t i, const std::string& format) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "frame_%06zu.%s", i, format == "png" ? "png" : "tif");
+  char buf[40];
+  if (format == "cine") {
+    std::snprintf(buf, sizeof buf, "%s#%zu", kCineFile, i);
+  } else {
+    std::snprintf(buf, sizeof buf, "frame_%06zu.%s", i, format == "png" ? "png" : "tif");
+  }
   return buf;
+}
+
+// Header values of a rendered .cine: the trajectory's sample rate (rounded to whole frames/s,
+// as the header stores it) and the exposure the blur used.
+CineWriteOptions CineOptions(const RenderArgs& a, const Trajectory& traj, size_t n) {
+  CineWriteOptions o;
+  o.pixels = a.image.bit_depth == 16 ? CinePixels::k16Bit : CinePixels::k8Bit;
+  const double dt = n >= 2 ? traj.t[1] - traj.t[0] : 1.0 / kDefaultFps;
+  o.frame_rate = uint32_t(std::lround(1.0 / dt));
+  o.exposure_ns = uint32_t(std::lround(a.exposure * dt * 1e9));
+  return o;
 }
 
 std::string Num(double v) {
@@ -149,7 +171,8 @@ void RenderArgs::Check() const {
   need(rod_diameter >= 0 && std::isfinite(rod_diameter), "--rod-diameter must be >= 0 m");
   need(exposure >= 0 && exposure <= 1, "--exposure must be in [0, 1] frame intervals");
   need(blur_samples >= 1 && blur_samples <= 64, "--blur-samples must be 1..64");
-  need(format == "png" || format == "tiff", "--format '" + format + "': expected png or tiff");
+  need(format == "png" || format == "tiff" || format == "cine",
+       "--format '" + format + "': expected png, tiff or cine");
   need(threads >= 0 && threads <= 256, "--threads must be 0 (all cores) .. 256");
   if (!bad.empty()) throw UsageError(bad);
   image.Check();
@@ -184,10 +207,42 @@ void RunRender(const RenderArgs& args) {
   std::atomic<size_t> next{0}, done{0};
   std::mutex error_mutex;
   std::string error;
+  // --format cine: workers hand frames over in `pending`; this thread appends them in order
+  // (frames are taken in increasing order, so only the few in flight wait there).
+  const bool cine = args.format == "cine";
+  std::unique_ptr<CineWriter> cine_writer;
+  if (cine) {
+    cine_writer = std::make_unique<CineWriter>(out.temp_path() + "/" + kCineFile,
+                                               args.image.width, args.image.height, n,
+                                               CineOptions(args, traj, n));
+  }
+  std::mutex pending_mutex;
+  std::map<size_t, cv::Mat> pending;
+  size_t written = 0;
+  auto write_ready = [&]() {
+    while (true) {
+      cv::Mat img;
+      {
+        std::lock_guard<std::mutex> lock(pending_mutex);
+        auto it = pending.find(written);
+        if (it == pending.end()) return;
+        img = it->second;
+        pending.erase(it);
+      }
+      cine_writer->Add(img);
+      ++written;
+    }
+  };
   auto worker = [&]() {
     for (size_t i = next++; i < n && !InterruptRequested(); i = next++) {
       const cv::Mat img = RenderFrame(plan.Exposure(traj, i, args.exposure, args.blur_samples),
                                       args.image, i);
+      if (cine) {
+        std::lock_guard<std::mutex> lock(pending_mutex);
+        pending[i] = img;
+        ++done;
+        continue;
+      }
       const std::string path = out.temp_path() + "/" + FrameName(i, args.format);
       bool ok = false;
       try {
@@ -207,11 +262,24 @@ void RunRender(const RenderArgs& args) {
   for (int k = 0; k < threads; ++k) pool.emplace_back(worker);
   while (done < n && !InterruptRequested() && error.empty()) {
     progress.Update(double(done));
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (cine) {
+      try {  // a failed write (disk full) must not unwind past running workers
+        write_ready();
+      } catch (const std::exception& e) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        error = e.what();
+        next = n;
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(cine ? 5 : 50));
   }
   for (auto& t : pool) t.join();
   if (!error.empty()) throw InputError(error);
   if (InterruptRequested()) throw Interrupted();  // the temporary folder is removed
+  if (cine) {
+    write_ready();
+    cine_writer->Close();
+  }
   progress.Finish(double(n));
   WriteTruth(out.temp_path() + "/truth.csv", args, plan, traj, n);
   std::ofstream(out.temp_path() + "/render.json") << RenderJson(args, plan, diameter, n);

@@ -32,7 +32,7 @@ struct RenderArgs {
   double rod_diameter = 1.5e-3; // m (0: no rod)
   double exposure = 0.25;       // shutter open time, fraction of the frame interval (0: sharp)
   int blur_samples = 5;         // instants averaged over the exposure
-  std::string format = "png";   // png | tiff
+  std::string format = "png";   // png | tiff | cine (one frames.cine, frames named frames.cine#i)
   int threads = 0;              // 0: all cores
   size_t max_frames = 0;        // render only the first N samples (0: all)
   bool quiet = false;

@@ -130,5 +130,30 @@ TEST(TrackCine, FrameRangeKeepsTheOriginalIndicesForCineAndFolder) {
   }
 }
 
+// `dimerlab render --format cine`: the same frames as the PNG render, in one .cine whose header
+// says the trajectory's rate and the blur's exposure.
+TEST(TrackCine, RenderWritesTheSameFramesAsACine) {
+  TempDir dir;
+  testing::WriteSimFile(dir / "sim.h5", testing::DriftTrajectory(kFrames, 2000.0), 2000.0);
+  RenderArgs a;
+  a.input = dir / "sim.h5";
+  a.quiet = true;
+  a.output = dir / "png";
+  RunRender(a);
+  a.output = dir / "cine";
+  a.format = "cine";
+  RunRender(a);
+  auto png = FrameSource::Open(dir / "png");
+  auto cine = FrameSource::Open(dir / "cine/frames.cine");
+  ASSERT_EQ(cine->size(), kFrames);
+  for (size_t i = 0; i < kFrames; ++i) {
+    const cv::Mat p = png->Read(i).image, c = cine->Read(i).image;
+    ASSERT_EQ(c.size(), p.size());
+    EXPECT_EQ(cv::norm(p, c, cv::NORM_INF), 0) << i;
+  }
+  EXPECT_EQ(cine->recording().fps, 2000.0);
+  EXPECT_EQ(cine->recording().exposure_ns, 125000);  // 0.25 of 500 us
+}
+
 }  // namespace
 }  // namespace dimer::tracking
