@@ -1,6 +1,7 @@
 // End-to-end tracking speed from files on disk, the way a user runs it (docs/BENCHMARKS.md,
 // "Tracking end to end from files").
-//   bench_track_e2e PATH/TO/dimerlab [frames (2000)] [workdir (/tmp/bench_track_e2e)]
+//   bench_track_e2e [PATH/TO/dimerlab [frames (2000)] [workdir (/tmp/bench_track_e2e)]]
+// (without a path: ../app/dimerlab beside this program's folder, i.e. the build tree's)
 // Writes `frames` drift-like frames of 512x256 (the project's renderer, reflect lighting, noise
 // 2 grey levels) as a BMP folder, a TIFF folder and one 8-bit .cine, then per input kind:
 //  (a) read only: every frame decoded by the tracker's own FrameSource on all cores;
@@ -201,11 +202,14 @@ double AvailableCores(int threads) {  // CPU time over wall time of `threads` bu
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: bench_track_e2e PATH/TO/dimerlab [frames] [workdir]\n");
+  const std::string dimerlab =
+      argc > 1 ? fs::absolute(argv[1]).string()
+               : (fs::read_symlink("/proc/self/exe").parent_path() / "../app/dimerlab").string();
+  if (!fs::exists(dimerlab)) {
+    std::fprintf(stderr, "bench_track_e2e: %s not found; usage: bench_track_e2e "
+                 "[PATH/TO/dimerlab [frames] [workdir]]\n", dimerlab.c_str());
     return 2;
   }
-  const std::string dimerlab = fs::absolute(argv[1]).string();
   const int n = argc > 2 ? std::atoi(argv[2]) : 2000;
   const std::string work = argc > 3 ? argv[3] : (fs::temp_directory_path() / "bench_track_e2e").string();
   const int cores = int(std::thread::hardware_concurrency());
