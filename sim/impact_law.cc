@@ -74,8 +74,10 @@ Rates SolveRates(const Model& m, const std::array<ContactRow, 2>& c) {
     ++row;
   }
   const int dim = 2 * n;
-  Eigen::MatrixXd as = a.topLeftCorner(dim, dim);
-  Eigen::VectorXd x = as.completeOrthogonalDecomposition().solve(b.head(dim));
+  // Run-time size with fixed storage (no heap allocation per impact segment).
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4> as = a.topLeftCorner(dim, dim);
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 4, 1> x =
+      as.completeOrthogonalDecomposition().solve(b.head(dim));
   Rates r;
   if (!x.allFinite() || (as * x - b.head(dim)).norm() > 1e-9) r.ok = false;
   if (n == 2 && c[idx[0]].mode == Friction::kStick && c[idx[1]].mode == Friction::kStick &&

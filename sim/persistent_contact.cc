@@ -135,12 +135,15 @@ void ProjectOnContacts(const Model& m, const ContactConfig& cfg, State* q) {
     if (cfg.slide[s] == 0) J.row(rows++) << 1.0, 0.0, -r.rz;
   }
   if (rows == 0) return;
-  const Eigen::MatrixXd Jr = J.topRows(rows);
+  // Run-time sizes up to 4 with fixed storage: no heap allocation in the integration loop.
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
+  using SmallVec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 4, 1>;
+  const Small Jr = J.topRows(rows);
   const Eigen::Vector3d minv(1.0, 1.0, m.inv_I);
-  const Eigen::MatrixXd JMinv = Jr * minv.asDiagonal();
-  const Eigen::MatrixXd A = JMinv * Jr.transpose();
+  const Small JMinv = Jr * minv.asDiagonal();
+  const Small A = JMinv * Jr.transpose();
   Eigen::Vector3d vel(q->u, q->v, q->w);
-  const Eigen::VectorXd impulse = A.completeOrthogonalDecomposition().solve(-(Jr * vel));
+  const SmallVec impulse = A.completeOrthogonalDecomposition().solve(-(Jr * vel));
   vel += JMinv.transpose() * impulse;
   q->u = vel(0);
   q->v = vel(1);
