@@ -114,6 +114,10 @@ struct Model {
     const double arg = omega_p * t + phi0;
     return {std::sin(arg), std::cos(arg)};
   }
+  // Only sin: enough for PlateA and Gz (the contact forces need nothing else); c is NaN.
+  PlatePhase SinPhase(double t) const {
+    return {std::sin(omega_p * t + phi0), std::numeric_limits<double>::quiet_NaN()};
+  }
   double PlateZ(PlatePhase p) const { return amp * p.s; }
   double PlateV(PlatePhase p) const { return amp * omega_p * p.c; }
   double PlateA(PlatePhase p) const { return -amp * omega_p * omega_p * p.s; }
