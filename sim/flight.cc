@@ -57,16 +57,37 @@ GapDerivatives FlightGap(const Model& m, const State& q0, double t0, double dt, 
 
 namespace {
 
-// Largest tau for which c0 + c1 tau - c2 tau^2 - c3 tau^3 > 0 on [0, tau] (c0 > 0, c2, c3 >= 0):
-// the polynomial is concave on tau > 0, so it has one positive root; bisection keeps the lower
-// end, which is always safe.
+// Largest tau for which c0 + c1 tau - c2 tau^2 - c3 tau^3 > 0 on [0, tau] (c0 > 0, c2, c3 >= 0),
+// to 1e-3 relative: the polynomial is concave on tau > 0, so it has one positive root, and a
+// bracket [lo, hi] of it shrinks from both sides at once: the chord between the ends lies below
+// the polynomial, so its zero is a new lower end (still safe), and the tangent at hi lies
+// above it, so its zero (Newton from the right) is a new upper end. A few iterations instead
+// of a bisection's ten or more; the lower end is returned, which is always safe.
 double SafeCubicStep(double c0, double c1, double c2, double c3, double cap) {
   auto L = [&](double t) { return c0 + t * (c1 - t * (c2 + t * c3)); };
-  if (L(cap) > 0) return cap;
-  double lo = 0, hi = cap;
+  auto slope = [&](double t) { return c1 - t * (2 * c2 + 3 * t * c3); };
+  double hi = cap, fhi = L(cap);
+  if (fhi > 0) return cap;
+  double lo = 0, flo = c0;
   for (int i = 0; i < 60 && hi - lo > 1e-3 * hi; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (L(mid) > 0 ? lo : hi) = mid;
+    const double d = slope(hi);  // < 0: beyond the root of a concave function
+    if (d < 0) {
+      const double next = hi - fhi / d;
+      if (next > lo && next < hi) hi = next, fhi = L(hi);
+    }
+    const double chord = lo + (hi - lo) * (flo / (flo - fhi));
+    const double fc = L(chord);
+    if (chord > lo && chord < hi && fc > 0) {
+      lo = chord, flo = fc;
+    } else {  // round-off at the root: halve instead (the bisection's step)
+      const double mid = 0.5 * (lo + hi);
+      const double fm = L(mid);
+      if (fm > 0) {
+        lo = mid, flo = fm;
+      } else {
+        hi = mid, fhi = fm;
+      }
+    }
   }
   return lo;
 }
@@ -93,7 +114,7 @@ ImpactSearch FindFlightImpact(const Model& m, const State& q0, double t0, double
     if (g.h <= m.gap_tol && g.hd < 0 && !leaving) {
       // Approaching and within tolerance: Newton to h = 0 (converges from either side).
       for (int i = 0; i < kMaxNewtonIterations; ++i) {
-        const GapDerivatives gi = GapAt(origin, tau, sphere);
+        const GapDerivatives gi = i == 0 ? g : GapAt(origin, tau, sphere);  // g is at tau
         if (gi.hd >= 0) break;
         const double step = -gi.h / gi.hd;
         tau = std::max(0.0, tau + step);

@@ -214,12 +214,13 @@ void Runner::DoImpact(std::array<bool, 2> touching) {
       ++cur_.impacts[s];
     }
   }
+  // The detail string only for a kept event log (benchmarks and sweeps count only).
+  const std::string detail = c_.keep_events ? ImpactDetail(io) : std::string();
   if (took == 2) {
-    Log(EventKind::kDoubleImpact, 2, before, ImpactDetail(io));
+    Log(EventKind::kDoubleImpact, 2, before, detail);
   } else if (took == 1) {
     const int s = io.took_part[0] ? 0 : 1;
-    Log(io.collapsed[s] ? EventKind::kCollapse : EventKind::kImpact, s, before,
-        ImpactDetail(io));
+    Log(io.collapsed[s] ? EventKind::kCollapse : EventKind::kImpact, s, before, detail);
   }
   Settle(RestingAmong(touching));
 }
