@@ -139,7 +139,19 @@ struct StepView {
   double t;
   Vec6 y0, k0;
   double hs;
-  State At(double tau) const { return Project(m, cfg, DormandPrince(m, cfg, t, y0, tau, k0).y); }
+  // The step's end and the last point asked for: the event's final state is asked for again
+  // at the point the root finder ended on (the same computation, so the same bits).
+  State end{};
+  bool has_end = false;
+  mutable double last_tau = std::numeric_limits<double>::quiet_NaN();
+  mutable State last{};
+  State At(double tau) const {
+    if (has_end && tau == hs) return end;
+    if (tau == last_tau) return last;
+    last = Project(m, cfg, DormandPrince(m, cfg, t, y0, tau, k0).y);
+    last_tau = tau;
+    return last;
+  }
   double Event(int k, double tau) const {
     return Events(m, cfg, m.SinPhase(t + tau), At(tau)).v[k];
   }
@@ -226,7 +238,7 @@ ContactRun IntegrateContact(const Model& m, const ContactConfig& cfg, double t0,
   *h = std::clamp(*h, h_min, h_max);
   while (t < t_end) {
     const double hs = std::min(*h, t_end - t);
-    const StepView st{m, cfg, t, ToVec(q), ev0.deriv, hs};
+    StepView st{m, cfg, t, ToVec(q), ev0.deriv, hs};
     const RkStep step = DormandPrince(m, cfg, t, st.y0, hs, st.k0);
     double err = 0;
     for (int i = 0; i < 6; ++i) err = std::max(err, std::abs(step.err[i]) / (tol * scale[i]));
@@ -238,6 +250,8 @@ ContactRun IntegrateContact(const Model& m, const ContactConfig& cfg, double t0,
     ++run.steps;
     if (!(err <= 1.0)) run.ok = false;  // accepted at h_min: tolerance could not be met
     const State q1 = Project(m, cfg, step.y);
+    st.end = q1;  // = st.At(hs)
+    st.has_end = true;
     const EventValues ev1 = Events(m, cfg, step.end_phase, q1);  // phase at t + 1.0 * hs
     double tau_ev = kInf;
     int which = -1;

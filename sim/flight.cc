@@ -100,7 +100,8 @@ ImpactSearch FindFlightImpact(const Model& m, const State& q0, double t0, double
   const FlightOrigin origin(m, q0, t0);
   const double arm = m.A * m.R;
   const double M = kGravity * m.cos_a + m.amp * m.omega_p * m.omega_p + arm * q0.w * q0.w;
-  const double J = m.amp * std::pow(m.omega_p, 3) + arm * std::pow(std::abs(q0.w), 3);
+  const double aw = std::abs(q0.w);  // cubes by products: pow() cost 3 % of a drift run
+  const double J = m.amp * (m.omega_p * m.omega_p * m.omega_p) + arm * (aw * aw * aw);
   // A flight that runs for more than a few hundred thousand safe steps is a grazing pathology;
   // report it rather than hang.
   constexpr int kMaxSteps = 2000000;
