@@ -14,10 +14,12 @@ namespace {
 // it at one sin/cos pair per point (the plate's phase at the point) instead of six calls.
 struct FlightOrigin {
   FlightOrigin(const Model& model, const State& q, double t)
-      : m(model), q0(q), t0(t), zp0(model.PlateZ(t)), vp0(model.PlateV(t)) {}
+      : m(model), q0(q), t0(t), p0(model.Phase(t)), zp0(model.PlateZ(p0)), vp0(model.PlateV(p0)) {}
   const Model& m;
   const State& q0;
-  double t0, zp0, vp0;
+  double t0;
+  Model::PlatePhase p0;  // also the phase of the search's first point (dt = 0)
+  double zp0, vp0;
 };
 
 State Propagate(const FlightOrigin& o, double dt, Model::PlatePhase p1) {
@@ -38,7 +40,7 @@ State Propagate(const FlightOrigin& o, double dt, Model::PlatePhase p1) {
 }
 
 GapDerivatives GapAt(const FlightOrigin& o, double dt, int sphere) {
-  const Model::PlatePhase p1 = o.m.Phase(o.t0 + dt);
+  const Model::PlatePhase p1 = dt == 0 ? o.p0 : o.m.Phase(o.t0 + dt);  // t0 + 0 is t0
   const State q = Propagate(o, dt, p1);
   const Arm r = ContactArm(o.m, q.th, sphere);
   const double ar_sin = r.rz + o.m.R;  // s A R sin(theta)
