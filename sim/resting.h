@@ -2,7 +2,8 @@
 // The rest state in closed form: a flat dimer with both spheres sticking on the plate, at rest
 // relative to it. Its contact forces (persistent_contact.h, flat pair with w = 0) are
 //   N_0 + N_1 = g cos(alpha) + zddot_p(t),   F_0 + F_1 = g sin(alpha),
-//   N_0 - N_1 = -cos(theta) (F_0 + F_1) / A   (torque balance about the CM, r_z = -R),
+//   N_0 - N_1 = cos(theta) (F_0 + F_1) / A    (torque balance about the CM, r_z = -R: the
+//                                              downhill sphere presses more),
 // and its accelerations are exactly zero. With zddot_p(t) >= -a Omega^2 the state provably stays
 // put over the whole plate cycle (no lift-off, no slip, for every t) when
 //   g cos(alpha) - a Omega^2 > g |sin(alpha)| / A        (both normal forces stay positive),
