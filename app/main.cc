@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", dimer::DimerlabVersion());
   app.require_subcommand(1);
   dimer::app::RegisterSim(app);
+  dimer::app::RegisterSweep(app);
+  dimer::app::RegisterMerge(app);
   dimer::app::RegisterRender(app);
   dimer::app::RegisterTrack(app);
 #ifdef DIMERLAB_HAVE_COMPARE
