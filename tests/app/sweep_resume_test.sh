@@ -7,27 +7,27 @@
 #     never one it logged, and writes a file byte-identical to the reference (SOURCE_DATE_EPOCH).
 # Usage: sweep_resume_test.sh path/to/dimerlab
 set -u
-BIN=$1
+BIN=$(realpath "$1")
 WORK=$(mktemp -d)
 pid=
 trap '[ -n "$pid" ] && kill -9 "$pid" 2>/dev/null; rm -rf "$WORK"' EXIT
 cd "$WORK" || exit 1
 export SOURCE_DATE_EPOCH=1700000000
-SPEC=(--ar 3:6:0.5 --gamma 0.8,0.9 --periods 40 --transient 10)   # 14 points
+SPEC=(--ar 3:6:0.5 --gamma 0.8,0.9 --periods 400 --transient 10)   # 14 points, ~30 ms each
 fail() { echo "FAIL: $*"; exit 1; }
 
 "$BIN" sweep "${SPEC[@]}" --threads 2 -q -o ref.h5 >/dev/null || fail "reference run"
 
 "$BIN" sweep "${SPEC[@]}" --threads 1 --verbose -q -o run.h5 >/dev/null 2>run1.log &
 pid=$!
-for _ in $(seq 1 600); do   # up to 60 s for 4 points
+for _ in $(seq 1 3000); do   # up to 60 s for 4 points
   [ "$(grep -c 'point .* done' run1.log)" -ge 4 ] && break
-  sleep 0.1
+  sleep 0.02
 done
 kill -9 "$pid" 2>/dev/null
 wait "$pid" 2>/dev/null
 pid=
-logged=$(grep -o 'point [0-9]* done' run1.log | awk '{print $2}' | sort -n)
+logged=$(grep -o 'point [0-9]* done' run1.log | awk '{print $2}' | sort)
 n_logged=$(echo "$logged" | grep -c .)
 [ "$n_logged" -ge 4 ] || fail "the first run finished only $n_logged points"
 [ "$n_logged" -lt 14 ] || fail "the first run finished every point before the kill"
@@ -37,10 +37,10 @@ echo "killed after $n_logged logged points: $(echo $logged)"
 
 "$BIN" sweep "${SPEC[@]}" --threads 2 --verbose -o run.h5 >out2.txt 2>run2.log ||
   { cat run2.log; fail "the rerun failed"; }
-computed=$(grep -o 'point [0-9]* done' run2.log | awk '{print $2}' | sort -n)
+computed=$(grep -o 'point [0-9]* done' run2.log | awk '{print $2}' | sort)
 redone=$(comm -12 <(echo "$logged") <(echo "$computed"))
 [ -z "$redone" ] || fail "the rerun recomputed finished points: $redone"
-all=$(printf '%s\n%s\n' "$logged" "$computed" | grep . | sort -n | uniq)
+all=$(printf '%s\n%s\n' "$logged" "$computed" | grep . | sort -u)
 n_computed=$(echo "$computed" | grep -c .)
 # Points fsync'd but not yet logged at the kill are taken from the journal too: nothing is
 # computed twice and nothing is lost.
