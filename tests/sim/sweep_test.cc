@@ -115,6 +115,21 @@ TEST(SweepSpec, BadSpecsAreRejectedWithOneClearLine) {
   EXPECT_EQ(m.rfind("f.sweep:3: --freq", 0), 0u) << m;
 }
 
+// The spec files of samples/sweeps/ parse and every point is valid.
+TEST(SweepSpec, SampleSpecFilesAreValid) {
+  for (const char* name : {"fig4a", "gamma_curve", "mode_map"}) {
+    SCOPED_TRACE(name);
+    const SweepSpec s =
+        ReadSweepSpecFile(std::string(DIMERLAB_SOURCE_DIR) + "/samples/sweeps/" + name + ".sweep");
+    EXPECT_NO_THROW(s.Check());
+    EXPECT_GT(s.PointCount(), 1u);
+    EXPECT_EQ(s.transient + s.periods, 300);
+  }
+  EXPECT_EQ(ReadSweepSpecFile(std::string(DIMERLAB_SOURCE_DIR) + "/samples/sweeps/fig4a.sweep")
+                .PointCount(),
+            243u);  // 81 A_r x 3 f
+}
+
 TEST(SweepSpec, ShardsPartitionTheGrid) {
   for (long n : {1, 2, 3, 7}) {
     for (size_t i = 0; i < 50; ++i) {
