@@ -117,7 +117,7 @@ TEST(SweepSpec, BadSpecsAreRejectedWithOneClearLine) {
 
 // The spec files of samples/sweeps/ parse and every point is valid.
 TEST(SweepSpec, SampleSpecFilesAreValid) {
-  for (const char* name : {"fig4a", "gamma_curve", "mode_map"}) {
+  for (const char* name : {"fig4a", "fig4a_similar", "fig4b", "gamma_curve", "mode_map", "mode_map_fine"}) {
     SCOPED_TRACE(name);
     const SweepSpec s =
         ReadSweepSpecFile(std::string(DIMERLAB_SOURCE_DIR) + "/samples/sweeps/" + name + ".sweep");
