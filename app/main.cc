@@ -1,7 +1,7 @@
-// dimerlab: the binary users run. The commands that need only the simulator (`sim`, and
-// `--version`) run here, in a process that loads no OpenCV: OpenCV's video and image back-ends
-// pull in ~200 shared libraries and cost ~90 ms at every start, which a sweep or a script calling
-// `dimerlab sim` many times would pay each time (docs/BENCHMARKS.md, "Start time"). Every other
+// dimerlab: the binary users run. The commands that need only the simulator (`sim`, `sweep`,
+// `merge`, and `--version`) run here, in a process that loads no OpenCV: OpenCV's video and
+// image back-ends pull in ~200 shared libraries and cost ~90 ms at every start, which a script
+// or a Slurm array calling `dimerlab sim` many times would pay each time (docs/BENCHMARKS.md, "Start time"). Every other
 // command line (render, track, compare, analyze, --help, mistakes) is handed unchanged to
 // dimerlab-full by exec: same process, same arguments, same exit code, one set of messages.
 #include <unistd.h>
@@ -23,7 +23,7 @@ bool RunsHere(int argc, char** argv) {
   if (argc < 2) return false;
   const std::string_view first = argv[1];
   if (first == "--version") return argc == 2;
-  return first == "sim";
+  return first == "sim" || first == "sweep" || first == "merge";
 }
 
 // The folder this executable lives in (from /proc, so it works whatever PATH found it by).
@@ -57,5 +57,9 @@ int ExecFull(char** argv) {
 
 int main(int argc, char** argv) {
   if (!RunsHere(argc, argv)) return ExecFull(argv);
-  return dimer::app::RunCli(argc, argv, [](CLI::App& app) { dimer::app::RegisterSim(app); });
+  return dimer::app::RunCli(argc, argv, [](CLI::App& app) {
+    dimer::app::RegisterSim(app);
+    dimer::app::RegisterSweep(app);
+    dimer::app::RegisterMerge(app);
+  });
 }

@@ -6,6 +6,8 @@
 int main(int argc, char** argv) {
   return dimer::app::RunCli(argc, argv, [](CLI::App& app) {
     dimer::app::RegisterSim(app);
+    dimer::app::RegisterSweep(app);
+    dimer::app::RegisterMerge(app);
     dimer::app::RegisterRender(app);
     dimer::app::RegisterTrack(app);
 #ifdef DIMERLAB_HAVE_COMPARE
