@@ -14,7 +14,8 @@ ROOT=$(pwd)
 JOBS=$(nproc)
 
 PACKAGES=(build-essential cmake ninja-build pkg-config libopencv-dev libeigen3-dev libhdf5-dev
-          hdf5-tools libcli11-dev libgtest-dev googletest libnlopt-dev gnuplot-nox)
+          hdf5-tools libcli11-dev libgtest-dev googletest libnlopt-dev gnuplot-nox
+          slurm-wlm munge)
 
 setup() {
   local missing=()
@@ -70,6 +71,7 @@ bench() {
     echo "== $b =="
     case "$b" in
       */bench_compare) "$b" "$ROOT/build/app/dimerlab" ;;  # times the CLI as a user runs it
+      */bench_start) "$b" "$ROOT/build/app" ;;
       *) "$b" ;;
     esac
   done

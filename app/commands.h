@@ -11,6 +11,8 @@ void RegisterRender(CLI::App& app);
 void RegisterTrack(CLI::App& app);
 void RegisterCompare(CLI::App& app);
 void RegisterAnalyze(CLI::App& app);
+void RegisterSweep(CLI::App& app);
+void RegisterMerge(CLI::App& app);
 
 // The command line as typed (quoted in reports), set once by main().
 const std::string& CommandLine();

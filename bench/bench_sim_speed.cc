@@ -1,10 +1,21 @@
 // Simulator speed: simulated plate periods per second on one core, in the drift mode and the
-// other modes, with and without output sampling. Target (docs/BENCHMARKS.md): >= 10,000 periods/s in the
-// drift mode at default tolerances. Usage: bench_sim_speed [periods]
+// other modes, with and without output sampling. Target (docs/BENCHMARKS.md): >= 2.5x the
+// speed of the code before issue 8 in the drift mode, measured against that build in the same
+// run (--baseline), and a rest state that costs (almost) nothing per period.
+//
+// Usage: bench_sim_speed [periods] [--baseline OLD_BENCH_BINARY] [--repeats N]
+//   Without --baseline: one table of this build. With it: OLD_BENCH_BINARY (another build of
+//   this program, e.g. from main) and this build run alternately N times (default 3) with the
+//   same periods; each case's best periods/s of the N runs (the least disturbed by other load
+//   on the machine) is compared.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "sim/simulator.h"
 
@@ -13,22 +24,30 @@ using namespace dimer::sim;
 namespace {
 
 struct Row {
-  const char* label;
+  std::string label;
   SimOptions o;
 };
 
-double Seconds(const SimOptions& o, SimResult* out) {
+struct Measured {
+  double periods = 0, events_per_period = 0, seconds = 0;
+  std::string mode;
+  double Rate() const { return periods / seconds; }
+};
+
+Measured Measure(const SimOptions& o) {
   const auto t0 = std::chrono::steady_clock::now();
   RunControls c;
   c.keep_events = o.fps > 0;
-  *out = RunSimulation(o, c);
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const SimResult r = RunSimulation(o, c);
+  Measured m;
+  m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  m.periods = static_cast<double>(r.periods.size());
+  m.events_per_period = r.diag.events / m.periods;
+  m.mode = r.mode.label;
+  return m;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const double periods = argc > 1 ? std::atof(argv[1]) : 20000;
+std::vector<Row> Rows(double periods) {
   auto make = [&](double ar, double freq, InitKind init, double fps) {
     SimOptions o;
     o.ar = ar;
@@ -38,7 +57,7 @@ int main(int argc, char** argv) {
     o.cycles = periods;
     return o;
   };
-  const Row rows[] = {
+  return {
       {"drift A_r 3.9, 25 Hz, events only", make(3.9, 25, InitKind::kDrift, 0)},
       {"drift A_r 3.9, 25 Hz, 2000 samples/s + event log", make(3.9, 25, InitKind::kDrift, 2000)},
       {"drift A_r 6.1, 25 Hz, events only", make(6.1, 25, InitKind::kDrift, 0)},
@@ -46,14 +65,111 @@ int main(int argc, char** argv) {
       {"jump A_r 3.9, 25 Hz, events only", make(3.9, 25, InitKind::kJump, 0)},
       {"rest A_r 3.9, 25 Hz, events only", make(3.9, 25, InitKind::kRest, 0)},
   };
-  std::printf("| case | periods | events/period | wall s | periods/s | settled |\n");
-  std::printf("|---|---:|---:|---:|---:|---|\n");
+}
+
+// One table of this build (the format --baseline parses from another build).
+std::map<std::string, double> RunTable(const std::vector<Row>& rows, bool print) {
+  std::map<std::string, double> rate;
+  if (print) {
+    std::printf("| case | periods | events/period | wall s | periods/s | settled |\n");
+    std::printf("|---|---:|---:|---:|---:|---|\n");
+  }
   for (const Row& row : rows) {
-    SimResult r;
-    const double s = Seconds(row.o, &r);
-    const double n = static_cast<double>(r.periods.size());
-    std::printf("| %s | %.0f | %.1f | %.3f | %.0f | %s |\n", row.label, n, r.diag.events / n, s,
-                n / s, r.mode.label.c_str());
+    const Measured m = Measure(row.o);
+    rate[row.label] = m.Rate();
+    if (print) {
+      std::printf("| %s | %.0f | %.1f | %.3f | %.0f | %s |\n", row.label.c_str(), m.periods,
+                  m.events_per_period, m.seconds, m.Rate(), m.mode.c_str());
+      std::fflush(stdout);
+    }
+  }
+  return rate;
+}
+
+// Runs another build of this program and reads its table: label -> periods/s.
+std::map<std::string, double> RunBaseline(const std::string& binary, double periods) {
+  const std::string cmd = "'" + binary + "' " + std::to_string(static_cast<long>(periods));
+  std::map<std::string, double> rate;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) {
+    std::fprintf(stderr, "bench_sim_speed: cannot run %s\n", cmd.c_str());
+    std::exit(1);
+  }
+  char line[512];
+  while (std::fgets(line, sizeof line, p)) {
+    // | label | periods | events/period | wall s | periods/s | settled |
+    std::vector<std::string> cells;
+    std::string cell;
+    for (const char* c = line; *c && *c != '\n'; ++c) {
+      if (*c == '|') {
+        cells.push_back(cell);
+        cell.clear();
+      } else {
+        cell += *c;
+      }
+    }
+    if (cells.size() < 6) continue;
+    auto trim = [](std::string s) {
+      const size_t a = s.find_first_not_of(' '), b = s.find_last_not_of(' ');
+      return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
+    };
+    const std::string label = trim(cells[1]);
+    char* end = nullptr;
+    const std::string value = trim(cells[5]);
+    const double v = std::strtod(value.c_str(), &end);
+    if (label == "case" || end == value.c_str()) continue;
+    rate[label] = v;
+  }
+  if (pclose(p) != 0 || rate.empty()) {
+    std::fprintf(stderr, "bench_sim_speed: %s: no table\n", cmd.c_str());
+    std::exit(1);
+  }
+  return rate;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double periods = 20000;
+  std::string baseline;
+  int repeats = 3;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--baseline") && i + 1 < argc) {
+      baseline = argv[++i];
+    } else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) {
+      repeats = std::max(1, std::atoi(argv[++i]));
+    } else {
+      periods = std::atof(argv[i]);
+    }
+  }
+  const std::vector<Row> rows = Rows(periods);
+  if (baseline.empty()) {
+    RunTable(rows, true);
+    return 0;
+  }
+  std::map<std::string, double> best_old, best_new;
+  for (int r = 0; r < repeats; ++r) {
+    for (const auto& [label, v] : RunBaseline(baseline, periods)) {
+      best_old[label] = std::max(best_old[label], v);
+    }
+    for (const auto& [label, v] : RunTable(rows, false)) {
+      best_new[label] = std::max(best_new[label], v);
+    }
+    std::fprintf(stderr, "run %d of %d done\n", r + 1, repeats);
+  }
+  std::printf("%.0f periods per case; baseline %s and this build run alternately %d times; best "
+              "periods/s of each\n\n", periods, baseline.c_str(), repeats);
+  std::printf("| case | baseline periods/s | this build periods/s | speedup |\n");
+  std::printf("|---|---:|---:|---:|\n");
+  for (const Row& row : rows) {
+    const auto it = best_old.find(row.label);
+    const double n = best_new[row.label];
+    if (it == best_old.end()) {
+      std::printf("| %s | - | %.0f | - |\n", row.label.c_str(), n);
+    } else {
+      std::printf("| %s | %.0f | %.0f | %.2fx |\n", row.label.c_str(), it->second, n,
+                  n / it->second);
+    }
   }
   return 0;
 }

@@ -16,18 +16,22 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 Vec6 ToVec(const State& q) { return {q.x, q.z, q.th, q.u, q.v, q.w}; }
 State ToState(const Vec6& y) { return {y[0], y[1], y[2], y[3], y[4], y[5]}; }
 
-Vec6 Deriv(const Model& m, const ContactConfig& cfg, double t, const Vec6& y) {
+Vec6 Deriv(const State& q, const ContactForces& f) { return {q.u, q.v, q.w, f.ax, f.az, f.aw}; }
+Vec6 Deriv(const Model& m, const ContactConfig& cfg, Model::PlatePhase phase, const Vec6& y) {
   const State q = ToState(y);
-  const ContactForces f = SolveContactForces(m, t, q, cfg);
-  return {q.u, q.v, q.w, f.ax, f.az, f.aw};
+  return Deriv(q, SolveContactForces(m, phase, q, cfg));
 }
 
-// One Dormand-Prince step; returns the 5th-order solution and the error estimate.
+// One Dormand-Prince step; returns the 5th-order solution, the error estimate and the plate's
+// phase at t + h (the last two stages and the event check at the step end share it). k0 is the
+// derivative at (t, y), known from the event check at the step start (the same computation, so
+// reusing it changes no bit).
 struct RkStep {
   Vec6 y, err;
+  Model::PlatePhase end_phase;
 };
 RkStep DormandPrince(const Model& m, const ContactConfig& cfg, double t, const Vec6& y,
-                     double h) {
+                     double h, const Vec6& k0) {
   static constexpr double c[7] = {0, 1.0 / 5, 3.0 / 10, 4.0 / 5, 8.0 / 9, 1, 1};
   static constexpr double a[7][6] = {
       {0, 0, 0, 0, 0, 0},
@@ -40,13 +44,15 @@ RkStep DormandPrince(const Model& m, const ContactConfig& cfg, double t, const V
   static constexpr double e[7] = {71.0 / 57600,  0,           -71.0 / 16695, 71.0 / 1920,
                                   -17253.0 / 339200, 22.0 / 525, -1.0 / 40};
   std::array<Vec6, 7> k;
-  for (int s = 0; s < 7; ++s) {
+  k[0] = k0;
+  RkStep out;
+  for (int s = 1; s < 7; ++s) {
     Vec6 ys = y;
     for (int j = 0; j < s; ++j)
       for (int i = 0; i < 6; ++i) ys[i] += h * a[s][j] * k[j][i];
-    k[s] = Deriv(m, cfg, t + c[s] * h, ys);
+    if (s < 6) out.end_phase = m.SinPhase(t + c[s] * h);  // stages 5 and 6 both at t + h
+    k[s] = Deriv(m, cfg, out.end_phase, ys);
   }
-  RkStep out;
   for (int i = 0; i < 6; ++i) {
     double y5 = y[i], er = 0;
     for (int s = 0; s < 6; ++s) y5 += h * a[6][s] * k[s][i];
@@ -63,10 +69,13 @@ RkStep DormandPrince(const Model& m, const ContactConfig& cfg, double t, const V
 struct EventValues {
   std::array<double, 4> v;
   std::array<ContactEvent, 4> kind;
+  Vec6 deriv;  // the state's derivative (the next step's first stage)
 };
-EventValues Events(const Model& m, const ContactConfig& cfg, double t, const State& q) {
+EventValues Events(const Model& m, const ContactConfig& cfg, Model::PlatePhase phase,
+                   const State& q) {
   EventValues ev;
-  const ContactForces f = SolveContactForces(m, t, q, cfg);
+  const ContactForces f = SolveContactForces(m, phase, q, cfg);
+  ev.deriv = Deriv(q, f);
   const double fscale = kGravity;  // makes force and velocity events comparable in size
   for (int s = 0; s < 2; ++s) {
     ev.v[s] = kInf;
@@ -128,10 +137,24 @@ struct StepView {
   const Model& m;
   const ContactConfig& cfg;
   double t;
-  Vec6 y0;
+  Vec6 y0, k0;
   double hs;
-  State At(double tau) const { return Project(m, cfg, DormandPrince(m, cfg, t, y0, tau).y); }
-  double Event(int k, double tau) const { return Events(m, cfg, t + tau, At(tau)).v[k]; }
+  // The step's end and the last point asked for: the event's final state is asked for again
+  // at the point the root finder ended on (the same computation, so the same bits).
+  State end{};
+  bool has_end = false;
+  mutable double last_tau = std::numeric_limits<double>::quiet_NaN();
+  mutable State last{};
+  State At(double tau) const {
+    if (has_end && tau == hs) return end;
+    if (tau == last_tau) return last;
+    last = Project(m, cfg, DormandPrince(m, cfg, t, y0, tau, k0).y);
+    last_tau = tau;
+    return last;
+  }
+  double Event(int k, double tau) const {
+    return Events(m, cfg, m.SinPhase(t + tau), At(tau)).v[k];
+  }
 };
 
 // A slide that starts from U = 0 (sigma U = 0 at the start) may dip the right way and come back
@@ -211,12 +234,12 @@ ContactRun IntegrateContact(const Model& m, const ContactConfig& cfg, double t0,
   const double h_min = kMinStepRel * m.period, h_max = kMaxStepRel * m.period;
   double t = t0;
   State q = q0;
-  EventValues ev0 = Events(m, cfg, t, q);
+  EventValues ev0 = Events(m, cfg, m.SinPhase(t), q);
   *h = std::clamp(*h, h_min, h_max);
   while (t < t_end) {
     const double hs = std::min(*h, t_end - t);
-    const StepView st{m, cfg, t, ToVec(q), hs};
-    const RkStep step = DormandPrince(m, cfg, t, st.y0, hs);
+    StepView st{m, cfg, t, ToVec(q), ev0.deriv, hs};
+    const RkStep step = DormandPrince(m, cfg, t, st.y0, hs, st.k0);
     double err = 0;
     for (int i = 0; i < 6; ++i) err = std::max(err, std::abs(step.err[i]) / (tol * scale[i]));
     if (!(err <= 1.0) && hs > h_min) {
@@ -227,7 +250,9 @@ ContactRun IntegrateContact(const Model& m, const ContactConfig& cfg, double t0,
     ++run.steps;
     if (!(err <= 1.0)) run.ok = false;  // accepted at h_min: tolerance could not be met
     const State q1 = Project(m, cfg, step.y);
-    const EventValues ev1 = Events(m, cfg, t + hs, q1);
+    st.end = q1;  // = st.At(hs)
+    st.has_end = true;
+    const EventValues ev1 = Events(m, cfg, step.end_phase, q1);  // phase at t + 1.0 * hs
     double tau_ev = kInf;
     int which = -1;
     for (int k = 0; k < 4; ++k) {

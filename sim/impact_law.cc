@@ -50,6 +50,20 @@ Rates SolveRates(const Model& m, const std::array<ContactRow, 2>& c) {
   int idx[2], n = 0;
   for (int i = 0; i < 2; ++i)
     if (c[i].active) idx[n++] = i;
+  if (n == 1) {
+    // One active contact, in closed form: dN = 1, and dT = -sgn(U) mu_hat (sliding) or the
+    // rate that keeps U constant, jt . (M^-1 jn + M^-1 jt dT) = 0 (sticking; jt M^-1 jt >= 1).
+    const ContactRow& ci = c[idx[0]];
+    const Vec3 rn = Response(m, ci.jn), rt = Response(m, ci.jt);
+    const double dt = ci.mode == Friction::kSlide ? -ci.sigma * m.mu_hat
+                                                  : -ci.jt.dot(rn) / ci.jt.dot(rt);
+    Rates r;
+    r.dn[idx[0]] = 1.0;
+    r.dt[idx[0]] = dt;
+    r.dvel = rn + rt * dt;
+    r.ok = std::isfinite(dt);
+    return r;
+  }
   Eigen::Matrix4d a = Eigen::Matrix4d::Zero();
   Eigen::Vector4d b = Eigen::Vector4d::Zero();
   // Unknowns: dN of active k at column k, dT at column n + k.
@@ -74,8 +88,10 @@ Rates SolveRates(const Model& m, const std::array<ContactRow, 2>& c) {
     ++row;
   }
   const int dim = 2 * n;
-  Eigen::MatrixXd as = a.topLeftCorner(dim, dim);
-  Eigen::VectorXd x = as.completeOrthogonalDecomposition().solve(b.head(dim));
+  // Run-time size with fixed storage (no heap allocation per impact segment).
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4> as = a.topLeftCorner(dim, dim);
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 4, 1> x =
+      as.completeOrthogonalDecomposition().solve(b.head(dim));
   Rates r;
   if (!x.allFinite() || (as * x - b.head(dim)).norm() > 1e-9) r.ok = false;
   if (n == 2 && c[idx[0]].mode == Friction::kStick && c[idx[1]].mode == Friction::kStick &&

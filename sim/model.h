@@ -9,6 +9,7 @@
 // g_eff(t) = (-g sin(alpha), -g cos(alpha) - zddot_p(t)). Files and --init-state use the lab
 // frame (frames.h converts). Mass is 1 (nothing depends on it), forces are per unit mass.
 #include <array>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
@@ -102,6 +103,25 @@ struct Model {
   // Effective gravity in the plate frame (tangential, normal).
   double Gx() const { return -kGravity * sin_a; }
   double Gz(double t) const { return -kGravity * cos_a - PlateA(t); }
+
+  // The same quantities from sin and cos of the plate phase omega_p t + phi0, computed once
+  // and shared by every quantity needed at one time (the hot loops). Each is the same
+  // expression as its time overload, so both give bit-identical values.
+  struct PlatePhase {
+    double s, c;  // sin, cos of omega_p t + phi0
+  };
+  PlatePhase Phase(double t) const {
+    const double arg = omega_p * t + phi0;
+    return {std::sin(arg), std::cos(arg)};
+  }
+  // Only sin: enough for PlateA and Gz (the contact forces need nothing else); c is NaN.
+  PlatePhase SinPhase(double t) const {
+    return {std::sin(omega_p * t + phi0), std::numeric_limits<double>::quiet_NaN()};
+  }
+  double PlateZ(PlatePhase p) const { return amp * p.s; }
+  double PlateV(PlatePhase p) const { return amp * omega_p * p.c; }
+  double PlateA(PlatePhase p) const { return -amp * omega_p * omega_p * p.s; }
+  double Gz(PlatePhase p) const { return -kGravity * cos_a - PlateA(p); }
 };
 
 }  // namespace dimer::sim

@@ -31,6 +31,10 @@ struct ContactForces {
 
 ContactForces SolveContactForces(const Model& m, double t, const State& q,
                                  const ContactConfig& cfg);
+// The same with the plate's phase at t already computed (bit-identical to the above; only
+// its sin is used: Model::SinPhase is enough).
+ContactForces SolveContactForces(const Model& m, Model::PlatePhase phase, const State& q,
+                                 const ContactConfig& cfg);
 
 struct ModeChoice {
   ContactConfig cfg;

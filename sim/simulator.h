@@ -29,6 +29,7 @@ struct SimDiagnostics {
   long capped_searches = 0;    // impact searches that hit their step cap (should be 0)
   long step_underflows = 0;    // contact steps accepted at the minimum size (should be 0)
   long painleve = 0;           // Painleve situations resolved by impact without collision
+  long rest_stages = 0;        // stages skipped in the rest state that stays put (resting.h)
   long energy_capped = 0;      // impacts where plain Newton would have created energy
   double max_newton_gain = 0;  // largest such gain relative to the kinetic energy before
   double max_penetration_m = 0;  // deepest gap seen at any evaluated point, m
@@ -53,6 +54,9 @@ struct RunControls {
   bool keep_events = true;                      // false: count only (benchmarks, sweeps)
   std::function<void(double done, double total)> progress;  // called once per period
   std::function<bool()> should_stop;            // polled once per period (Ctrl-C)
+  // The rest state that provably stays put (sim/resting.h) costs nothing per period; false
+  // integrates it step by step (tests compare the two).
+  bool skip_rest = true;
 };
 
 // Throws InputError for invalid options. An event storm stops the run and sets `error`.

@@ -53,6 +53,15 @@ expect 2 "--fps" sim --fps abc -o x.h5
 expect 2 "unknown subcommand 'compre'; did you mean 'compare'" compre ok.h5 -o r
 expect 2 "--phase-bins: 1: expected 2..1000" compare ok.h5 -o r --phase-bins 1
 expect 2 "--sim and --simulate: give one of them" compare ok.h5 -o r --sim ok.h5 --simulate
+# Sweep specs: an empty range, a zero step, an unknown parameter (flag or spec-file line), a bad
+# shard, a point the simulator rejects.
+expect 2 '--ar: "4:3:0.1": empty range' sweep --ar 4:3:0.1 -o x.h5
+expect 2 '--gamma: "0.5:1:0": step 0' sweep --gamma 0.5:1:0 -o x.h5
+expect 2 "unknown option '--colour'" sweep --colour 3 -o x.h5
+printf 'ar = 3:4:0.5\ncolour = 2\n' >bad.sweep
+expect 2 'bad.sweep:2: unknown sweep parameter "colour"' sweep --spec bad.sweep -o x.h5
+expect 2 '--shard: "3/2": expected K/N with 1 <= K <= N' sweep --shard 3/2 -o x.h5
+expect 2 'invalid sweep point 1 \(ar=0.5\): --ar: 0.5' sweep --ar 3,0.5 -o x.h5
 
 # 1: bad input (files) and failed runs.
 echo "not HDF5" >not-hdf5.h5
@@ -67,6 +76,10 @@ expect 1 "not-hdf5.h5: not an HDF5 file" compare not-hdf5.h5 -o r
 expect 0 '' sim --cycles 1.5 --fps 200 -q -o short.h5
 expect 1 "short.h5: 1.5 plate periods long; at least 2 are needed" compare short.h5 -o r
 expect 1 "no_frames: no such file or folder" analyze no_frames -o r2
+expect 0 '' sweep --ar 3.9,6.1 --periods 4 --transient 2 -q -o sweep.h5
+expect 1 "sweep.h5: point 0 is also in sweep.h5" merge sweep.h5 sweep.h5 -o merged.h5
+expect 0 '' sweep --ar 3.9,6.1 --periods 4 --transient 2 -q --shard 1/2 -o part1.h5
+expect 1 "merge: 1 of 2 points missing \(first: 1\)" merge part1.h5 -o merged.h5
 
 # 130: interrupted (SIGINT, as Ctrl-C), with a valid partial file.
 "$BIN" sim --cycles 10000000 -q -o long.h5 >/dev/null 2>err.txt &
@@ -80,5 +93,28 @@ if [ "$rc" -ne 130 ] || [ ! -f long.h5 ]; then
 else
   echo "ok:   exit 130  dimerlab sim (interrupted), partial file kept"
 fi
+
+# A sweep interrupted by SIGINT exits 130 and keeps its finished points in the journal.
+"$BIN" sweep --ar 2:6:0.01 --periods 100000 --threads 1 -q -o isweep.h5 >/dev/null 2>err.txt &
+pid=$!
+for _ in $(seq 20); do sleep 0.1; done
+kill -INT "$pid"
+wait "$pid"
+rc=$?
+if [ "$rc" -ne 130 ] || [ -e isweep.h5 ] || [ ! -s isweep.h5.journal ]; then
+  echo "FAIL: interrupted sweep -> exit $rc (want 130), want a journal and no output"
+  cat err.txt; failures=$((failures + 1))
+else
+  echo "ok:   exit 130  dimerlab sweep (interrupted), journal kept"
+fi
+
+# 1: `dimerlab` copied without dimerlab-full: it still runs sim, and an image command says what is
+# missing instead of failing obscurely.
+mkdir lonely && cp "$BIN" lonely/dimerlab
+SAVED_BIN=$BIN
+BIN=$WORK/lonely/dimerlab
+expect 0 '' sim --cycles 1 -q -o lonely.h5
+expect 1 "dimerlab-full .* is not installed beside" track some_frames -o t.h5
+BIN=$SAVED_BIN
 
 [ "$failures" -eq 0 ] || { echo "$failures case(s) failed"; exit 1; }

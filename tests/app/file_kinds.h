@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "sim/run_sim.h"
+#include "sim/sweep_run.h"
 #include "tests/common/test_tmpdir.h"
 #ifdef DIMERLAB_HAVE_COMPARE
 #include "compare/run_compare.h"
@@ -28,6 +29,19 @@ inline std::vector<FileOfKind> MakeEveryFileKind(const TempDir& dir) {
   sim.progress = false;
   sim::RunSim(sim);
   files.push_back({"sim", sim.output});
+  // A sweep with a completed point and a failed one (jump below its Gamma threshold), so
+  // that every column holds values and the error strings are both empty and not.
+  sim::SweepRunArgs sweep;
+  sim::SetSpecValue(&sweep.spec, "ar", "3.9", "");
+  sim::SetSpecValue(&sweep.spec, "init", "jump", "");
+  sim::SetSpecValue(&sweep.spec, "gamma", "0.1,0.9", "");
+  sim::SetSpecValue(&sweep.spec, "periods", "3", "");
+  sim::SetSpecValue(&sweep.spec, "transient", "1", "");
+  sweep.output = dir / "sweep.h5";
+  sweep.progress = false;
+  sweep.threads = 1;
+  sim::RunSweep(sweep);
+  files.push_back({"sweep", sweep.output});
 #ifdef DIMERLAB_HAVE_TRACKING
   tracking::RenderArgs render;
   render.input = sim.output;

@@ -17,9 +17,9 @@ TEST(FileSchema, EveryDatasetOfEveryFileKindDescribesItself) {
   testing::TempDir dir;
   const auto files = testing::MakeEveryFileKind(dir);
 #if defined(DIMERLAB_HAVE_COMPARE)
-  ASSERT_EQ(files.size(), 3u);  // sim, track and compare
+  ASSERT_EQ(files.size(), 4u);  // sim, sweep, track and compare
 #elif defined(DIMERLAB_HAVE_TRACKING)
-  ASSERT_EQ(files.size(), 2u);  // sim and track
+  ASSERT_EQ(files.size(), 3u);  // sim, sweep and track
 #endif
   for (const auto& f : files) {
     SCOPED_TRACE(f.kind);

@@ -68,6 +68,87 @@ TEST(PersistentContact, SlideObeysCoulombAndKeepsTheNormalConstraint) {
   }
 }
 
+// Both spheres resting (flat, closed form in the solver): every friction combination satisfies
+// its rows — V' = 0 at both contacts, U' = 0 where sticking (both sticking: only the sum of the
+// tangential forces is fixed; it is shared like the normal ones), F = -sgn(U) mu N where sliding
+// — and the accelerations are those of the forces.
+TEST(PersistentContact, FlatPairSatisfiesEveryRowInEachFrictionCombination) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> uni(-1, 1);
+  for (int i = 0; i < 400; ++i) {
+    SimOptions o;
+    o.ar = 1.5 + 8 * (0.5 + 0.5 * uni(rng));
+    o.tilt_deg = 15 * uni(rng);
+    o.gamma = 0.9 * (0.5 + 0.5 * uni(rng));
+    const Model m = Model::FromOptions(o);
+    State q;
+    q.th = (i % 4 < 2) ? 0.0 : M_PI;
+    q.z = m.R;
+    q.u = 0.05 * uni(rng);
+    ContactConfig cfg;
+    cfg.resting = {true, true};
+    cfg.slide = {i % 3 - 1, (i / 3) % 3 - 1};
+    const double t = 0.001 * i;
+    const ContactForces f = SolveContactForces(m, t, q, cfg);
+    ASSERT_TRUE(f.ok) << i;
+    const double g = kGravity;
+    for (int s = 0; s < 2; ++s) {
+      const ContactAcc a = ContactAcceleration(m, q, f, s);
+      EXPECT_NEAR(a.vdot, 0.0, 1e-12 * g) << i;
+      if (cfg.slide[s] != 0) {
+        EXPECT_NEAR(f.f[s], -cfg.slide[s] * m.mu * f.n[s], 1e-12 * g) << i;
+      } else {
+        EXPECT_NEAR(a.udot, 0.0, 1e-12 * g) << i;
+      }
+    }
+    if (cfg.slide[0] == 0 && cfg.slide[1] == 0 && f.n[0] + f.n[1] > 0) {
+      EXPECT_NEAR(f.f[0] * f.n[1], f.f[1] * f.n[0], 1e-12 * g * g) << i;  // shared like N
+    }
+    // Accelerations from the forces (docs/MODEL.md).
+    const Arm r0 = ContactArm(m, q.th, 0), r1 = ContactArm(m, q.th, 1);
+    EXPECT_NEAR(f.ax, m.Gx() + f.f[0] + f.f[1], 1e-12 * g) << i;
+    EXPECT_NEAR(f.az, m.Gz(t) + f.n[0] + f.n[1], 1e-12 * g) << i;
+    EXPECT_NEAR(f.aw / m.inv_I,
+                r0.rx * f.n[0] + r1.rx * f.n[1] - r0.rz * f.f[0] - r1.rz * f.f[1],
+                1e-12 * g * m.R) << i;
+  }
+}
+
+// The closed-form projection is the mass-metric one: it zeroes the constrained contact
+// velocities and removes the least kinetic energy, i.e. what is removed is M-orthogonal to
+// every velocity the constraints allow (checked against the rolling direction and the free
+// ones).
+TEST(PersistentContact, ProjectionZeroesTheConstrainedVelocitiesAndIsOrthogonalInTheMassMetric) {
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> uni(-1, 1);
+  const Model m = testing::PaperModel();
+  const double I = 1.0 / m.inv_I;
+  for (int i = 0; i < 200; ++i) {
+    const int s = i % 2;
+    State q;
+    q.th = 0.5 * uni(rng);
+    q.z = -ContactArm(m, q.th, s).rz;
+    q.u = uni(rng), q.v = uni(rng), q.w = 20 * uni(rng);
+    ContactConfig cfg;
+    cfg.resting[s] = true;
+    cfg.slide[s] = i % 4 < 2 ? 0 : 1;
+    State p = q;
+    ProjectOnContacts(m, cfg, &p);
+    const Arm r = ContactArm(m, p.th, s);
+    EXPECT_NEAR(NormalV(r, p), 0.0, 1e-13) << i;
+    if (cfg.slide[s] == 0) {
+      EXPECT_NEAR(SlipU(r, p), 0.0, 1e-13) << i;
+    }
+    // Removed velocity d = q - p; allowed directions a: d^T M a = 0.
+    const double du = q.u - p.u, dv = q.v - p.v, dw = q.w - p.w;
+    auto m_dot = [&](double au, double av, double aw) { return du * au + dv * av + I * dw * aw; };
+    EXPECT_NEAR(m_dot(r.rz, -r.rx, 1.0), 0.0, 1e-12) << i;  // rolling about the contact
+    if (cfg.slide[s] != 0) {
+      EXPECT_NEAR(m_dot(1.0, 0.0, 0.0), 0.0, 1e-12) << i;  // sliding
+    }
+  }
+}
+
 // docs/MODEL.md check 4 at the force level: a flat dimer on a still plate tilted by alpha sticks
 // iff tan(alpha) <= mu_s; the normal forces carry the weight and the friction its slope part.
 TEST(PersistentContact, FlatDimerOnATiltSticksBelowTheFrictionAngle) {
