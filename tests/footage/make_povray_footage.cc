@@ -47,7 +47,7 @@ const char* kUsage =
     "  --horizon-row R     output row of the optical axis (249.5; mirror_plate 224.5)\n"
     "  --plate-depth M     plate extent toward the camera, m (0.04; mirror_plate 0.2)\n"
     "  --aa-depth D        POV-Ray antialiasing depth, 0 (none) .. 7 (4)\n"
-    "  --jobs N            POV-Ray processes at once (2)\n"
+    "  --jobs N            POV-Ray processes at once (0: three per core)\n"
     "  --povray PATH       the POV-Ray program (povray)\n"
     "  --reuse             keep DIR if it was made from the same scenes (a cache)\n"
     "  --force             replace an existing DIR\n"
@@ -159,11 +159,11 @@ int Run(int argc, char** argv) {
     std::printf("%s: up to date (%zu frames, scene hash %s)\n", output.c_str(), r.frames,
                 r.scene_hash.c_str());
   } else {
-    std::printf("%s: %zu frames %dx%d, %d-bit, %s; POV-Ray %.3g s/frame (%d slices); truth.csv, "
-                "footage.json\n",
+    std::printf("%s: %zu frames %dx%d, %d-bit, %s; POV-Ray %.3g CPU s/frame (%d slices); truth.csv, "
+                "footage.json; %.3g s\n",
                 output.c_str(), r.frames, o.camera.width, o.camera.height, o.bit_depth,
-                ToString(o.lighting).c_str(), r.povray_seconds_per_frame,
-                o.exposure_s > 0 ? o.subframes : 1);
+                ToString(o.lighting).c_str(), r.povray_cpu_seconds_per_frame,
+                o.exposure_s > 0 ? o.subframes : 1, r.wall_seconds);
   }
   return 0;
 }

@@ -15,6 +15,7 @@
 #include <numbers>
 #include <random>
 #include <sstream>
+#include <sys/resource.h>
 #include <thread>
 
 #include "common/atomic_output.h"
@@ -177,6 +178,14 @@ std::string TruthCsv(const Motion& m, const FootageOptions& o) {
   return s;
 }
 
+// CPU seconds of the finished child processes so far (POV-Ray runs as children).
+double ChildCpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_CHILDREN, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 std::string PostProcessKey(const FootageOptions& o, const std::string& version) {
   return std::string(kGeneratorVersion) + "|" + version + "|psf=" + Num(o.psf_sigma_px) +
          "|noise=" + Num(o.noise) + "|bits=" + std::to_string(o.bit_depth) + "|seed=" +
@@ -227,7 +236,7 @@ std::string Sidecar(const Motion& m, const FootageOptions& o, const std::string&
   add("aa_depth", std::to_string(o.aa_depth));
   add("gain_left", Num(LightingGain(o.lighting, 0, c.width)));
   add("gain_right", Num(LightingGain(o.lighting, c.width - 1, c.width)));
-  add("povray_seconds_per_frame", Num(seconds_per_frame));
+  add("povray_cpu_seconds_per_frame", Num(seconds_per_frame));
   add("scene_hash", JsonString(hash));
   add("units",
       "{\"m_per_px\": \"m/px\", \"camera_distance\": \"m\", \"camera_elevation\": \"m\", "
@@ -235,7 +244,7 @@ std::string Sidecar(const Motion& m, const FootageOptions& o, const std::string&
       "\"px\", \"col_offset\": \"px\", \"diameter\": \"m\", \"rod_diameter\": \"m\", "
       "\"radius_px\": \"px\", \"plate_depth\": \"m\", \"fps\": \"frames/s\", \"exposure\": \"s\", "
       "\"psf_sigma_px\": \"px\", \"noise\": \"grey levels (8-bit scale)\", "
-      "\"povray_seconds_per_frame\": \"s\"}",
+      "\"povray_cpu_seconds_per_frame\": \"s\"}",
       true);
   return j + "}\n";
 }
@@ -277,7 +286,7 @@ void FootageOptions::Check() const {
   need(psf_sigma_px >= 0 && psf_sigma_px <= 10, "--psf must be 0..10 px");
   need(noise >= 0 && std::isfinite(noise), "--noise must be >= 0");
   need(bit_depth == 8 || bit_depth == 16, "--bit-depth must be 8 or 16");
-  need(jobs >= 1 && jobs <= 64, "--jobs must be 1..64");
+  need(jobs >= 0 && jobs <= 64, "--jobs must be 0 (three per core) .. 64");
   need(aa_depth >= 0 && aa_depth <= 7, "--aa-depth must be 0..7");
   if (!bad.empty()) throw UsageError(bad);
 }
@@ -406,20 +415,15 @@ FootageResult WriteFootage(const Motion& motion, const FootageOptions& options_i
   }
 
   std::atomic<size_t> next{0}, done{0};
-  std::atomic<double> povray_seconds{0};
+  const double cpu_start = ChildCpuSeconds();
   std::mutex error_mutex;
   std::string error;
   auto worker = [&]() {
     for (size_t i = next++; i < n && !InterruptRequested(); i = next++) {
       try {
-        const auto t0 = std::chrono::steady_clock::now();
         const std::vector<cv::Mat> imgs =
             RenderPov(scenes[i], o.camera, slices, o.aa_depth,
                       out.temp_path() + "/.work_" + std::to_string(i), o.povray);
-        const double s =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        for (double cur = povray_seconds; !povray_seconds.compare_exchange_weak(cur, cur + s);) {
-        }
         const std::string path = out.temp_path() + "/" + FrameName(i);
         if (!cv::imwrite(path, PostProcess(imgs, o, i))) throw InputError(path + ": cannot write");
       } catch (const std::exception& e) {
@@ -432,7 +436,8 @@ FootageResult WriteFootage(const Motion& motion, const FootageOptions& options_i
   };
   ProgressMeter progress("povray " + ToString(o.lighting), "frames", double(n), !o.quiet);
   std::vector<std::thread> pool;
-  for (int k = 0; k < std::min<int>(o.jobs, int(n)); ++k) pool.emplace_back(worker);
+  const int jobs = o.jobs > 0 ? o.jobs : 3 * int(std::max(1u, std::thread::hardware_concurrency()));
+  for (int k = 0; k < std::min<int>(jobs, int(n)); ++k) pool.emplace_back(worker);
   while (done < n && !InterruptRequested()) {
     {
       std::lock_guard<std::mutex> lock(error_mutex);
@@ -445,10 +450,10 @@ FootageResult WriteFootage(const Motion& motion, const FootageOptions& options_i
   if (!error.empty()) throw InputError(error);
   if (InterruptRequested()) throw Interrupted();
   progress.Finish(double(n));
-  result.povray_seconds_per_frame = povray_seconds / double(n);
+  result.povray_cpu_seconds_per_frame = (ChildCpuSeconds() - cpu_start) / double(n);
   std::ofstream(out.temp_path() + "/truth.csv") << truth;
   std::ofstream(out.temp_path() + "/footage.json")
-      << Sidecar(motion, o, version, result.scene_hash, result.povray_seconds_per_frame);
+      << Sidecar(motion, o, version, result.scene_hash, result.povray_cpu_seconds_per_frame);
   out.Commit();
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -40,7 +40,8 @@ struct FootageOptions {
   uint64_t seed = 1;           // noise seed
   int aa_depth = 4;            // POV-Ray adaptive antialiasing depth (+AM2 +R4: up to 17x17
                                // rays per pixel at edges, no jitter); 0: none
-  int jobs = 2;                // POV-Ray processes at once (each single-threaded)
+  int jobs = 0;                // POV-Ray processes at once (each single-threaded); 0: three
+                               // per core (a POV-Ray run idles most of its wall time)
   std::string povray = "povray";
   bool force = false;          // replace an existing folder
   bool reuse = false;          // keep an existing folder made from the same scenes (cache)
@@ -56,7 +57,7 @@ struct FootageResult {
   size_t frames = 0;
   bool reused = false;              // an up-to-date folder was kept
   std::string scene_hash;           // hash of every scene text and post-processing parameter
-  double povray_seconds_per_frame = 0;  // mean wall time of one frame's POV-Ray run (1 thread)
+  double povray_cpu_seconds_per_frame = 0;  // CPU time of POV-Ray per frame (all slices)
   double wall_seconds = 0;          // the whole call
 };
 
