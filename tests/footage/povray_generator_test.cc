@@ -184,6 +184,28 @@ TEST(PovrayGenerator, DeterministicAndCached) {
   EXPECT_THROW(WriteFootage(motion, o, dir / "a"), InputError);  // exists, no --force
 }
 
+// A trajectory's samples are the frames; slices between samples interpolate linearly; a NaN
+// sample is refused naming the file.
+TEST(PovrayGenerator, TrajectoryMotionInterpolatesSamples) {
+  Trajectory traj;
+  traj.Append(0.0, {0.001, 0.005}, {0.028, 0.006}, 0.0001, 0.03);
+  traj.Append(0.0005, {0.002, 0.0052}, {0.029, 0.0064}, -0.0001, 0.04);
+  const Motion m = TrajectoryMotion(traj, 0, "sim.h5");
+  ASSERT_EQ(m.t.size(), 2u);
+  const Instant mid = m.at(0.00025);
+  EXPECT_NEAR(mid.left.x(), 0.0015, 1e-15);
+  EXPECT_NEAR(mid.right.y(), 0.0062, 1e-15);
+  EXPECT_NEAR(mid.plate_z, 0.0, 1e-15);
+  EXPECT_EQ(TrajectoryMotion(traj, 1, "sim.h5").t.size(), 1u);
+  traj.Append(0.001, {std::nan(""), 0.005}, {0.03, 0.006}, 0.0, 0.0);
+  try {
+    TrajectoryMotion(traj, 0, "sim.h5");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("sim.h5: sample 2"), std::string::npos) << e.what();
+  }
+}
+
 TEST(PovrayGenerator, BadInputNamesTheProblem) {
   dimer::testing::TempDir dir;
   std::ofstream(dir / "poses.csv") << "t,x,z,theta,plate_z\n0,0,0.005,0,0\n0.001,0,zero,0,0\n";
