@@ -70,6 +70,7 @@ bench() {
     echo "== $b =="
     case "$b" in
       */bench_compare) "$b" "$ROOT/build/app/dimerlab" ;;  # times the CLI as a user runs it
+      */bench_tracking_footage) "$b" 40 6 "$ROOT/build/bench_footage_cache" ;;  # POV-Ray footage, cached
       *) "$b" ;;
     esac
   done

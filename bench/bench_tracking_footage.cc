@@ -77,8 +77,11 @@ int main(int argc, char** argv) {
               "slices, PSF 0.5 px, noise 2 grey levels, 8 bit; %u cores, load average %.1f at "
               "start\n\n",
               frames, slices, std::thread::hardware_concurrency(), LoadAverage());
-  std::printf("| footage | POV-Ray CPU s/frame | %s", AccuracyHeader().substr(2).c_str());
-  std::string rows;
+  // The harness's table with two columns in front.
+  const std::string header = AccuracyHeader();
+  const size_t line2 = header.find('\n') + 1;
+  std::printf("| footage | POV-Ray CPU s/frame %s|---|---%s", header.substr(0, line2).c_str(),
+              header.substr(line2).c_str());
   for (const Case& c : cases) {
     FootageOptions o = FootageOptions::For(c.lighting);
     o.shape.aspect_ratio = c.aspect_ratio;
@@ -93,7 +96,7 @@ int main(int argc, char** argv) {
       const double cpu = r.reused ? RecordedCpuPerFrame(dir) : r.povray_cpu_seconds_per_frame;
       for (const std::string& m : methods) {
         const TrackAccuracy a = MeasureTrackAccuracy(dir, m);
-        std::printf("| %s | %.2f %s", c.name.c_str(), cpu, AccuracyRow(a).substr(1).c_str());
+        std::printf("| %s | %.2f %s", c.name.c_str(), cpu, AccuracyRow(a).c_str());
         std::fflush(stdout);
       }
     } catch (const std::exception& e) {
