@@ -15,7 +15,7 @@ JOBS=$(nproc)
 
 PACKAGES=(build-essential cmake ninja-build pkg-config libopencv-dev libeigen3-dev libhdf5-dev
           hdf5-tools libcli11-dev libgtest-dev googletest libnlopt-dev gnuplot-nox
-          slurm-wlm munge)
+          slurm-wlm munge povray)
 
 setup() {
   local missing=()
@@ -72,6 +72,7 @@ bench() {
     case "$b" in
       */bench_compare) "$b" "$ROOT/build/app/dimerlab" ;;  # times the CLI as a user runs it
       */bench_start) "$b" "$ROOT/build/app" ;;
+      */bench_tracking_footage) "$b" 40 6 "$ROOT/build/bench_footage_cache" ;;  # POV-Ray footage, cached
       *) "$b" ;;
     esac
   done
