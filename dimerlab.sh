@@ -60,7 +60,8 @@ run_tests() {
 sanitize() {
   setup
   build_dir build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDIMERLAB_SANITIZE=ON \
-    -DDIMERLAB_WERROR=ON -DDIMERLAB_BENCH=OFF
+    -DDIMERLAB_WERROR=ON -DDIMERLAB_BENCH=OFF \
+    -DDIMERLAB_POVRAY_CACHE_DIR="$ROOT/build/povray_footage_cache"  # the same footage, rendered once
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 DIMERLAB_TEST_SCALE=0.2 \
     ctest --test-dir build-asan --output-on-failure -j "$JOBS"
 }
