@@ -34,6 +34,10 @@ inline constexpr double kRodCutInsetPx = 2.0;
 // at most ~25 %; a missing sphere gives ~0, a merged blob far more).
 inline constexpr double kMinAreaFraction = 0.45;
 inline constexpr double kMaxAreaFraction = 1.6;
+// Touching spheres (A_r < ~2.2): the other sphere enters this one's window. Its disc, widened
+// by this margin, is left out, px: the other's estimate (a prediction, < 1 px off, or a coarse
+// detection, +-1 px) plus the motion blur of a bouncing sphere's edge.
+inline constexpr double kOtherSphereMarginPx = 2.0;
 // Plate edge: search band half-height around the previous row, px (plate motion is < 1 px per
 // frame at 2000 frames/s; a wider band costs time only).
 inline constexpr int kPlateBandHalfPx = 8;
