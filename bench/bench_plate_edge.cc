@@ -2,6 +2,7 @@
 // footage of tests/footage, e.g. its lightings one_sided_gain_ramp, underexposed, overexposed,
 // mirror_plate), docs/BENCHMARKS.md:
 //   bench_plate_edge DIR...
+//   bench_plate_edge --time [calls]   (cost of one RefinePlateRow call on a rendered frame)
 // Per folder: the error of the acquisition's coarse row (FindPlateRowCoarse), of the sub-pixel
 // row refined from it with the spheres' true columns left out (RefinePlateRow, as the tracker
 // calls it), and of the tracker's own plate row (SequenceTracker, spheres found by itself):
@@ -17,7 +18,10 @@
 #include <string>
 #include <vector>
 
+#include <chrono>
+
 #include "tracking/plate_edge.h"
+#include "tracking/scene_renderer.h"
 #include "tracking/tolerances.h"
 #include "tracking/tracker.h"
 
@@ -76,7 +80,33 @@ struct Stat {
 
 }  // namespace
 
+// Microseconds per RefinePlateRow call (best of 3 runs) on a reflect-lit 512x256 frame with
+// two sphere intervals left out, as the tracker calls it once per frame.
+int TimeRefine(int calls) {
+  SceneGeometry s;
+  s.left = {180.3, 176.2};
+  s.right = {318.1, 166.4};
+  const cv::Mat img = RenderFrame({s}, RenderOptions{}, 0);
+  const double clear = s.radius_px + kPlateSphereClearPx;
+  const std::vector<std::pair<double, double>> excluded = {
+      {s.left.x() - clear, s.left.x() + clear}, {s.right.x() - clear, s.right.x() + clear}};
+  double best = 1e30, sink = 0;
+  for (int run = 0; run < 3; ++run) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < calls; ++i) sink += RefinePlateRow(img, 200.0 + 0.001 * (i % 3), excluded);
+    const double us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    best = std::min(best, us / calls);
+  }
+  std::printf("RefinePlateRow: %.2f us per call (best of 3 x %d calls; row %.4f)\n", best, calls,
+              sink / (3.0 * calls));
+  return 0;
+}
+
 int main(int argc, char** argv) {
+  if (argc >= 2 && std::string(argv[1]) == "--time") {
+    return TimeRefine(argc >= 3 ? std::atoi(argv[2]) : 20000);
+  }
   if (argc < 2) {
     std::fprintf(stderr, "usage: bench_plate_edge DIR...\n");
     return 2;
