@@ -70,6 +70,7 @@ bench() {
     echo "== $b =="
     case "$b" in
       */bench_compare) "$b" "$ROOT/build/app/dimerlab" ;;  # times the CLI as a user runs it
+      */bench_start) "$b" "$ROOT/build/app" ;;
       *) "$b" ;;
     esac
   done

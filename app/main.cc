@@ -1,55 +1,61 @@
-// dimerlab: one binary, one subcommand per verb (docs/FORMATS.md). main() only parses and
-// catches: every error reaches the user as one line "dimerlab: error: ..." and a non-zero exit.
-#include <cstdio>
-#include <exception>
-#include <string>
+// dimerlab: the binary users run. The commands that need only the simulator (`sim`, and
+// `--version`) run here, in a process that loads no OpenCV: OpenCV's video and image back-ends
+// pull in ~200 shared libraries and cost ~90 ms at every start, which a sweep or a script calling
+// `dimerlab sim` many times would pay each time (docs/BENCHMARKS.md, "Start time"). Every other
+// command line (render, track, compare, analyze, --help, mistakes) is handed unchanged to
+// dimerlab-full by exec: same process, same arguments, same exit code, one set of messages.
+#include <unistd.h>
 
+#include <cerrno>
+#include <climits>
+#include <cstring>
+#include <string>
+#include <string_view>
+
+#include "app/cli_main.h"
 #include "app/commands.h"
 #include "app/exit_codes.h"
-#include "app/usage.h"
-#include "common/error.h"
-#include "common/interrupt.h"
-#include "common/provenance.h"
 
 namespace {
-std::string g_command_line;
+
+// The command lines this binary runs itself.
+bool RunsHere(int argc, char** argv) {
+  if (argc < 2) return false;
+  const std::string_view first = argv[1];
+  if (first == "--version") return argc == 2;
+  return first == "sim";
+}
+
+// The folder this executable lives in (from /proc, so it works whatever PATH found it by).
+std::string ExecutableDir() {
+  char buf[PATH_MAX];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
+  if (n <= 0) return ".";
+  std::string path(buf, static_cast<size_t>(n));
+  const size_t slash = path.rfind('/');
+  return slash == std::string::npos ? "." : path.substr(0, slash);
+}
+
+// dimerlab-full beside this binary (the build tree) or in PREFIX/libexec/dimerlab (installed).
+int ExecFull(char** argv) {
+  const std::string dir = ExecutableDir();
+  const std::string candidates[] = {dir + "/dimerlab-full", dir + "/../libexec/dimerlab/dimerlab-full"};
+  for (const std::string& path : candidates) {
+    if (access(path.c_str(), X_OK) == 0) {
+      execv(path.c_str(), argv);
+      return dimer::app::ReportError(dimer::app::kExitFailure,
+                                     "cannot run " + path + ": " + std::strerror(errno));
+    }
+  }
+  return dimer::app::ReportError(
+      dimer::app::kExitFailure,
+      "dimerlab-full (render, track, compare, analyze) is not installed beside " + dir +
+          "/dimerlab; reinstall dimerlab (./dimerlab.sh install)");
+}
+
 }  // namespace
 
-const std::string& dimer::app::CommandLine() { return g_command_line; }
-
 int main(int argc, char** argv) {
-  g_command_line = "dimerlab";
-  for (int i = 1; i < argc; ++i) g_command_line += std::string(" ") + argv[i];
-  CLI::App app{"dimerlab: bouncing-dimer experiments into physics (simulate, render, track, compare)"};
-  app.set_version_flag("--version", dimer::DimerlabVersion());
-  app.require_subcommand(1);
-  dimer::app::RegisterSim(app);
-  dimer::app::RegisterRender(app);
-  dimer::app::RegisterTrack(app);
-#ifdef DIMERLAB_HAVE_COMPARE
-  dimer::app::RegisterCompare(app);
-  dimer::app::RegisterAnalyze(app);
-#endif
-  dimer::InstallInterruptHandler();
-  // Exit codes: docs/DESIGN.md, "Errors and exit codes" (the README's table).
-  namespace cli = dimer::app;
-  const std::vector<std::string> args(argv + 1, argv + argc);
-  if (auto bad = cli::CheckSubcommand(app, args)) return cli::ReportError(cli::kExitUsage, *bad);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ExtrasError& e) {
-    return cli::ReportError(cli::kExitUsage, cli::ExtrasMessage(app, args, e.what()));
-  } catch (const CLI::ParseError& e) {
-    // --help and --version arrive here too, with CLI11's success code.
-    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
-    return cli::ReportError(cli::kExitUsage, e.what());
-  } catch (const dimer::Interrupted&) {
-    std::fprintf(stderr, "\ndimerlab: interrupted; partial output (if any) is complete and valid\n");
-    return cli::kExitInterrupted;
-  } catch (const dimer::UsageError& e) {
-    return cli::ReportError(cli::kExitUsage, e.what());
-  } catch (const std::exception& e) {
-    return cli::ReportError(cli::kExitFailure, e.what());
-  }
-  return cli::kExitSuccess;
+  if (!RunsHere(argc, argv)) return ExecFull(argv);
+  return dimer::app::RunCli(argc, argv, [](CLI::App& app) { dimer::app::RegisterSim(app); });
 }

@@ -81,4 +81,13 @@ else
   echo "ok:   exit 130  dimerlab sim (interrupted), partial file kept"
 fi
 
+# 1: `dimerlab` copied without dimerlab-full: it still runs sim, and an image command says what is
+# missing instead of failing obscurely.
+mkdir lonely && cp "$BIN" lonely/dimerlab
+SAVED_BIN=$BIN
+BIN=$WORK/lonely/dimerlab
+expect 0 '' sim --cycles 1 -q -o lonely.h5
+expect 1 "dimerlab-full .* is not installed beside" track some_frames -o t.h5
+BIN=$SAVED_BIN
+
 [ "$failures" -eq 0 ] || { echo "$failures case(s) failed"; exit 1; }

@@ -12,3 +12,6 @@ cd "$PREFIX"
 PATH="$PREFIX/bin:$PATH" dimerlab --version
 PATH="$PREFIX/bin:$PATH" dimerlab sim --cycles 2 -q -o installed.h5
 test -s installed.h5
+# The image commands are handed to dimerlab-full, installed in PREFIX/libexec/dimerlab.
+test -x "$PREFIX/libexec/dimerlab/dimerlab-full"
+PATH="$PREFIX/bin:$PATH" dimerlab render --help >/dev/null
