@@ -15,7 +15,7 @@ JOBS=$(nproc)
 
 PACKAGES=(build-essential cmake ninja-build pkg-config libopencv-dev libeigen3-dev libhdf5-dev
           hdf5-tools libcli11-dev libgtest-dev googletest libnlopt-dev gnuplot-nox
-          slurm-wlm munge)
+          slurm-wlm munge povray)
 
 setup() {
   local missing=()
@@ -60,7 +60,8 @@ run_tests() {
 sanitize() {
   setup
   build_dir build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDIMERLAB_SANITIZE=ON \
-    -DDIMERLAB_WERROR=ON -DDIMERLAB_BENCH=OFF
+    -DDIMERLAB_WERROR=ON -DDIMERLAB_BENCH=OFF \
+    -DDIMERLAB_POVRAY_CACHE_DIR="$ROOT/build/povray_footage_cache"  # the same footage, rendered once
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 DIMERLAB_TEST_SCALE=0.2 \
     ctest --test-dir build-asan --output-on-failure -j "$JOBS"
 }
@@ -72,6 +73,7 @@ bench() {
     case "$b" in
       */bench_compare) "$b" "$ROOT/build/app/dimerlab" ;;  # times the CLI as a user runs it
       */bench_start) "$b" "$ROOT/build/app" ;;
+      */bench_tracking_footage) "$b" 40 6 "$ROOT/build/bench_footage_cache" ;;  # POV-Ray footage, cached
       *) "$b" ;;
     esac
   done

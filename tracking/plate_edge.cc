@@ -20,16 +20,41 @@ double PixelAt(const cv::Mat& img, int row, int col) {
   return img.depth() == CV_8U ? img.at<uint8_t>(row, col) : img.at<uint16_t>(row, col);
 }
 
-// Sum of a row's pixels where use[col] (integer: exact, and no conversion per pixel).
+// Sum of a row's pixels in columns first..last (integer: exact, no conversion per pixel).
 template <typename T>
-int64_t MaskedRowSum(const cv::Mat& frame, int row, const std::vector<uint8_t>& use) {
+int64_t RangeSum(const cv::Mat& frame, int row, int first, int last) {
   const T* p = frame.ptr<T>(row);
   int64_t sum = 0;
-  for (int col = 0; col < frame.cols; ++col) sum += use[col] ? p[col] : 0;
+  for (int col = first; col <= last; ++col) sum += p[col];
   return sum;
 }
 
 double FullScale(const cv::Mat& img) { return img.depth() == CV_8U ? 255.0 : 65535.0; }
+
+// Pixel noise sigma in rows r0..r1: the median absolute difference of horizontal neighbours
+// (clear columns; a sample of every kNoiseColumnStride-th column, every second row), which the
+// plate's horizontal edge does not raise; at least the quantisation's 1/sqrt(12) level.
+constexpr int kNoiseColumnStride = 4;
+double BandNoise(const cv::Mat& frame, int r0, int r1, const std::vector<uint8_t>& use) {
+  thread_local std::vector<double> d;
+  d.clear();
+  for (int row = r0; row <= r1; row += 2) {
+    for (int col = 0; col + 1 < frame.cols; col += kNoiseColumnStride) {
+      if (use[col] && use[col + 1]) d.push_back(std::abs(PixelAt(frame, row, col + 1) - PixelAt(frame, row, col)));
+    }
+  }
+  if (d.empty()) return 1.0;
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return std::max(1.4826 * d[d.size() / 2] / std::sqrt(2.0), 1.0 / std::sqrt(12.0));
+}
+
+// Smallest step of a profile averaged over n columns that counts as an edge: kPlateStepSigmas
+// noise sigmas of the difference of two rows, and at least kPlateMinStepGreyLevels (8-bit
+// scale), so that a dim frame still shows its edge and noise never does.
+double MinStep(double sigma, int n, const cv::Mat& frame) {
+  return std::max(kPlateStepSigmas * sigma * std::sqrt(2.0 / n),
+                  kPlateMinStepGreyLevels * FullScale(frame) / 255.0);
+}
 
 }  // namespace
 
@@ -85,7 +110,8 @@ double RefinePlateRow(const cv::Mat& frame, double row_guess,
   if (!std::isfinite(row_guess)) return kNaN;
   const int r0 = std::max(0, int(std::lround(row_guess)) - kPlateBandHalfPx);
   const int r1 = std::min(frame.rows - 1, int(std::lround(row_guess)) + kPlateBandHalfPx);
-  if (r1 - r0 < 2 * kBracketRows + 1) return kNaN;
+  const int rows = r1 - r0 + 1;
+  if (rows < 2 * kBracketRows + 2) return kNaN;
   std::vector<uint8_t> use(frame.cols, 1);
   for (const auto& [a, b] : excluded) {
     for (int c = std::max(0, int(std::floor(a))); c <= std::min(frame.cols - 1, int(std::ceil(b)));
@@ -93,15 +119,73 @@ double RefinePlateRow(const cv::Mat& frame, double row_guess,
       use[c] = 0;
     }
   }
-  const int n_cols = int(std::count(use.begin(), use.end(), 1));
-  if (n_cols < 8) return kNaN;  // too few clear columns for a trustworthy profile
-  std::vector<double> profile;
-  for (int row = r0; row <= r1; ++row) {
-    profile.push_back(double(frame.depth() == CV_8U ? MaskedRowSum<uint8_t>(frame, row, use)
-                                                     : MaskedRowSum<uint16_t>(frame, row, use)) /
-                      n_cols);
+  // Column blocks: runs of clear columns cut into blocks of kPlateBlockColumns; a run's
+  // remainder of at least half a block is a block of its own, a shorter one is dropped.
+  std::vector<std::pair<int, int>> blocks;  // [first, last] column
+  for (int c = 0; c < frame.cols;) {
+    if (!use[c]) {
+      ++c;
+      continue;
+    }
+    int end = c;
+    while (end + 1 < frame.cols && use[end + 1] && end + 1 - c < kPlateBlockColumns) ++end;
+    if (end - c + 1 >= kPlateBlockColumns / 2) blocks.emplace_back(c, end);
+    c = end + 1;
   }
-  return EdgeRowInProfile(profile, r0, kPlateMinStepFraction * 0.25 * FullScale(frame));
+  if (blocks.size() < size_t(kPlateMinBlocks)) return kNaN;
+  const double sigma = BandNoise(frame, r0, r1, use);
+  // Block profiles (sums over the block's columns, per row).
+  thread_local std::vector<double> sums;
+  sums.assign(blocks.size() * size_t(rows), 0.0);
+  for (int row = r0; row <= r1; ++row) {
+    for (size_t b = 0; b < blocks.size(); ++b) {
+      sums[b * rows + (row - r0)] =
+          double(frame.depth() == CV_8U
+                     ? RangeSum<uint8_t>(frame, row, blocks[b].first, blocks[b].second)
+                     : RangeSum<uint16_t>(frame, row, blocks[b].first, blocks[b].second));
+    }
+  }
+  // Each block's own edge and its sign (+1: brighter below).
+  struct BlockEdge {
+    size_t block;
+    double row;
+    int sign;
+  };
+  std::vector<BlockEdge> edges;
+  std::vector<double> profile(rows);
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    const int n = blocks[b].second - blocks[b].first + 1;
+    for (int i = 0; i < rows; ++i) profile[i] = sums[b * rows + i] / n;
+    const double row = EdgeRowInProfile(profile, r0, MinStep(sigma, n, frame));
+    if (!std::isfinite(row)) continue;
+    const int k = std::clamp(int(std::lround(row)) - r0, kBracketRows, rows - 1 - kBracketRows);
+    edges.push_back({b, row, profile[k + kBracketRows] > profile[k - kBracketRows] ? 1 : -1});
+  }
+  // The plate's edge has one sign across the width: the majority's. Blocks of the other sign
+  // (a reflection's edge, a highlight) and blocks far from the median row are left out.
+  const int positive = int(std::count_if(edges.begin(), edges.end(),
+                                         [](const BlockEdge& e) { return e.sign > 0; }));
+  const int sign = 2 * positive >= int(edges.size()) ? 1 : -1;
+  std::vector<double> rows_found;
+  for (const auto& e : edges) {
+    if (e.sign == sign) rows_found.push_back(e.row);
+  }
+  if (rows_found.size() < size_t(kPlateMinBlocks)) return kNaN;
+  std::nth_element(rows_found.begin(), rows_found.begin() + rows_found.size() / 2,
+                   rows_found.end());
+  const double median = rows_found[rows_found.size() / 2];
+  // The inlier blocks' mean profile: one edge at one row, whatever each block's gain.
+  std::fill(profile.begin(), profile.end(), 0.0);
+  int n_cols = 0, inliers = 0;
+  for (const auto& e : edges) {
+    if (e.sign != sign || std::abs(e.row - median) > kPlateInlierPx) continue;
+    for (int i = 0; i < rows; ++i) profile[i] += sums[e.block * rows + i];
+    n_cols += blocks[e.block].second - blocks[e.block].first + 1;
+    ++inliers;
+  }
+  if (inliers < kPlateMinBlocks) return kNaN;
+  for (double& p : profile) p /= n_cols;
+  return EdgeRowInProfile(profile, r0, MinStep(sigma, n_cols, frame));
 }
 
 }  // namespace dimer::tracking

@@ -25,8 +25,17 @@ double EdgeRowInProfile(const std::vector<double>& profile, int first_row, doubl
 // plate edge (no step of kPlateMinStepFraction of the frame's range).
 double FindPlateRowCoarse(const cv::Mat& frame);
 
-// Sub-pixel plate row near `row_guess`, from the mean profile over all columns outside
-// `excluded` (column intervals covered by the spheres). NaN if not found.
+// Sub-pixel plate row near `row_guess` from the columns outside `excluded` (column intervals
+// covered by the spheres, and so by their mirror images below a polished plate). Robust to the
+// lighting: the columns are cut into blocks (tolerances.h, kPlateBlockColumns), each block's
+// profile gives its own edge (EdgeRowInProfile) if its strongest step stands kPlateStepSigmas
+// noise sigmas out (the noise measured in the band, so a dim frame still has its edge); the
+// blocks whose step has the majority's sign and whose row is within kPlateInlierPx of the
+// median row are averaged into one profile, whose edge is the result. A horizontal gain ramp
+// only scales each block's step (not its row); a reflection, a highlight or a clipped block
+// is an outlier. Where one side of the edge clips (over-exposure) its true level is unknown,
+// and the edge can only be placed within the pixel that holds it (docs/BENCHMARKS.md).
+// NaN if fewer than kPlateMinBlocks blocks agree.
 double RefinePlateRow(const cv::Mat& frame, double row_guess,
                       const std::vector<std::pair<double, double>>& excluded);
 

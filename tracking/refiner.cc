@@ -90,14 +90,26 @@ void DiscSample(const Window& w, const Eigen::Vector2d& c, double r, int stride,
 
 // Background: median of the window's outer ring (the rod and plate cross it, but cover less
 // than half). Sphere: median of the inner part of the disc (highlights are a small minority).
-Levels MeasureLevels(const Window& w, const Eigen::Vector2d& c, double radius) {
+// A touching other sphere (centre `other`, NaN: none near) can cover a good part of the ring
+// (a mirror's bright lower half would pass for background): the ring within `other_clear` of
+// its centre is left out.
+Levels MeasureLevels(const Window& w, const Eigen::Vector2d& c, double radius,
+                     const Eigen::Vector2d& other, double other_clear) {
   thread_local std::vector<float> ring, inner;  // reused: no allocation per frame
   ring.clear();
+  const bool near = other.allFinite();
+  const auto add = [&](int x, int y) {
+    if (near) {
+      const double ox = w.col0 + x - other.x(), oy = w.row0 + y - other.y();
+      if (ox * ox + oy * oy < other_clear * other_clear) return;
+    }
+    ring.push_back(w.at(x, y));
+  };
   for (int i = 0; i + 1 < w.size; ++i) {
-    ring.push_back(w.at(i, 0));
-    ring.push_back(w.at(w.size - 1, i));
-    ring.push_back(w.at(w.size - 1 - i, w.size - 1));
-    ring.push_back(w.at(0, w.size - 1 - i));
+    add(i, 0);
+    add(w.size - 1, i);
+    add(w.size - 1 - i, w.size - 1);
+    add(0, w.size - 1 - i);
   }
   DiscSample(w, c, kInnerLevelRadiusR * radius, kLevelStride, &inner);
   return {Median(ring), Median(inner)};
@@ -120,13 +132,29 @@ double BodyLevel(const Window& w, const Eigen::Vector2d& c, double radius) {
 // 0 below -ramp/2, 1 above +ramp/2, linear between.
 double Ramp(double d, double width = kMaskRampPx) { return std::clamp(d / width + 0.5, 0.0, 1.0); }
 
+// 1 - Ramp(clear - distance of (x, y) from the origin): 0 inside the circle of radius `clear`,
+// 1 beyond it, without a sqrt for points clear of the ramp.
+double OutsideDisc(double x, double y, double clear) {
+  const double d2 = x * x + y * y, outer = clear + 0.5 * kMaskRampPx;
+  if (d2 >= outer * outer) return 1.0;
+  return 1.0 - Ramp(clear - std::sqrt(d2));
+}
+
 struct SymmetricMask {
   Eigen::Vector2d rod_dir{0, 0};
   double rod_half_width = 0, rod_inset = 0;
   double plate_cut = std::numeric_limits<double>::infinity();
   double plate_ramp = kMaskRampPx;  // width of the plate cut's ramp, px
+  // A touching other sphere: its disc (radius other_clear about other_rel, the other centre
+  // relative to the estimate) and the disc's point mirror image; other_clear 0: none near.
+  Eigen::Vector2d other_rel{0, 0};
+  double other_clear = 0;
   double operator()(double dx, double dy) const {
     double m = 1.0;
+    if (other_clear > 0) {
+      m *= OutsideDisc(dx - other_rel.x(), dy - other_rel.y(), other_clear) *
+           OutsideDisc(dx + other_rel.x(), dy + other_rel.y(), other_clear);
+    }
     if (rod_half_width > 0) {
       const double along = std::abs(dx * rod_dir.x() + dy * rod_dir.y());
       if (along > rod_inset - 0.5 * kMaskRampPx) {  // else short of the rod cut: Ramp is 0
@@ -141,9 +169,23 @@ struct SymmetricMask {
   }
 };
 
+// True when the other sphere's left-out disc (OtherClear) can reach a window about `c`: the
+// window circle (radius half - 1 <= radius + kWindowMarginPx), the disc fit's band (radius +
+// kFitBandPx) and a pixel of recentring are all within radius + kWindowMarginPx + 1.
+double OtherClear(double radius) { return radius + kOtherSphereMarginPx; }
+bool OtherIsNear(const RefineContext& ctx, double radius, const Eigen::Vector2d& c) {
+  if (!ctx.other.allFinite()) return false;
+  return (ctx.other - c).norm() - OtherClear(radius) - 0.5 * kMaskRampPx <
+         radius + kWindowMarginPx + 1.0;
+}
+
 SymmetricMask MakeMask(const RefineContext& ctx, double radius, const Eigen::Vector2d& c,
                        double plate_ramp_px) {
   SymmetricMask m;
+  if (OtherIsNear(ctx, radius, c)) {
+    m.other_rel = ctx.other - c;
+    m.other_clear = OtherClear(radius);
+  }
   if (ctx.rod_dir.squaredNorm() > 0) {
     m.rod_dir = ctx.rod_dir.normalized();
     m.rod_half_width = kRodCorridorHalfWidthR * radius;
@@ -184,7 +226,9 @@ struct CentroidMask {
   SymmetricMask rod;  // rod cut only (its plate_cut stays infinite)
   double plate_dist = std::numeric_limits<double>::infinity();  // guard row - estimate row, px
   double cos_in = 1, cos_out = 1;  // wedge: cos of the angle from the vertical, full / no cut
-  bool active() const { return rod.rod_half_width > 0 || std::isfinite(plate_dist); }
+  bool active() const {
+    return rod.rod_half_width > 0 || rod.other_clear > 0 || std::isfinite(plate_dist);
+  }
   double operator()(double dx, double dy) const {
     double m = rod(dx, dy);
     if (std::isfinite(plate_dist)) {
@@ -241,11 +285,18 @@ struct CentroidState {
 
 // Largest distance of a pixel from the window centre at which the masks are 1 for every
 // estimate within kCoreShiftPx of it (see the conditions in SymmetricMask and CircleWeight).
-double CoreRadius(const RefineContext& ctx, double radius, int half, double window_row) {
+double CoreRadius(const RefineContext& ctx, double radius, int half,
+                  const Eigen::Vector2d& window_centre) {
+  const double window_row = window_centre.y();
   const double win_r = half - 1.0;
   double r = win_r - 1.0 - kCoreShiftPx;
   if (ctx.rod_dir.squaredNorm() > 0) {
     r = std::min(r, radius - kRodCutInsetPx - 0.5 * kMaskRampPx - kCoreShiftPx);
+  }
+  if (OtherIsNear(ctx, radius, window_centre)) {
+    // The other disc is fixed; its mirror image about the estimate moves twice as far.
+    r = std::min(r, (ctx.other - window_centre).norm() - OtherClear(radius) -
+                        0.5 * kMaskRampPx - 2.0 * kCoreShiftPx);
   }
   if (std::isfinite(ctx.plate_row)) {
     // The plate wedge's radial ramp starts kWedgeRadialRampPx short of the guard row, measured
@@ -320,17 +371,25 @@ Eigen::Vector2d CentroidStep(const CentroidState& s, const Eigen::Vector2d& c, d
   return c + Eigen::Vector2d(sx / sw, sy / sw);
 }
 
-// Weighted area inside the window circle and above the plate guard (no symmetric cuts).
+// Weighted area inside the window circle and above the plate guard (no symmetric cuts). With
+// a touching other sphere, pixels nearer its centre than this one's are its own: for two
+// equal discs the perpendicular bisector splits their union exactly into the two discs.
 double WeightedArea(const CentroidState& s, const Eigen::Vector2d& c, double win_r,
-                    double plate_row) {
-  double area = s.core_w;
+                    const RefineContext& ctx, double radius) {
+  double area = s.core_w;  // the core is nearer this centre (CoreRadius)
   const ActivePixels& a = s.active;
   const double bx = s.window.col0 - c.x(), by = s.window.row0 - c.y();
-  const double last_row = std::isfinite(plate_row) ? plate_row - kPlateGuardPx - s.window.row0
-                                                   : std::numeric_limits<double>::infinity();
+  const double last_row = std::isfinite(ctx.plate_row)
+                              ? ctx.plate_row - kPlateGuardPx - s.window.row0
+                              : std::numeric_limits<double>::infinity();
+  const bool split = OtherIsNear(ctx, radius, c);
+  const Eigen::Vector2d o = split ? Eigen::Vector2d(ctx.other - c) : Eigen::Vector2d(0, 0);
   for (size_t i = 0; i < a.n; ++i) {
     if (a.y[i] > last_row) continue;
     const double dx = bx + a.x[i], dy = by + a.y[i];
+    if (split && (dx - o.x()) * (dx - o.x()) + (dy - o.y()) * (dy - o.y()) < dx * dx + dy * dy) {
+      continue;
+    }
     area += a.w[i] * CircleWeight(dx * dx + dy * dy, win_r);
   }
   return area;
@@ -366,7 +425,7 @@ bool Iterate(const cv::Mat& frame, const RefineContext& ctx, double radius, int 
         return false;
       }
       window_centre = {s->window.col0 + half, s->window.row0 + half};
-      ComputeWeights(s, CoreRadius(ctx, radius, half, s->window.row0 + half));
+      ComputeWeights(s, CoreRadius(ctx, radius, half, {s->window.col0 + half, s->window.row0 + half}));
     } else if (moved < kCentroidConvergedPx) {
       break;
     }
@@ -384,7 +443,9 @@ SphereMeasurement Centroid(const cv::Mat& frame, const Eigen::Vector2d& guess, d
     out.status = SphereMeasurement::Status::kClipped;
     return out;
   }
-  s->levels = MeasureLevels(s->window, c, radius);
+  const Eigen::Vector2d nan2(std::nan(""), std::nan(""));
+  s->levels = MeasureLevels(s->window, c, radius, OtherIsNear(ctx, radius, c) ? ctx.other : nan2,
+                            OtherClear(radius));
   const double full = frame.depth() == CV_8U ? 255.0 : 65535.0;
   if (s->levels.sphere - s->levels.background < kMinContrastFraction * full) return out;
   // A sphere whose body level (a low quantile) is far below its median is not uniform: a
@@ -397,16 +458,16 @@ SphereMeasurement Centroid(const cv::Mat& frame, const Eigen::Vector2d& guess, d
       body - s->levels.background >= kMinContrastFraction * full) {
     s->levels.sphere = body;
     s->levels.uniform = false;
-    ComputeWeights(s, CoreRadius(ctx, radius, half, s->window.row0 + half));
+    ComputeWeights(s, CoreRadius(ctx, radius, half, {s->window.col0 + half, s->window.row0 + half}));
     // From a coarse guess (acquisition: a distance-transform peak can be pixels off) the
     // body-weighted centroid, biased by the reflections but within ~2 px, is a second start
     // for the rim fit. Plain steps: these weights make the contraction irregular.
     if (!ctx.precise_guess && !Iterate(frame, ctx, radius, half, false, s, &c, &out)) return out;
   } else {
-    ComputeWeights(s, CoreRadius(ctx, radius, half, s->window.row0 + half));
+    ComputeWeights(s, CoreRadius(ctx, radius, half, {s->window.col0 + half, s->window.row0 + half}));
     if (!Iterate(frame, ctx, radius, half, true, s, &c, &out)) return out;
   }
-  const double area = WeightedArea(*s, c, win_r, ctx.plate_row);
+  const double area = WeightedArea(*s, c, win_r, ctx, radius);
   out.area_fraction = area / (std::numbers::pi * radius * radius);
   out.centre = c;
   out.radius_px = std::sqrt(area / std::numbers::pi);
@@ -511,6 +572,10 @@ SphereMeasurement MeasureSphere(const cv::Mat& frame, const Eigen::Vector2d& gue
     if (context.rod_dir.squaredNorm() > 0) {
       in.rod_dir = context.rod_dir.normalized();
       in.rod_half_width_px = kRodCorridorHalfWidthR * radius_px;
+    }
+    if (context.other.allFinite()) {
+      in.other = context.other;
+      in.other_clear_px = OtherClear(radius_px);
     }
     // Starts: the guess, and the body-weighted centroid unless the guess is a prediction;
     // radius: known, or (acquisition) from the first guess outward, since the thresholded

@@ -22,6 +22,7 @@
 #include <opencv2/core.hpp>
 
 #include <Eigen/Core>
+#include <limits>
 #include <string>
 
 namespace dimer::tracking {
@@ -37,6 +38,12 @@ struct RefineContext {
   bool fit_radius = false;            // mirror spheres: fit the radius too (else it is known)
   double radius_start_px = std::numeric_limits<double>::quiet_NaN();  // fit_radius: first guess
   bool precise_guess = false;         // the guess is a tracker's prediction (within ~0.5 px)
+  // The other sphere's centre (its prediction or detection; NaN: unknown), of the same radius.
+  // Touching or nearly touching spheres (A_r < ~2.2) reach into each other's windows: the other
+  // disc widened by kOtherSphereMarginPx is left out of the measurement (for the centroid with
+  // its point mirror image, like the rod). Farther apart it changes nothing.
+  Eigen::Vector2d other{std::numeric_limits<double>::quiet_NaN(),
+                        std::numeric_limits<double>::quiet_NaN()};
 };
 
 struct SphereMeasurement {

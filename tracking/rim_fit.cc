@@ -68,6 +68,7 @@ struct Usable {
   const RimFitInput& in;
   double centre_row;
   double R;
+  double centre_col = 0;
   bool RowUsable(double dy) const {
     return !(std::isfinite(in.plate_row) && centre_row + dy + 0.5 > in.plate_row - kPlateGuardPx);
   }
@@ -76,6 +77,10 @@ struct Usable {
       const double along = dx * in.rod_dir.x() + dy * in.rod_dir.y();
       const double across = std::abs(dx * in.rod_dir.y() - dy * in.rod_dir.x());
       if (along > 0 && across < in.rod_half_width_px + 1.0) return false;
+    }
+    if (in.other_clear_px > 0) {  // a touching other sphere
+      const double ox = centre_col + dx - in.other.x(), oy = centre_row + dy - in.other.y();
+      if (ox * ox + oy * oy < in.other_clear_px * in.other_clear_px) return false;
     }
     return true;
   }
@@ -357,7 +362,7 @@ RimFitResult FitRim(const cv::Mat& frame, const Eigen::Vector2d& centre, double 
   const double min_contrast = kMinRimContrastFraction * (frame.depth() == CV_8U ? 255.0 : 65535.0);
   thread_local Window w;
   if (!Extract(frame, centre, half, input.polarity, &w)) return out;
-  Usable usable{input, centre.y(), radius_px};
+  Usable usable{input, centre.y(), radius_px, centre.x()};
   Vec p = Vec::Zero();
   p.head<3>() << centre.x(), centre.y(), radius_px;
   p(3) = Background(w, centre, usable);
@@ -366,10 +371,12 @@ RimFitResult FitRim(const cv::Mat& frame, const Eigen::Vector2d& centre, double 
   for (const double ramp : kRampSchedulePx) {
     if (ramp > 0 && !input.coarse_start) continue;  // a start within a few tenths of a pixel
     usable.centre_row = p(1);
+    usable.centre_col = p(0);
     if (!SelectSectors(w, usable, min_contrast, &valid, &p)) return out;
     Eigen::Vector2d last_move(0, 0);
     for (int i = 0; i < kFitMaxIter; ++i) {
       usable.centre_row = p(1);
+      usable.centre_col = p(0);
       const Eigen::Vector2d before = p.head<2>();
       double sum_r2 = 0;
       const int used = Step(w, usable, ramp, input.fit_radius, valid, &p, &sum_r2);

@@ -40,6 +40,7 @@
 #include <opencv2/core.hpp>
 
 #include <Eigen/Core>
+#include <limits>
 
 namespace dimer::tracking {
 
@@ -49,6 +50,11 @@ struct RimFitInput {
   Eigen::Vector2d rod_dir{0, 0};    // unit vector toward the other sphere; zero: no rod
   double rod_half_width_px = 0;     // half-width of the corridor left out along the rod
   bool fit_radius = false;          // false: the radius is known and kept (see below)
+  // A touching other sphere: pixels within other_clear_px of its centre `other` are not this
+  // sphere's rim (NaN or 0: none).
+  Eigen::Vector2d other{std::numeric_limits<double>::quiet_NaN(),
+                        std::numeric_limits<double>::quiet_NaN()};
+  double other_clear_px = 0;
   bool coarse_start = true;         // false: the start is within ~0.5 px (a tracker's
                                     // prediction), the coarse ramp stages are skipped
 };

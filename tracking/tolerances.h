@@ -34,13 +34,29 @@ inline constexpr double kRodCutInsetPx = 2.0;
 // at most ~25 %; a missing sphere gives ~0, a merged blob far more).
 inline constexpr double kMinAreaFraction = 0.45;
 inline constexpr double kMaxAreaFraction = 1.6;
+// Touching spheres (A_r < ~2.2): the other sphere enters this one's window. Its disc, widened
+// by this margin, is left out, px: the other's estimate (a prediction, < 1 px off, or a coarse
+// detection, +-1 px) plus the motion blur of a bouncing sphere's edge.
+inline constexpr double kOtherSphereMarginPx = 2.0;
 // Plate edge: search band half-height around the previous row, px (plate motion is < 1 px per
 // frame at 2000 frames/s; a wider band costs time only).
 inline constexpr int kPlateBandHalfPx = 8;
 // Columns within this distance of a sphere's edge are not used for the plate profile, px.
 inline constexpr double kPlateSphereClearPx = 4.0;
-// A step smaller than this fraction of the frame's dynamic range is not a plate edge.
+// A step smaller than this fraction of the frame's dynamic range is not a plate edge
+// (acquisition, FindPlateRowCoarse).
 inline constexpr double kPlateMinStepFraction = 0.15;
+// Sub-pixel plate edge (RefinePlateRow): the clear columns are cut into blocks of this many
+// columns, each finds its own edge; the blocks whose edge has the majority's sign and lies
+// within kPlateInlierPx of the median row make the profile (a gain ramp only scales a block's
+// step; a reflection or a highlight makes an outlier block). At least kPlateMinBlocks blocks.
+inline constexpr int kPlateBlockColumns = 16;
+inline constexpr double kPlateInlierPx = 1.0;
+inline constexpr int kPlateMinBlocks = 3;
+// A step is an edge above kPlateStepSigmas noise sigmas (of the difference of two rows of a
+// profile) and at least kPlateMinStepGreyLevels grey levels of the 8-bit scale.
+inline constexpr double kPlateStepSigmas = 8.0;
+inline constexpr double kPlateMinStepGreyLevels = 2.0;
 // Acquisition: a second distance-transform peak is a sphere if at least this fraction of the
 // first one (a rod or a clipped sliver gives much less).
 inline constexpr double kSecondPeakFraction = 0.6;

@@ -23,6 +23,7 @@ RefineContext Context(int polarity, double plate_row, const Eigen::Vector2d& sel
   ctx.polarity = polarity;
   ctx.plate_row = plate_row;
   if (other && (*other - self).norm() > 0) ctx.rod_dir = (*other - self).normalized();
+  if (other) ctx.other = *other;  // left out where the spheres touch (refiner.h)
   return ctx;
 }
 
@@ -76,14 +77,27 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
   if (std::isnan(radius_px_) && n > 0) {
     // Measure with a provisional window, then keep the larger of the two radius estimates.
     const double dt_r = *std::max_element(det.radii_px.begin(), det.radii_px.end());
-    RefineContext ctx = Context(polarity_, det.plate_row, coarse[0], n > 1 ? &coarse[1] : nullptr);
-    ctx.fit_radius = true;
-    ctx.radius_start_px = dt_r;  // a filled silhouette's inscribed radius: close for a mirror
-    const SphereMeasurement m = MeasureSphere(frame, coarse[0], kProvisionalRadiusScale * dt_r,
-                                              ctx, Method::kCentroid);
-    // A mirror sphere's rim fit measures the radius itself; otherwise the silhouette area.
-    radius_px_ = m.found() && m.rim_fit ? m.radius_px
-                                        : std::max(dt_r, m.found() ? m.radius_px : 0.0);
+    // A mirror sphere's rim fit measures the radius itself (the mean over both spheres when
+    // both are fitted: the radius error becomes a bias of every centre, and it is halved);
+    // otherwise the silhouette area.
+    double rim_sum = 0, area_r = 0;
+    int rims = 0;
+    for (int k = 0; k < n; ++k) {
+      RefineContext ctx =
+          Context(polarity_, det.plate_row, coarse[k], n > 1 ? &coarse[1 - k] : nullptr);
+      ctx.fit_radius = true;
+      ctx.radius_start_px = dt_r;  // a filled silhouette's inscribed radius: close for a mirror
+      const SphereMeasurement m = MeasureSphere(frame, coarse[k], kProvisionalRadiusScale * dt_r,
+                                                ctx, Method::kCentroid);
+      if (m.found() && m.rim_fit) {
+        rim_sum += m.radius_px;
+        ++rims;
+      } else if (k == 0 && m.found()) {
+        area_r = m.radius_px;
+      }
+      if (k == 0 && !(m.found() && m.rim_fit)) break;  // uniform: the first sphere's area
+    }
+    radius_px_ = rims > 0 ? rim_sum / rims : std::max(dt_r, area_r);
   }
   out->plate_row = PlateRow(frame, det.plate_row, coarse, n);
   std::vector<SphereMeasurement> found;

@@ -4,7 +4,7 @@
 //   1. predict each sphere from its last two positions (constant velocity);
 //   2. refine the plate row in a band around the last one, using columns clear of the spheres;
 //   3. measure each sphere in a window around its prediction (refiner.h), masking the rod toward
-//      the other sphere and the plate;
+//      the other sphere, the plate, and the other sphere's disc where the two touch (A_r ~2);
 //   4. if a sphere is lost (missing, clipped) or nothing is locked yet, acquire on the whole
 //      frame (detector.h) and give each detection the identity of the nearest last position;
 //      with no history, `left` is the one with the smaller column (docs/FORMATS.md).

@@ -10,6 +10,7 @@ cd "$(dirname "$0")/../.."
 D=$(realpath "${1:-build/app/dimerlab}")
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
+mkdir -p docs/paper/data
 export SOURCE_DATE_EPOCH=${SOURCE_DATE_EPOCH:-0}
 for s in ${SWEEPS:-fig4a fig4a_similar fig4b gamma_curve mode_map_fine}; do
   echo "== $s: dimerlab sweep --spec samples/sweeps/$s.sweep -o $s.h5 --tsv docs/paper/data/$s.tsv" >&2
@@ -17,11 +18,14 @@ for s in ${SWEEPS:-fig4a fig4a_similar fig4b gamma_curve mode_map_fine}; do
   "$D" sweep --spec "samples/sweeps/$s.sweep" -o "$TMP/$s.h5" --tsv "$TMP/$s.tsv" -q
   mv "$TMP/$s.tsv" "docs/paper/data/$s.tsv"
   ms=$(( ($(date +%s%N) - start) / 1000000 ))
-  printf '%s\t%d.%03d s\n' "$s" $((ms / 1000)) $((ms % 1000)) >> "$TMP/times.txt"
+  # One line per sweep in wall_times.tsv, replaced when that sweep is redone.
+  { grep -v "^$s	" docs/paper/data/wall_times.tsv 2>/dev/null || true
+    printf '%s\t%d.%03d s on %d cores\n' "$s" $((ms / 1000)) $((ms % 1000)) "$(nproc)"; } > "$TMP/times"
+  mv "$TMP/times" docs/paper/data/wall_times.tsv
 done
 for g in fig4a fig4b gamma_curve mode_map; do gnuplot "docs/paper/$g.gp"; done
 awk -f docs/paper/summarize.awk docs/paper/data/fig4a.tsv docs/paper/data/fig4a_similar.tsv \
   docs/paper/data/fig4b.tsv docs/paper/data/gamma_curve.tsv docs/paper/data/mode_map_fine.tsv \
   > docs/paper/data/summary.txt
-{ echo; echo "wall time per sweep on $(nproc) cores:"; cat "$TMP/times.txt"; } >> docs/paper/data/summary.txt
+{ echo; echo "== wall time per sweep (docs/paper/data/wall_times.tsv)"; cat docs/paper/data/wall_times.tsv; } >> docs/paper/data/summary.txt
 cat docs/paper/data/summary.txt

@@ -46,14 +46,16 @@ END {
         fq, drift[file, fq], n, lo, hi, best, bestk, rev == "" ? "none" : rev, nodrift[file, fq]
     }
     # The frequency dependence: (u75 - u25)/u25 where both drift forward clearly (> 0.005).
-    m = 0; sum = 0; mn = 1e9; mx = -1e9; maxabs = 0
+    m = 0; sum = 0; mn = 1e9; mx = -1e9; maxabs = 0; ms = 0; ssum = 0; smn = 1e9; smx = -1e9
     for (i = 1; i <= n; i++) {
       k = K[i]
       if (!((file, 25, k) in S) || !((file, 75, k) in S)) continue
-      d = S[file, 75, k] - S[file, 25, k]; if (d < 0 ? -d : d > maxabs) maxabs = d < 0 ? -d : d
+      d = S[file, 75, k] - S[file, 25, k]; ad = d < 0 ? -d : d; if (ad > maxabs) maxabs = ad
       if (S[file, 25, k] <= 0.005) continue
+      if (k + 0 >= 3.6 && k + 0 <= 5.6) { ms++; ssum += d / S[file, 25, k]; if (d / S[file, 25, k] < smn) smn = d / S[file, 25, k]; if (d / S[file, 25, k] > smx) smx = d / S[file, 25, k] }
       r = d / S[file, 25, k]; m++; sum += r; if (r < mn) mn = r; if (r > mx) mx = r
     }
+    if (ms) printf "  75 Hz vs 25 Hz on the smooth forward branch A_r 3.6..5.6 (%d values): relative change mean %+.2f %%, from %+.2f %% to %+.2f %%\n", ms, 100 * ssum / ms, 100 * smn, 100 * smx
     if (m) printf "  75 Hz vs 25 Hz where both drift forward (%d A_r values): relative change mean %+.2f %%, from %+.2f %% to %+.2f %%; largest |difference| %.3g (in g/f)\n", m, 100 * sum / m, 100 * mn, 100 * mx, maxabs
   }
   print "== the bouncing end's most frequent impact outcome along A_r (fig4a, 25 Hz)"

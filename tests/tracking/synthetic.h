@@ -42,10 +42,12 @@ inline SceneGeometry TiltedDimer(double col, double plate_row, double radius_px,
 
 // Drift-like motion in metres (lab frame): the CM creeps to the right, the right sphere bounces
 // once per plate period while the left one stays on the plate, the plate oscillates.
-inline Trajectory DriftTrajectory(size_t n, double fps, double freq_hz = 25.0) {
+// `aspect_ratio` 2 makes the spheres touch (centre distance one diameter).
+inline Trajectory DriftTrajectory(size_t n, double fps, double freq_hz = 25.0,
+                                  double aspect_ratio = kAspectRatio) {
   Trajectory traj;
   traj.Reserve(n);
-  const double r = 0.5 * kDiameterM, half = (kAspectRatio - 1.0) * r;
+  const double r = 0.5 * kDiameterM, half = (aspect_ratio - 1.0) * r;
   const double amplitude = 0.35e-3, drift_speed = 2e-3;  // m, m/s (10 mm in 5 s)
   for (size_t i = 0; i < n; ++i) {
     const double t = double(i) / fps;

@@ -1,0 +1,152 @@
+// Plate-edge accuracy on folders of frames with truth.csv (`dimerlab render` or the POV-Ray
+// footage of tests/footage, e.g. its lightings one_sided_gain_ramp, underexposed, overexposed,
+// mirror_plate), docs/BENCHMARKS.md:
+//   bench_plate_edge DIR...
+//   bench_plate_edge --time [calls]   (cost of one RefinePlateRow call on a rendered frame)
+// Per folder: the error of the acquisition's coarse row (FindPlateRowCoarse), of the sub-pixel
+// row refined from it with the spheres' true columns left out (RefinePlateRow, as the tracker
+// calls it), and of the tracker's own plate row (SequenceTracker, spheres found by itself):
+// RMS and worst, px, and how many frames gave no row.
+#include <opencv2/imgcodecs.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <chrono>
+
+#include "tracking/plate_edge.h"
+#include "tracking/scene_renderer.h"
+#include "tracking/tolerances.h"
+#include "tracking/tracker.h"
+
+using namespace dimer::tracking;
+
+namespace {
+
+struct TruthRow {
+  std::string file;
+  double left_col = 0, right_col = 0, plate_row = 0;
+};
+
+// truth.csv: comment lines (#), a header, then frame,file,t,left_col,left_row,right_col,
+// right_row,plate_row. The radius from the comment's radius_px=.
+std::vector<TruthRow> ReadTruth(const std::string& dir, double* radius_px) {
+  std::ifstream in(dir + "/truth.csv");
+  std::vector<TruthRow> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    if (line[0] == '#') {
+      const auto at = line.find("radius_px=");
+      if (at != std::string::npos) *radius_px = std::atof(line.c_str() + at + 10);
+      continue;
+    }
+    if (line.rfind("frame", 0) == 0) continue;
+    std::stringstream ss(line);
+    std::vector<std::string> f;
+    std::string cell;
+    while (std::getline(ss, cell, ',')) f.push_back(cell);
+    if (f.size() < 8) continue;
+    rows.push_back({f[1], std::stod(f[3]), std::stod(f[5]), std::stod(f[7])});
+  }
+  return rows;
+}
+
+struct Stat {
+  double sum2 = 0, worst = 0;
+  int n = 0, missing = 0;
+  void Add(double err) {
+    if (!std::isfinite(err)) {
+      ++missing;
+      return;
+    }
+    sum2 += err * err;
+    worst = std::max(worst, std::abs(err));
+    ++n;
+  }
+  std::string Text() const {
+    char buf[80];
+    std::snprintf(buf, sizeof buf, "%.3f | %.3f | %d", n ? std::sqrt(sum2 / n) : NAN, worst,
+                  missing);
+    return buf;
+  }
+};
+
+}  // namespace
+
+// Microseconds per RefinePlateRow call (best of 3 runs) on a reflect-lit 512x256 frame with
+// two sphere intervals left out, as the tracker calls it once per frame.
+int TimeRefine(int calls) {
+  SceneGeometry s;
+  s.left = {180.3, 176.2};
+  s.right = {318.1, 166.4};
+  const cv::Mat img = RenderFrame({s}, RenderOptions{}, 0);
+  const double clear = s.radius_px + kPlateSphereClearPx;
+  const std::vector<std::pair<double, double>> excluded = {
+      {s.left.x() - clear, s.left.x() + clear}, {s.right.x() - clear, s.right.x() + clear}};
+  double best = 1e30, sink = 0;
+  for (int run = 0; run < 3; ++run) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < calls; ++i) sink += RefinePlateRow(img, 200.0 + 0.001 * (i % 3), excluded);
+    const double us =
+        std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+    best = std::min(best, us / calls);
+  }
+  std::printf("RefinePlateRow: %.2f us per call (best of 3 x %d calls; row %.4f)\n", best, calls,
+              sink / (3.0 * calls));
+  return 0;
+}
+
+int main(int argc, char** argv) {
+  if (argc >= 2 && std::string(argv[1]) == "--time") {
+    return TimeRefine(argc >= 3 ? std::atoi(argv[2]) : 20000);
+  }
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: bench_plate_edge DIR...\n");
+    return 2;
+  }
+  std::printf("| folder | frames | coarse RMS (px) | coarse worst | coarse none | refined RMS (px) "
+              "| refined worst | refined none | tracker RMS (px) | tracker worst | tracker none |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (int a = 1; a < argc; ++a) {
+    const std::string dir = argv[a];
+    double radius = 23.75;
+    const std::vector<TruthRow> truth = ReadTruth(dir, &radius);
+    Stat coarse, refined, tracked;
+    SequenceTracker tracker(TrackerOptions{});
+    for (size_t i = 0; i < truth.size(); ++i) {
+      const cv::Mat img = cv::imread(dir + "/" + truth[i].file, cv::IMREAD_UNCHANGED);
+      if (img.empty() || img.channels() != 1) {
+        std::fprintf(stderr, "%s/%s: not a single-channel image\n", dir.c_str(),
+                     truth[i].file.c_str());
+        return 1;
+      }
+      if (i == 0 && std::getenv("PLATE_PROFILE")) {  // rows around the edge, columns 0..99
+        const int r = int(std::lround(truth[i].plate_row));
+        for (int row = r - 6; row <= r + 6; ++row) {
+          double sum = 0;
+          for (int col = 0; col < 100; ++col) sum += img.depth() == CV_8U ? img.at<uint8_t>(row, col) : img.at<uint16_t>(row, col);
+          std::fprintf(stderr, "  row %d mean %.2f\n", row, sum / 100);
+        }
+      }
+      const double c = FindPlateRowCoarse(img);
+      coarse.Add(c - truth[i].plate_row);
+      const double clear = radius + kPlateSphereClearPx;
+      const double fine =
+          RefinePlateRow(img, c,
+                         {{truth[i].left_col - clear, truth[i].left_col + clear},
+                          {truth[i].right_col - clear, truth[i].right_col + clear}});
+      refined.Add(fine - truth[i].plate_row);
+      tracked.Add(tracker.Process(img, i).plate_row - truth[i].plate_row);
+    }
+    std::printf("| %s | %zu | %s | %s | %s |\n", dir.c_str(), truth.size(),
+                coarse.Text().c_str(), refined.Text().c_str(), tracked.Text().c_str());
+  }
+  return 0;
+}

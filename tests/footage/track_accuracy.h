@@ -1,0 +1,71 @@
+#pragma once
+// How well the tracker (tracking/track.h, the library behind `dimerlab track`) recovers the
+// truth of a footage folder (truth.csv in the layout of docs/FORMATS.md, "Render folders": from
+// POV-Ray footage or `dimerlab render`), with the numbers the targets are stated in:
+//  - found: fraction of the good frames (both spheres wholly inside the frame) where the
+//    tracker reports the sphere;
+//  - bias: the mean error vector (tracked - truth) over the found frames, its length in px;
+//  - scatter: the RMS distance of the errors from that mean, sqrt(var_col + var_row) (the
+//    scatter after removing an estimated constant offset);
+//  - identity swaps: found frames where the tracker's `left` is nearer the true right sphere
+//    (the pair matched crosswise is closer than matched as labelled);
+//  - plate: mean and largest |tracked - truth| of the plate row over the frames where the
+//    tracker gives one.
+// The targets: scatter <= 0.05 px and |bias| <= 0.1 px per sphere, >= 99 % found, no
+// identity swap, plate row within 0.3 px.
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace dimer::footage {
+
+struct TruthRow {
+  size_t frame = 0;
+  std::string file;
+  double t = 0;
+  std::array<Eigen::Vector2d, 2> centre{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};  // px
+  double plate_row = 0;
+};
+// Throws InputError naming the file and line. `radius_px` (may be null): the sphere radius of
+// the mapping comment (line 2), NaN when absent.
+std::vector<TruthRow> ReadTruthCsv(const std::string& path, double* radius_px = nullptr);
+
+struct SphereAccuracy {
+  size_t good = 0, found = 0;      // good frames; of which found
+  double found_fraction = 0;
+  Eigen::Vector2d bias{0, 0};      // mean error (col, row), px
+  double scatter = 0;              // RMS distance from the mean error, px
+  double max_error = 0;            // largest |error - bias|, px
+};
+
+struct TrackAccuracy {
+  std::string method;
+  size_t frames = 0;                    // rows of truth.csv
+  std::array<SphereAccuracy, 2> sphere; // left, right
+  size_t identity_swaps = 0;
+  size_t plate_found = 0;
+  double plate_bias = 0;                // mean (tracked - truth) plate row, px
+  double plate_max_error = 0;           // largest |tracked - truth|, px
+  double seconds = 0;                   // tracking wall time
+
+  // The targets; `why` lists every one missed.
+  bool MeetsTargets(std::string* why = nullptr) const;
+};
+
+inline constexpr double kScatterTargetPx = 0.05;
+inline constexpr double kBiasTargetPx = 0.1;
+inline constexpr double kFoundTarget = 0.99;
+inline constexpr double kPlateTargetPx = 0.3;
+
+// Tracks `folder` (every image in it) with `method` (a `--method` name of tracking/refiner.h)
+// and compares with `folder`/truth.csv. `threads` 0: all cores.
+TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string& method,
+                                   int threads = 0);
+
+// One table row: "| method | found L/R | bias L/R | scatter L/R | swaps | plate |".
+std::string AccuracyRow(const TrackAccuracy& a);
+std::string AccuracyHeader();
+
+}  // namespace dimer::footage

@@ -1,0 +1,102 @@
+// The tracker on footage it was not designed on: POV-Ray renders (tests/footage) of the dimer in
+// every lighting of the issue, and touching spheres (A_r 2.0, 2.1, 2.3), judged against the
+// issue's targets (tests/footage/track_accuracy.h): per sphere scatter <= 0.05 px after the
+// constant offset, |bias| <= 0.1 px, >= 99 % found; no identity swap; plate row within 0.3 px.
+//
+// The method is the one the tracker will use by default: the environment variable
+// DIMERLAB_POVRAY_METHOD, else the compile-time DIMERLAB_POVRAY_TEST_METHOD (CMake cache
+// variable of the same name, default `centroid`, today's default). The targets are the issue's
+// and are never loosened here: a failing case is a finding about the tracker.
+//
+// Footage is rendered on first use into the build tree (DIMERLAB_POVRAY_CACHE) and reused while
+// its scenes are unchanged (the folder's scene hash): 20 frames per case, 2 exposure slices.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <ostream>
+#include <string>
+
+#include "tests/footage/povray_footage.h"
+#include "tests/footage/track_accuracy.h"
+
+#ifndef DIMERLAB_POVRAY_TEST_METHOD
+#define DIMERLAB_POVRAY_TEST_METHOD "centroid"
+#endif
+#ifndef DIMERLAB_POVRAY_CACHE
+#define DIMERLAB_POVRAY_CACHE "povray_footage_cache"
+#endif
+
+namespace dimer::footage {
+namespace {
+
+constexpr size_t kFrames = 20;
+constexpr int kSlices = 2;
+
+std::string TestMethod() {
+  const char* env = std::getenv("DIMERLAB_POVRAY_METHOD");
+  return env && *env ? env : DIMERLAB_POVRAY_TEST_METHOD;
+}
+
+struct Case {
+  const char* name;
+  Lighting lighting;
+  double aspect_ratio;
+};
+
+// gtest prints the parameter by name (test names and messages), not as bytes.
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+
+// Renders (or reuses) the case's footage and returns its folder.
+std::string Footage(const Case& c) {
+  FootageOptions o = FootageOptions::For(c.lighting);
+  o.shape.aspect_ratio = c.aspect_ratio;
+  o.subframes = kSlices;
+  o.reuse = true;
+  o.quiet = true;
+  const std::string dir = std::string(DIMERLAB_POVRAY_CACHE) + "/" + c.name;
+  std::filesystem::create_directories(DIMERLAB_POVRAY_CACHE);
+  WriteFootage(HopMotion(o.shape, kFrames, o.fps), o, dir);
+  return dir;
+}
+
+class PovrayFootage : public ::testing::TestWithParam<Case> {};
+
+TEST_P(PovrayFootage, TrackerMeetsTheIssueTargets) {
+  const Case& c = GetParam();
+  const std::string dir = Footage(c);
+  const TrackAccuracy a = MeasureTrackAccuracy(dir, TestMethod(), 2);
+  std::printf("%s\n%s%s", c.name, AccuracyHeader().c_str(), AccuracyRow(a).c_str());
+  ASSERT_EQ(a.frames, kFrames);
+  const char* names[2] = {"left", "right"};
+  for (int k = 0; k < 2; ++k) {
+    const SphereAccuracy& s = a.sphere[k];
+    ASSERT_EQ(s.good, kFrames) << "every frame of the footage shows both spheres whole";
+    EXPECT_GE(s.found_fraction, kFoundTarget) << names[k] << " sphere found";
+    EXPECT_LE(s.bias.norm(), kBiasTargetPx)
+        << names[k] << " bias (col, row) = (" << s.bias.x() << ", " << s.bias.y() << ") px";
+    EXPECT_LE(s.scatter, kScatterTargetPx) << names[k] << " scatter about the bias, px";
+  }
+  EXPECT_EQ(a.identity_swaps, 0u);
+  EXPECT_EQ(a.plate_found, a.frames) << "frames with a plate row";
+  EXPECT_LE(a.plate_max_error, kPlateTargetPx) << "plate row, mean error " << a.plate_bias;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Lightings, PovrayFootage,
+    ::testing::Values(Case{"front_point", Lighting::kFrontPoint, 3.9},
+                      Case{"front_softbox", Lighting::kFrontSoftbox, 3.9},
+                      Case{"bright_background", Lighting::kBrightBackground, 3.9},
+                      Case{"matte", Lighting::kMatte, 3.9},
+                      Case{"backlit", Lighting::kBacklit, 3.9},
+                      Case{"one_sided_gain_ramp", Lighting::kOneSidedGainRamp, 3.9},
+                      Case{"underexposed", Lighting::kUnderexposed, 3.9},
+                      Case{"overexposed", Lighting::kOverexposed, 3.9},
+                      Case{"mirror_plate", Lighting::kMirrorPlate, 3.9},
+                      Case{"front_point_ar2_0", Lighting::kFrontPoint, 2.0},
+                      Case{"front_point_ar2_1", Lighting::kFrontPoint, 2.1},
+                      Case{"front_point_ar2_3", Lighting::kFrontPoint, 2.3}),
+    [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
+
+}  // namespace
+}  // namespace dimer::footage
