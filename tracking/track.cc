@@ -117,6 +117,10 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
   bool have_ref = false;
   size_t next = 0;
   bool exhausted = false;
+  TrackerOptions chunk_opts = options.tracker;
+  SequenceMethod prepared;
+  const bool sequence_level = options.tracker.method == Method::kTemplate ||
+                              options.tracker.method == Method::kAuto;
   std::deque<std::future<ChunkResult>> inflight;
   auto launch = [&]() {
     std::vector<Frame> buffer;
@@ -137,9 +141,26 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
         Frame f = buffer.empty() ? source.Read(next + j) : buffer[j];
         if (f.error.empty()) ref = MakeReference(f.image, options.tracker), have_ref = true;
       }
+      if (have_ref && sequence_level) {
+        // Learning frames by index only (sequential sources: within the first chunk, which is
+        // decoded ahead anyway); the method and appearances are fixed before any chunk runs.
+        std::vector<Frame> learning;
+        for (size_t i : LearningIndices(buffer.empty() ? source.size() : buffer.size())) {
+          Frame f = buffer.empty() ? source.Read(i) : buffer[i];
+          if (f.error.empty() && f.image.cols == ref.width && f.image.rows == ref.height) {
+            learning.push_back(std::move(f));
+          }
+        }
+        TrackerOptions reference = options.tracker;
+        reference.polarity = ref.polarity;
+        reference.radius_px = ref.radius_px;
+        prepared = PrepareSequenceMethod(learning, reference, options.tracker.method);
+        chunk_opts.method = prepared.choice.method;
+        chunk_opts.appearance = prepared.appearance;
+      }
     }
     inflight.push_back(std::async(std::launch::async, TrackChunk, std::cref(source), next, count,
-                                  std::move(buffer), options.tracker, ref));
+                                  std::move(buffer), chunk_opts, ref));
     next += count;
     if (source.random_access() && next >= source.size()) exhausted = true;
   };
@@ -162,6 +183,15 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
     if (on_progress) on_progress(result.frames.size() + result.skipped.size());
   }
   if (InterruptRequested()) result.complete = false;
+  result.method = sequence_level ? prepared.choice.method : options.tracker.method;
+  result.method_reason = prepared.choice.reason;
+  if (chunk_opts.appearance) {
+    result.appearance = *chunk_opts.appearance;
+    const double r = std::isfinite(options.contact_radius_px) ? options.contact_radius_px
+                                                              : ref.radius_px;
+    result.offsets = EstimateOffsets(prepared, result.frames, r);
+    ApplyOffsets(result.offsets, &result.frames);
+  }
   result.polarity = ref.polarity;
   result.width = ref.width;
   result.height = ref.height;
@@ -228,6 +258,46 @@ Calibration Calibrate(const TrackArgs& args, const SequenceResult& r) {
   return cal;
 }
 
+// The template method's learnt appearances and offsets (docs/FORMATS.md).
+void WriteTemplateGroup(H5Writer& w, const SequenceResult& r) {
+  std::vector<double> offset, err;
+  std::vector<int64_t> frames;
+  std::vector<std::string> sources;
+  for (int k = 0; k < 2; ++k) {
+    for (const OffsetEstimate* e : {&r.offsets.col[k], &r.offsets.row[k]}) {
+      offset.push_back(e->value);
+      err.push_back(e->err);
+      frames.push_back(int64_t(e->n));
+      sources.push_back(e->source);
+    }
+  }
+  w.WriteDoubles("/template/offset", offset, {2, 2}, "px", "col,row");
+  w.SetAttr("/template/offset", "rows", "left,right");
+  w.SetAttr("/template/offset", "description",
+            "offset from each learnt appearance's reference point to the sphere centre, added to "
+            "every located position (already applied to /pixels)");
+  w.WriteDoubles("/template/offset_err", err, {2, 2}, "px", "col,row");
+  w.SetAttr("/template/offset_err", "description", "standard uncertainty of /template/offset");
+  w.WriteInt64("/template/offset_frames", frames, {2, 2});
+  w.SetAttr("/template/offset_frames", "units", "1");
+  w.SetAttr("/template/offset_frames", "description", "frames each offset rests on");
+  w.WriteStrings("/template/offset_source", sources);
+  w.SetAttr("/template/offset_source", "description",
+            "left col, left row, right col, right row: silhouette, plate_contact, symmetry or none");
+  for (int k = 0; k < 2; ++k) {
+    const Appearance& a = r.appearance[k];
+    std::vector<double> img(a.image.begin<float>(), a.image.end<float>());
+    std::vector<uint8_t> mask(a.mask.begin<uint8_t>(), a.mask.end<uint8_t>());
+    const std::string name = std::string("/template/") + (k == 0 ? "left" : "right");
+    const size_t size = size_t(a.image.rows);
+    w.WriteDoubles(name, img, {size, size}, "grey levels");
+    w.SetAttr(name, "description",
+              "the learnt appearance, reference point at the centre pixel; frame grey levels");
+    w.WriteUint8(name + "_mask", mask, {size, size});
+    w.SetAttr(name + "_mask", "codes", "0=not part of the sphere's appearance (rod, plate, unseen),1=used");
+  }
+}
+
 void WriteTrackFile(const std::string& path, const TrackArgs& args, const SequenceResult& r,
                     const Calibration& cal) {
   const size_t n = r.frames.size();
@@ -259,7 +329,9 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
   }
   H5Writer w(path);
   WriteProvenance(w, "track",
-                  {{"source", args.input}, {"method", args.method}, {"fps", args.fps},
+                  {{"source", args.input}, {"method", ToString(r.method)},
+                   {"method_requested", args.method}, {"method_reason", r.method_reason},
+                   {"fps", args.fps},
                    {"m_per_px", cal.m_per_px}, {"row0", cal.row0}, {"diameter", args.diameter},
                    {"polarity", std::string(r.polarity > 0 ? "bright" : "dark")},
                    {"polarity_requested", args.polarity},
@@ -294,6 +366,7 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
   w.SetAttr("/found", "columns", "left,right");
   w.SetAttr("/found", "codes", "0=not found (its tips and pixels are NaN),1=found");
   w.SetAttr("/found", "description", "whether each sphere was found in the frame");
+  if (r.method == Method::kTemplate) WriteTemplateGroup(w, r);
   w.WriteStrings("/skipped/files", skipped_names);
   w.SetAttr("/skipped/files", "description", "frames that could not be used");
   w.WriteStrings("/skipped/reasons", skipped_reasons);
@@ -349,6 +422,11 @@ void RunTrack(const TrackArgs& args) {
   args.Check();
   SequenceOptions seq = args.sequence;
   seq.tracker.method = ParseMethod(args.method);
+  // The plate-contact offset of the template method needs the radius in pixels: from the
+  // scale when it is given, else the measured one (which then also sets the scale).
+  if (!std::isnan(args.m_per_px) && std::isnan(seq.contact_radius_px)) {
+    seq.contact_radius_px = 0.5 * args.diameter / args.m_per_px;
+  }
   seq.tracker.polarity = args.polarity == "bright" ? 1 : args.polarity == "dark" ? -1 : 0;
   AtomicOutput out(args.output, args.force);  // refuses an existing output before any work
   auto source = FrameSource::Open(args.input);
@@ -358,6 +436,20 @@ void RunTrack(const TrackArgs& args) {
     throw InputError(args.input + ": no readable frame (all " +
                      std::to_string(r.skipped.size()) + " were skipped)");
   }
+  if (!r.method_reason.empty()) {
+    std::fprintf(stderr, "dimerlab track: method %s -> %s (reason: %s)\n", args.method.c_str(),
+                 ToString(r.method).c_str(), r.method_reason.c_str());
+  }
+  if (r.method == Method::kTemplate) {
+    for (int k = 0; k < 2; ++k) {
+      const OffsetEstimate &c = r.offsets.col[k], &w = r.offsets.row[k];
+      std::fprintf(stderr,
+                   "dimerlab track: %s sphere: offset to the centre col %+.3f +- %.3f px (%s), "
+                   "row %+.3f +- %.3f px (%s, %zu frames)\n",
+                   k == 0 ? "left" : "right", c.value, c.err, c.source.c_str(), w.value, w.err,
+                   w.source.c_str(), w.n);
+    }
+  }
   const Calibration cal = Calibrate(args, r);
   WriteTrackFile(out.temp_path(), args, r, cal);
   out.Commit();
@@ -366,7 +458,7 @@ void RunTrack(const TrackArgs& args) {
   for (const auto& f : r.frames) both += f.found[0] && f.found[1];
   std::printf("%s: %zu frames tracked, %zu skipped, both spheres found in %zu, %s, %.4g m/px%s\n",
               (args.output_label.empty() ? args.output : args.output_label).c_str(), r.frames.size(),
-              r.skipped.size(), both, args.method.c_str(),
+              r.skipped.size(), both, ToString(r.method).c_str(),
               cal.m_per_px, r.complete ? "" : " (interrupted: partial)");
   if (!r.complete) throw Interrupted();
 }
