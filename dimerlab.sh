@@ -14,7 +14,7 @@ ROOT=$(pwd)
 JOBS=$(nproc)
 
 PACKAGES=(build-essential cmake ninja-build pkg-config libopencv-dev libeigen3-dev libhdf5-dev
-          hdf5-tools libcli11-dev libgtest-dev googletest libnlopt-dev gnuplot-nox)
+          hdf5-tools libcli11-dev libgtest-dev googletest libnlopt-dev gnuplot-nox povray)
 
 setup() {
   local missing=()

@@ -1,0 +1,458 @@
+#include "tests/footage/povray_footage.h"
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "common/atomic_output.h"
+#include "common/error.h"
+#include "common/interrupt.h"
+#include "common/progress.h"
+
+namespace dimer::footage {
+namespace fs = std::filesystem;
+namespace {
+
+// Bumped whenever the post-processing changes, so that cached footage is re-rendered.
+constexpr const char* kGeneratorVersion = "povray_footage 1";
+
+std::string Num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+std::string Quote(const std::string& s) {  // for the shell: single quotes
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string JsonString(const std::string& s) {
+  std::string j = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') j += '\\';
+    if (c == '\n') {
+      j += "\\n";
+      continue;
+    }
+    j += c;
+  }
+  return j + "\"";
+}
+
+std::string FrameName(size_t i) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "frame_%06zu.png", i);
+  return buf;
+}
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string LastLines(const std::string& text, int lines) {
+  size_t pos = text.size();
+  while (pos > 0 && (text[pos - 1] == '\n' || text[pos - 1] == '\r')) --pos;
+  for (int k = 0; k < lines && pos != std::string::npos && pos > 0; ++k) {
+    pos = text.rfind('\n', pos - 1);
+  }
+  std::string tail = text.substr(pos == std::string::npos ? 0 : pos);
+  for (char& c : tail) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  return tail;
+}
+
+// Standard normal deviates by the Box-Muller transform (explicit: identical everywhere).
+class Gaussian {
+ public:
+  explicit Gaussian(uint64_t seed) : rng_(seed) {}
+  double Next() {
+    if (has_spare_) {
+      has_spare_ = false;
+      return spare_;
+    }
+    constexpr double kTwoPow53 = 9007199254740992.0;
+    const double u1 = (double(rng_() >> 11) + 1.0) / (kTwoPow53 + 1.0);  // (0, 1]
+    const double u2 = double(rng_() >> 11) / kTwoPow53;
+    const double mag = std::sqrt(-2.0 * std::log(u1));
+    spare_ = mag * std::sin(2.0 * std::numbers::pi * u2);
+    has_spare_ = true;
+    return mag * std::cos(2.0 * std::numbers::pi * u2);
+  }
+
+ private:
+  std::mt19937_64 rng_;
+  double spare_ = 0;
+  bool has_spare_ = false;
+};
+
+uint64_t FrameSeed(uint64_t seed, uint64_t frame) {  // SplitMix64 finaliser of the pair
+  uint64_t z = seed * 0x9E3779B97F4A7C15ull + frame + 0x632BE59BD9B4E019ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+// The instants of frame i's exposure slices: the middle of each of `n` equal slices of the
+// shutter interval centred on the sample time (their mean is the sample time).
+std::vector<Instant> Slices(const Motion& m, size_t i, double exposure_s, int n) {
+  std::vector<Instant> out;
+  for (int k = 0; k < n; ++k) {
+    const double offset = exposure_s > 0 ? ((k + 0.5) / n - 0.5) * exposure_s : 0.0;
+    out.push_back(m.at(m.t[i] + offset));
+  }
+  return out;
+}
+
+// Averaged slices -> gain -> PSF -> noise -> quantisation.
+cv::Mat PostProcess(const std::vector<cv::Mat>& slices, const FootageOptions& o, size_t frame) {
+  cv::Mat sum = cv::Mat::zeros(slices[0].size(), CV_32F);
+  for (const cv::Mat& s : slices) sum += s;
+  cv::Mat grey = sum * (255.0 / double(slices.size()));  // 8-bit scale
+  for (int col = 0; col < grey.cols; ++col) {
+    const double gain = LightingGain(o.lighting, col, grey.cols);
+    if (gain != 1.0) grey.col(col) *= gain;
+  }
+  if (o.psf_sigma_px > 0) {
+    const int k = 2 * int(std::ceil(3 * o.psf_sigma_px)) + 1;
+    cv::GaussianBlur(grey, grey, cv::Size(k, k), o.psf_sigma_px, o.psf_sigma_px,
+                     cv::BORDER_REFLECT_101);
+  }
+  Gaussian noise(FrameSeed(o.seed, frame));
+  const double scale = o.bit_depth == 16 ? 257.0 : 1.0, top = o.bit_depth == 16 ? 65535 : 255;
+  cv::Mat out(grey.size(), o.bit_depth == 16 ? CV_16U : CV_8U);
+  for (int r = 0; r < grey.rows; ++r) {
+    const float* g = grey.ptr<float>(r);
+    for (int c = 0; c < grey.cols; ++c) {
+      const double v = std::clamp(std::round((g[c] + o.noise * noise.Next()) * scale), 0.0, top);
+      if (o.bit_depth == 16) {
+        out.at<uint16_t>(r, c) = uint16_t(v);
+      } else {
+        out.at<uint8_t>(r, c) = uint8_t(v);
+      }
+    }
+  }
+  return out;
+}
+
+std::string TruthCsv(const Motion& m, const FootageOptions& o) {
+  const Camera& cam = o.camera;
+  const double row0 = cam.PlateRow(0.0), col_offset = cam.Project(0.0, 0.0, 0.0).x();
+  const double radius_px = 0.5 * o.shape.diameter / cam.m_per_px;
+  std::string s =
+      "# dimerlab povray footage truth: sphere centres projected through the pinhole (col, row) "
+      "at each frame's sample time; units: t s, *_col *_row plate_row px (0-based pixel "
+      "centres, rows growing downward); docs/FORMATS.md\n";
+  s += "# m_per_px=" + Num(cam.m_per_px) + " row0=" + Num(row0) + " col_offset=" +
+       Num(col_offset) + " radius_px=" + Num(radius_px) + " lighting=" + ToString(o.lighting) +
+       " noise=" + Num(o.noise) + " seed=" + std::to_string(o.seed) + "\n";
+  s += "frame,file,t,left_col,left_row,right_col,right_row,plate_row\n";
+  char buf[256];
+  for (size_t i = 0; i < m.t.size(); ++i) {
+    const Instant in = m.at(m.t[i]);
+    const Eigen::Vector2d l = cam.Project(in.left), r = cam.Project(in.right);
+    std::snprintf(buf, sizeof buf, "%zu,%s,%.9g,%.6f,%.6f,%.6f,%.6f,%.6f\n", i,
+                  FrameName(i).c_str(), m.t[i], l.x(), l.y(), r.x(), r.y(),
+                  cam.PlateRow(in.plate_z));
+    s += buf;
+  }
+  return s;
+}
+
+std::string PostProcessKey(const FootageOptions& o, const std::string& version) {
+  return std::string(kGeneratorVersion) + "|" + version + "|psf=" + Num(o.psf_sigma_px) +
+         "|noise=" + Num(o.noise) + "|bits=" + std::to_string(o.bit_depth) + "|seed=" +
+         std::to_string(o.seed) + "|aa=" + std::to_string(o.aa_depth) + "|size=" +
+         std::to_string(o.camera.width) + "x" + std::to_string(o.camera.height) + "|fps=" +
+         Num(o.fps) + "|gain=" + Num(LightingGain(o.lighting, 0, o.camera.width)) + "," +
+         Num(LightingGain(o.lighting, o.camera.width - 1, o.camera.width));
+}
+
+std::string Sidecar(const Motion& m, const FootageOptions& o, const std::string& version,
+                    const std::string& hash, double seconds_per_frame) {
+  const Camera& c = o.camera;
+  std::string j = "{\n";
+  auto add = [&](const std::string& k, const std::string& v, bool last = false) {
+    j += "  \"" + k + "\": " + v + (last ? "\n" : ",\n");
+  };
+  add("kind", "\"povray_footage\"");
+  add("generator", "\"tests/footage/povray_footage.cc\"");
+  add("povray_version", JsonString(version));
+  add("lighting", JsonString(ToString(o.lighting)));
+  add("motion", JsonString(m.description));
+  add("frames", std::to_string(m.t.size()));
+  add("width", std::to_string(c.width));
+  add("height", std::to_string(c.height));
+  add("m_per_px", Num(c.m_per_px));
+  add("camera_distance", Num(c.distance));
+  add("camera_elevation", Num(c.elevation));
+  add("camera_centre_x", Num(c.centre_x));
+  add("horizon_row", Num(c.horizon_row));
+  add("focal_px", Num(c.FocalPx()));
+  add("render_height", std::to_string(c.RenderHeight()));
+  add("render_top", std::to_string(c.RenderTop()));
+  add("pov_camera", JsonString(c.PovCamera()));
+  add("row0", Num(c.PlateRow(0.0)));
+  add("col_offset", Num(c.Project(0.0, 0.0, 0.0).x()));
+  add("diameter", Num(o.shape.diameter));
+  add("aspect_ratio", Num(o.shape.aspect_ratio));
+  add("rod_diameter", Num(o.shape.rod_diameter));
+  add("radius_px", Num(0.5 * o.shape.diameter / c.m_per_px));
+  add("plate_depth", Num(o.scene.plate_depth));
+  add("fps", Num(o.fps));
+  add("exposure", Num(o.exposure_s));
+  add("subframes", std::to_string(o.subframes));
+  add("psf_sigma_px", Num(o.psf_sigma_px));
+  add("noise", Num(o.noise));
+  add("bit_depth", std::to_string(o.bit_depth));
+  add("seed", std::to_string(o.seed));
+  add("aa_depth", std::to_string(o.aa_depth));
+  add("gain_left", Num(LightingGain(o.lighting, 0, c.width)));
+  add("gain_right", Num(LightingGain(o.lighting, c.width - 1, c.width)));
+  add("povray_seconds_per_frame", Num(seconds_per_frame));
+  add("scene_hash", JsonString(hash));
+  add("units",
+      "{\"m_per_px\": \"m/px\", \"camera_distance\": \"m\", \"camera_elevation\": \"m\", "
+      "\"camera_centre_x\": \"m\", \"horizon_row\": \"px\", \"focal_px\": \"px\", \"row0\": "
+      "\"px\", \"col_offset\": \"px\", \"diameter\": \"m\", \"rod_diameter\": \"m\", "
+      "\"radius_px\": \"px\", \"plate_depth\": \"m\", \"fps\": \"frames/s\", \"exposure\": \"s\", "
+      "\"psf_sigma_px\": \"px\", \"noise\": \"grey levels (8-bit scale)\", "
+      "\"povray_seconds_per_frame\": \"s\"}",
+      true);
+  return j + "}\n";
+}
+
+// The scene_hash recorded in an existing folder's footage.json, or "".
+std::string RecordedHash(const std::string& folder) {
+  const std::string text = ReadAll(folder + "/footage.json");
+  const std::string key = "\"scene_hash\": \"";
+  const size_t p = text.find(key);
+  if (p == std::string::npos) return "";
+  const size_t e = text.find('"', p + key.size());
+  return e == std::string::npos ? "" : text.substr(p + key.size(), e - p - key.size());
+}
+
+}  // namespace
+
+FootageOptions FootageOptions::For(Lighting lighting) {
+  FootageOptions o;
+  o.lighting = lighting;
+  o.camera = DefaultCamera(lighting);
+  o.camera.centre_x = std::numeric_limits<double>::quiet_NaN();
+  o.scene = DefaultSceneOptions(lighting);
+  return o;
+}
+
+void FootageOptions::Check() const {
+  std::string bad = camera.Check();
+  auto need = [&](bool ok, const std::string& what) {
+    if (!ok) bad += (bad.empty() ? "" : "; ") + what;
+  };
+  need(shape.diameter > 0 && std::isfinite(shape.diameter), "--diameter must be > 0 m");
+  need(shape.aspect_ratio >= 2.0 && std::isfinite(shape.aspect_ratio),
+       "--ar must be >= 2 (touching spheres)");
+  need(shape.rod_diameter >= 0 && shape.rod_diameter < shape.diameter,
+       "--rod-diameter must be in [0, diameter)");
+  need(fps > 0 && std::isfinite(fps), "--fps must be > 0");
+  need(exposure_s >= 0 && exposure_s <= 1.0 / fps, "--exposure-us must be in [0, 1e6 / fps]");
+  need(subframes >= 1 && subframes <= 64, "--subframes must be 1..64");
+  need(psf_sigma_px >= 0 && psf_sigma_px <= 10, "--psf must be 0..10 px");
+  need(noise >= 0 && std::isfinite(noise), "--noise must be >= 0");
+  need(bit_depth == 8 || bit_depth == 16, "--bit-depth must be 8 or 16");
+  need(jobs >= 1 && jobs <= 64, "--jobs must be 1..64");
+  need(aa_depth >= 0 && aa_depth <= 7, "--aa-depth must be 0..7");
+  if (!bad.empty()) throw UsageError(bad);
+}
+
+std::string HashText(const std::string& text) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 0x100000001b3ull;
+  }
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+std::string PovrayVersion(const std::string& povray) {
+  FILE* p = popen((Quote(povray) + " --version 2>&1").c_str(), "r");
+  if (!p) return "";
+  std::string out;
+  char buf[256];
+  while (std::fgets(buf, sizeof buf, p)) out += buf;
+  const int rc = pclose(p);
+  if (rc != 0) return "";
+  std::istringstream lines(out);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.rfind("POV-Ray", 0) == 0) return line;
+  }
+  return "";
+}
+
+std::vector<cv::Mat> RenderPov(const std::string& scene_text, const Camera& camera,
+                               int subframes, int aa_depth, const std::string& work_dir,
+                               const std::string& povray) {
+  fs::remove_all(work_dir);
+  fs::create_directories(work_dir);
+  struct Cleanup {
+    std::string dir;
+    ~Cleanup() {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+    }
+  } cleanup{work_dir};
+  std::ofstream(work_dir + "/scene.pov") << scene_text;
+  const int top = camera.RenderTop();
+  // +SR/+ER are 1-based; only the output's rows are traced. File_Gamma=1: linear values.
+  std::string cmd = "cd " + Quote(work_dir) + " && " + Quote(povray) +
+                    " +Iscene.pov +Oslice.png +FN16 File_Gamma=1.0 -D +WT1 -V +W" +
+                    std::to_string(camera.width) + " +H" +
+                    std::to_string(camera.RenderHeight()) + " +SR" + std::to_string(top + 1) +
+                    " +ER" + std::to_string(top + camera.height) +
+                    (aa_depth > 0 ? " +A0.02 +AM2 -J +R" + std::to_string(aa_depth) : std::string(" -A"));
+  if (subframes > 1) cmd += " +KFI0 +KFF" + std::to_string(subframes - 1);
+  cmd += " > povray.log 2>&1";
+  const int rc = std::system(cmd.c_str());
+  std::vector<std::string> files;
+  for (const auto& de : fs::directory_iterator(work_dir)) {
+    const std::string name = de.path().filename().string();
+    if (name.rfind("slice", 0) == 0 && de.path().extension() == ".png") files.push_back(name);
+  }
+  std::sort(files.begin(), files.end());  // slice00.png ...: fixed width, so sorted = in order
+  if (rc != 0 || int(files.size()) != subframes) {
+    throw InputError(povray + " failed in " + work_dir + " (exit " + std::to_string(rc) + ", " +
+                     std::to_string(files.size()) + " of " + std::to_string(subframes) +
+                     " images): " + LastLines(ReadAll(work_dir + "/povray.log"), 3));
+  }
+  std::vector<cv::Mat> out;
+  for (const std::string& f : files) {
+    const std::string path = work_dir + "/" + f;
+    cv::Mat img = cv::imread(path, cv::IMREAD_UNCHANGED);
+    if (img.empty() || img.depth() != CV_16U) throw InputError(path + ": not a 16-bit PNG");
+    if (img.channels() == 3) cv::cvtColor(img, img, cv::COLOR_BGR2GRAY);
+    if (img.channels() == 4) cv::cvtColor(img, img, cv::COLOR_BGRA2GRAY);
+    if (img.rows != camera.RenderHeight() || img.cols != camera.width) {
+      throw InputError(path + ": unexpected size " + std::to_string(img.cols) + "x" +
+                       std::to_string(img.rows));
+    }
+    cv::Mat grey;
+    img(cv::Rect(0, top, camera.width, camera.height)).convertTo(grey, CV_32F, 1.0 / 65535.0);
+    out.push_back(grey);
+  }
+  return out;
+}
+
+FootageResult WriteFootage(const Motion& motion, const FootageOptions& options_in,
+                           const std::string& output) {
+  options_in.Check();
+  if (motion.t.empty()) throw InputError(output + ": no frames to render");
+  const auto start = std::chrono::steady_clock::now();
+  FootageOptions o = options_in;
+  if (std::isnan(o.camera.centre_x)) {
+    double sum = 0;
+    for (double t : motion.t) {
+      const Instant s = motion.at(t);
+      sum += 0.5 * (s.left.x() + s.right.x());
+    }
+    o.camera.centre_x = sum / double(motion.t.size());
+  }
+  const std::string version = PovrayVersion(o.povray);
+  if (version.empty()) {
+    throw InputError(o.povray + ": POV-Ray does not run (Debian package povray)");
+  }
+  const size_t n = motion.t.size();
+  const int slices = o.exposure_s > 0 ? o.subframes : 1;
+  std::vector<std::string> scenes(n);
+  std::string all = PostProcessKey(o, version);
+  for (size_t i = 0; i < n; ++i) {
+    scenes[i] = SceneText(o.lighting, o.shape, o.camera, o.scene,
+                          Slices(motion, i, o.exposure_s, slices));
+    all += scenes[i];
+  }
+  const std::string truth = TruthCsv(motion, o);
+  FootageResult result;
+  result.frames = n;
+  result.scene_hash = HashText(all + truth);
+  if (o.reuse && fs::is_directory(output) && RecordedHash(output) == result.scene_hash) {
+    result.reused = true;
+    return result;
+  }
+  // A stale cache is ours to replace.
+  const bool replace = o.force || (o.reuse && fs::exists(output + "/footage.json"));
+  AtomicOutput out(output, replace, AtomicOutput::Kind::kDirectory);
+  fs::create_directories(out.temp_path() + "/pov");
+  for (size_t i = 0; i < n; ++i) {
+    std::ofstream(out.temp_path() + "/pov/" + FrameName(i).replace(13, 3, "pov")) << scenes[i];
+  }
+
+  std::atomic<size_t> next{0}, done{0};
+  std::atomic<double> povray_seconds{0};
+  std::mutex error_mutex;
+  std::string error;
+  auto worker = [&]() {
+    for (size_t i = next++; i < n && !InterruptRequested(); i = next++) {
+      try {
+        const auto t0 = std::chrono::steady_clock::now();
+        const std::vector<cv::Mat> imgs =
+            RenderPov(scenes[i], o.camera, slices, o.aa_depth,
+                      out.temp_path() + "/.work_" + std::to_string(i), o.povray);
+        const double s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        for (double cur = povray_seconds; !povray_seconds.compare_exchange_weak(cur, cur + s);) {
+        }
+        const std::string path = out.temp_path() + "/" + FrameName(i);
+        if (!cv::imwrite(path, PostProcess(imgs, o, i))) throw InputError(path + ": cannot write");
+      } catch (const std::exception& e) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (error.empty()) error = e.what();
+        next = n;
+      }
+      ++done;
+    }
+  };
+  ProgressMeter progress("povray " + ToString(o.lighting), "frames", double(n), !o.quiet);
+  std::vector<std::thread> pool;
+  for (int k = 0; k < std::min<int>(o.jobs, int(n)); ++k) pool.emplace_back(worker);
+  while (done < n && !InterruptRequested()) {
+    {
+      std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error.empty()) break;
+    }
+    progress.Update(double(done));
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  for (auto& t : pool) t.join();
+  if (!error.empty()) throw InputError(error);
+  if (InterruptRequested()) throw Interrupted();
+  progress.Finish(double(n));
+  result.povray_seconds_per_frame = povray_seconds / double(n);
+  std::ofstream(out.temp_path() + "/truth.csv") << truth;
+  std::ofstream(out.temp_path() + "/footage.json")
+      << Sidecar(motion, o, version, result.scene_hash, result.povray_seconds_per_frame);
+  out.Commit();
+  result.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace dimer::footage
