@@ -20,6 +20,8 @@ constexpr size_t kMinSamples = 3;
 // Registration of the samples to the mean: whole-pixel search, px (rough centres of the
 // existing methods scatter by up to ~2 px on footage they do not suit).
 constexpr int kLearnSearchPx = 4;
+// Re-centring on the plate contact only when the rough centres are off by more than this, px.
+constexpr double kRecentreMinPx = 1.0;
 // Symmetry: levels above this quantile of the appearance are clipped to it (highlights).
 constexpr double kSymmetryClipQuantile = 0.9;
 // Symmetry from the rim: the ring [R - kRimInsidePx, R + kRimOutsidePx] holds the outline and
@@ -89,8 +91,32 @@ Appearance Average(const std::vector<cv::Mat>& images, const std::vector<Learnin
 
 }  // namespace
 
+namespace {
+
+// Learns sphere k's appearance from `start` positions (one per used sample): kLearnPasses of
+// averaging and registration to the mean. Invalid appearance if too few samples.
+void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
+              const std::vector<size_t>& used, int k, int half, double radius_px,
+              std::vector<Eigen::Vector2d> pos, LearntSphere* s) {
+  Appearance a;
+  for (int pass = 0; pass <= kLearnPasses; ++pass) {
+    a = Average(images, samples, used, pos, k, half, radius_px);
+    if (!a.valid()) return;
+    // Register every sample to the mean (the last pass only to report where they sit).
+    for (size_t i = 0; i < used.size(); ++i) {
+      const Located l = LocateAppearance(samples[used[i]].image, a, pos[i], kLearnSearchPx,
+                                         ContextOf(samples[used[i]], k));
+      if (l.ok) pos[i] = l.position;
+    }
+  }
+  s->appearance = a;
+  s->registered = pos;
+}
+
+}  // namespace
+
 std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& samples,
-                                             double radius_px) {
+                                             double radius_px, bool recentre) {
   std::array<LearntSphere, 2> out;
   std::vector<cv::Mat> images(samples.size());
   std::vector<size_t> used;
@@ -102,23 +128,32 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   if (used.size() < kMinSamples || !(radius_px > 0)) return out;
   const int half = int(std::ceil(radius_px + kTemplateMarginPx));
   for (int k = 0; k < 2; ++k) {
-    LearntSphere& s = out[k];
-    s.samples = used;
-    for (size_t j : used) s.rough.push_back(samples[j].centre[k]);
-    std::vector<Eigen::Vector2d> pos = s.rough;
-    Appearance a;
-    for (int pass = 0; pass <= kLearnPasses; ++pass) {
-      a = Average(images, samples, used, pos, k, half, radius_px);
-      if (!a.valid()) return {};
-      // Register every sample to the mean (the last pass only to report where they sit).
-      for (size_t i = 0; i < used.size(); ++i) {
-        const Located l = LocateAppearance(samples[used[i]].image, a, pos[i], kLearnSearchPx,
-                                           ContextOf(samples[used[i]], k));
-        if (l.ok) pos[i] = l.position;
-      }
+    out[k].samples = used;
+    for (size_t j : used) out[k].rough.push_back(samples[j].centre[k]);
+    LearnOne(images, samples, used, k, half, radius_px, out[k].rough, &out[k]);
+    if (!out[k].appearance.valid()) return {};
+  }
+  if (!recentre) return out;
+  // Rough centres of footage that is not made of silhouettes can be pixels off (vertically:
+  // the visible part of a front-lit steel sphere is its lower half), and a template framed
+  // around them would cut the sphere and misplace the rod and plate cuts. The sphere that rests
+  // in the learning frames tells how far: no sphere sinks below plate - R, so the smallest
+  // (plate - R - row) over both spheres is the provisional row offset; both appearances are
+  // learnt again around their rough centres shifted by it (the final offset is estimated on
+  // the whole track, appearance_model.h).
+  double shift = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 2; ++k) {
+    for (size_t i = 0; i < used.size(); ++i) {
+      const double g = samples[used[i]].plate_row - radius_px - out[k].registered[i].y();
+      if (std::isfinite(g)) shift = std::min(shift, g);
     }
-    s.appearance = a;
-    s.registered = pos;
+  }
+  if (!std::isfinite(shift) || std::abs(shift) < kRecentreMinPx) return out;
+  for (int k = 0; k < 2; ++k) {
+    std::vector<Eigen::Vector2d> start = out[k].registered;
+    for (Eigen::Vector2d& p : start) p.y() += shift;
+    LearnOne(images, samples, used, k, half, radius_px, start, &out[k]);
+    if (!out[k].appearance.valid()) return {};
   }
   return out;
 }

@@ -62,8 +62,10 @@ struct LearntSphere {
 };
 
 // Both spheres' appearances (0 left, 1 right); invalid appearance if too few samples.
+// `recentre` (footage without clean silhouettes): the templates are framed again around the
+// rough centres shifted by a provisional row offset from the plate contact (see the .cc).
 std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& samples,
-                                             double radius_px);
+                                             double radius_px, bool recentre);
 
 struct OffsetEstimate {
   double value = 0;                                        // px, reference -> centre

@@ -38,7 +38,8 @@ bool CleanSilhouette(const cv::Mat& frame, const Eigen::Vector2d& centre, double
       if (d.dot(dir) > 0 && std::abs(d.x() * dir.y() - d.y() * dir.x()) < rod_half) continue;
       const double r = d.norm() - radius_px;
       const double v = frame.depth() == CV_8U ? frame.at<uint8_t>(y, x) : frame.at<uint16_t>(y, x);
-      if (r <= -kRingInnerPx && r > -kRingInnerPx - kRingWidthPx) in.push_back(v);
+      const double rr = d.norm() / radius_px;
+      if (rr >= kBodyInnerR && rr <= kBodyOuterR) in.push_back(v);
       if (r >= kRingInnerPx && r < kRingInnerPx + kRingWidthPx) out.push_back(v);
     }
   }
@@ -57,8 +58,8 @@ MethodChoice ChooseMethod(const std::vector<FrameTrack>& probes,
     const FrameTrack& f = probes[i];
     for (int k = 0; k < 2; ++k) {
       ++total;
-      if (f.found[k] && (f.mirror[k] || !clean[i][k])) ++mirror;
-      if (f.found[k] && !f.mirror[k] && clean[i][k]) ++uniform;
+      if (f.found[k] && !clean[i][k]) ++mirror;
+      if (f.found[k] && clean[i][k]) ++uniform;
     }
   }
   MethodChoice c;

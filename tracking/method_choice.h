@@ -21,12 +21,16 @@ namespace dimer::tracking {
 // Fraction of sphere measurements (two per learning frame) that must be clean silhouettes for
 // auto to keep the centroid.
 inline constexpr double kAutoUniformFraction = 0.9;
-// A clean silhouette: the ring just inside the edge and the ring just outside are each uniform,
-// and their levels differ by at least this many times the larger robust spread of the two. A
-// sphere that is dark above and bright below (steel reflecting a lit plate) passes the refiner's
-// level test from one side (the polarity follows the frame's median) but fails this one.
+// A clean silhouette: the sphere's body (the annulus [0.4 R, 0.8 R]) and the ring just outside
+// its edge are each uniform, and their levels differ by at least this many times the larger
+// robust spread of the two. A sphere that is dark above and bright below (steel reflecting a lit
+// plate) passes the refiner's level test from one side (the polarity follows the frame's
+// median) but fails this one. The outer few pixels of the body are left out: a steel sphere in
+// front of a glowing backdrop reflects it at grazing angles, a thin bright rim that does not
+// bias a silhouette's centroid.
 inline constexpr double kCleanContrastToSpread = 8.0;
-// The rings: [R - 3.5, R - 1.5] inside and [R + 1.5, R + 3.5] outside, px.
+inline constexpr double kBodyInnerR = 0.4, kBodyOuterR = 0.8;
+// The outside ring: [R + 1.5, R + 3.5], px.
 inline constexpr double kRingInnerPx = 1.5, kRingWidthPx = 2.0;
 
 // Whether the sphere at `centre` (radius R) in `frame` is a clean silhouette; the rod (toward

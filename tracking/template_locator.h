@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 #include <limits>
+#include <vector>
 
 namespace dimer::tracking {
 

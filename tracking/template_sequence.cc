@@ -44,7 +44,7 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
   }
   m.choice = ChooseMethod(probes, clean, requested);
   if (m.choice.method != Method::kTemplate) return m;
-  m.learnt = LearnAppearances(samples, reference.radius_px);
+  m.learnt = LearnAppearances(samples, reference.radius_px, !m.choice.silhouettes);
   if (!m.learnt[0].appearance.valid() || !m.learnt[1].appearance.valid()) {
     // Nothing to learn from (fewer than 3 learning frames with both spheres): the silhouette
     // methods are what is left.

@@ -153,7 +153,10 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
         }
         TrackerOptions reference = options.tracker;
         reference.polarity = ref.polarity;
-        reference.radius_px = ref.radius_px;
+        // The template is sized by the true radius when the scale is known (the silhouette
+        // radius of a front-lit steel sphere can be pixels short).
+        reference.radius_px = std::isfinite(options.contact_radius_px) ? options.contact_radius_px
+                                                                       : ref.radius_px;
         prepared = PrepareSequenceMethod(learning, reference, options.tracker.method);
         chunk_opts.method = prepared.choice.method;
         chunk_opts.appearance = prepared.appearance;

@@ -20,6 +20,7 @@ constexpr double kProvisionalRadiusScale = 1.25;
 // Template method: whole-pixel search around a prediction (< 1 px per frame at 2000 frames/s)
 // and around an acquisition's coarse match (its parabola is within ~0.5 px), px.
 constexpr int kFollowSearchPx = 2;
+constexpr int kAcquireSearchPx = 4;
 // A learnt appearance is found where its correlation coefficient reaches this (a present sphere
 // scores > 0.9 at sigma = 2; an empty window or the plate scores far less).
 constexpr double kMinTemplateScore = 0.5;
@@ -98,7 +99,6 @@ bool SequenceTracker::Follow(const cv::Mat& frame, FrameTrack* out) {
     out->found[k] = true;
     out->centre[k] = m.centre;
     out->radius_px[k] = m.radius_px;
-    out->mirror[k] = m.rim_fit;
   }
   return true;
 }
@@ -171,7 +171,7 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
   if (uses_template()) {
     for (size_t i = 0; i < found.size(); ++i) {
       const Eigen::Vector2d* other = found.size() == 2 ? &found[1 - i].centre : nullptr;
-      found[i] = Locate(frame, slot_of[i], found[i].centre, other, out->plate_row, kFollowSearchPx);
+      found[i] = Locate(frame, slot_of[i], found[i].centre, other, out->plate_row, kAcquireSearchPx);
     }
   }
   for (size_t i = 0; i < found.size(); ++i) {
@@ -179,7 +179,6 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
     out->found[slot_of[i]] = true;
     out->centre[slot_of[i]] = found[i].centre;
     out->radius_px[slot_of[i]] = found[i].radius_px;
-    out->mirror[slot_of[i]] = found[i].rim_fit;
   }
 }
 

@@ -38,7 +38,6 @@ struct FrameTrack {
   std::array<bool, 2> found{false, false};
   std::array<Eigen::Vector2d, 2> centre{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};  // px
   std::array<double, 2> radius_px{0, 0};           // measured radius (for calibration), px
-  std::array<bool, 2> mirror{false, false};        // non-uniform sphere (rim fit), for auto
   double plate_row = std::numeric_limits<double>::quiet_NaN();  // plate top surface, px
   bool acquired = false;                           // whole-frame detection was needed
 };
