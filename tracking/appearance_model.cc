@@ -1,7 +1,6 @@
 #include "tracking/appearance_model.h"
 
 #include <opencv2/imgproc.hpp>
-#include <opencv2/video/tracking.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -217,20 +216,13 @@ namespace {
 
 // Axis of mirror symmetry of `image` about its centre column (relative to it), by registering
 // the image to its own mirror image: A_f(x) = A(2 h - x); A_f(x + t) = A(x) gives axis -t/2.
-bool SymmetryAxis(const cv::Mat& image, const cv::Mat& mask, int half, double* axis) {
+bool SymmetryAxis(const cv::Mat& image, const cv::Mat& mask, double* axis) {
   cv::Mat flipped, flipped_mask;
   cv::flip(image, flipped, 1);
   cv::flip(mask, flipped_mask, 1);
-  cv::Mat warp = cv::Mat::eye(2, 3, CV_32F);
-  try {
-    cv::findTransformECC(image, flipped, warp, cv::MOTION_TRANSLATION,
-                         cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 50, 1e-7),
-                         flipped_mask & mask, 5);
-  } catch (const cv::Exception&) {
-    return false;
-  }
-  (void)half;
-  *axis = -0.5 * warp.at<float>(0, 2);
+  Eigen::Vector2d t(0, 0);
+  if (!RegisterTranslation(image, flipped, flipped_mask & mask, &t)) return false;
+  *axis = -0.5 * t.x();
   return std::isfinite(*axis);
 }
 
@@ -254,8 +246,8 @@ OffsetEstimate SymmetryColumnOffset(const Appearance& a) {
   cv::circle(rim, cv::Point(a.half, a.half), int(std::lround(a.radius_px - kRimInsidePx)),
              cv::Scalar(0), cv::FILLED);
   double at_rim = 0, whole = 0;
-  if (!SymmetryAxis(clipped, a.mask & rim, a.half, &at_rim)) return OffsetEstimate{0, NAN, 0, "none"};
-  if (!SymmetryAxis(clipped, a.mask, a.half, &whole)) whole = at_rim;
+  if (!SymmetryAxis(clipped, a.mask & rim, &at_rim)) return OffsetEstimate{0, NAN, 0, "none"};
+  if (!SymmetryAxis(clipped, a.mask, &whole)) whole = at_rim;
   e.value = at_rim;
   // Where the rim and the whole (clipped) appearance disagree, the lighting is not symmetric:
   // half the difference is the uncertainty.

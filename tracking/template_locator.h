@@ -50,6 +50,12 @@ struct Located {
   double score = 0;             // correlation coefficient at the peak (-1..1)
 };
 
+// Translation t with moving(x + t) ~ fixed(x) over `mask` (moving's pixels, CV_8U), starting
+// from *t: cv::findTransformECC, then once more on `moving` pre-shifted by Lanczos
+// interpolation. False when ECC does not converge. Both images CV_32F, same size.
+bool RegisterTranslation(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
+                         Eigen::Vector2d* t);
+
 // Searches +-search_px (whole pixels) around `guess`, then refines. `frame` is CV_8U or CV_16U
 // (or CV_32F), single channel.
 Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
