@@ -257,4 +257,24 @@ OffsetEstimate SymmetryColumnOffset(const Appearance& a) {
   return e;
 }
 
+OffsetEstimate TransferOffset(const Appearance& from, const Appearance& to,
+                              const OffsetEstimate& from_offset, int axis) {
+  if (!from.valid() || !to.valid() || from.image.size() != to.image.size()) {
+    return OffsetEstimate{0, NAN, 0, "none"};
+  }
+  // to(x + t) = from(x): the centre, at reference + offset in `from`, is at that + t in `to`.
+  Eigen::Vector2d forward(0, 0), backward(0, 0);
+  const cv::Mat both = from.mask & to.mask;
+  if (!RegisterTranslation(from.image, to.image, both, &forward) ||
+      !RegisterTranslation(to.image, from.image, both, &backward)) {
+    return OffsetEstimate{0, NAN, 0, "none"};
+  }
+  OffsetEstimate e;
+  e.value = from_offset.value + 0.5 * (forward(axis) - backward(axis));
+  e.err = std::hypot(from_offset.err, 0.5 * std::abs(forward(axis) + backward(axis)));
+  e.n = from_offset.n;
+  e.source = "plate_contact_of_other";
+  return e;
+}
+
 }  // namespace dimer::tracking

@@ -81,5 +81,19 @@ OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
                                 const std::vector<double>& plate_rows, double radius_px);
 // Symmetry axis of the appearance, relative to its reference column.
 OffsetEstimate SymmetryColumnOffset(const Appearance& a);
+// A plate-contact estimate rests on a resting sphere when at least this many frames are in its
+// cluster; fewer (a sphere that only lands now and then, or never in the footage) and the
+// lowest frames are flight, not contact.
+inline constexpr size_t kMinRestingFrames = 5;
+// A sphere with fewer than this fraction of the other's contact frames bounces while the other
+// rests (drift): it takes the other's row offset (TransferOffset).
+inline constexpr double kTransferBelowFraction = 0.5;
+// The other sphere's offset carried over: two steel spheres under the same lights look alike,
+// so the shift that registers appearance `to` onto appearance `from` (cv::findTransformECC)
+// carries `from`'s offset (axis 0 column, 1 row) to `to`'s reference. Source
+// "plate_contact_of_other". The uncertainty adds the registration's asymmetry (forward vs
+// backward) to `from`'s.
+OffsetEstimate TransferOffset(const Appearance& from, const Appearance& to,
+                              const OffsetEstimate& from_offset, int axis);
 
 }  // namespace dimer::tracking

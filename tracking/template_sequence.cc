@@ -75,6 +75,18 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
     o.row[k] = ContactRowOffset(rows, plate, contact_radius_px);
     o.col[k] = SymmetryColumnOffset(m.learnt[k].appearance);
   }
+  if (m.choice.silhouettes) return o;
+  // The sphere that rests longer (more frames in its contact cluster) sets the contact; the
+  // other one, if it rests much less (it bounces: the frames near its impacts are flight, up to
+  // a few tenths of a pixel above contact, and bias its own estimate upward), gets that offset
+  // carried over by registering the two appearances.
+  const int ref = o.row[1].n > o.row[0].n ? 1 : 0, other = 1 - ref;
+  if (o.row[ref].source == "plate_contact" && o.row[ref].n >= kMinRestingFrames &&
+      double(o.row[other].n) < kTransferBelowFraction * double(o.row[ref].n)) {
+    const OffsetEstimate t = TransferOffset(m.learnt[ref].appearance, m.learnt[other].appearance,
+                                            o.row[ref], 1);
+    if (t.source != "none") o.row[other] = t;
+  }
   return o;
 }
 

@@ -439,11 +439,12 @@ void RunTrack(const TrackArgs& args) {
     throw InputError(args.input + ": no readable frame (all " +
                      std::to_string(r.skipped.size()) + " were skipped)");
   }
-  if (!r.method_reason.empty()) {
+  // The choice and its evidence (also in the file); -q keeps stderr empty on success.
+  if (!r.method_reason.empty() && !args.quiet) {
     std::fprintf(stderr, "dimerlab track: method %s -> %s (reason: %s)\n", args.method.c_str(),
                  ToString(r.method).c_str(), r.method_reason.c_str());
   }
-  if (r.method == Method::kTemplate) {
+  if (r.method == Method::kTemplate && !args.quiet) {
     for (int k = 0; k < 2; ++k) {
       const OffsetEstimate &c = r.offsets.col[k], &w = r.offsets.row[k];
       std::fprintf(stderr,
