@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "common/h5_file.h"
+#include "tests/common/test_tmpdir.h"
 #include "tests/tracking/synthetic.h"
 #include "tracking/render.h"
 #include "tracking/track.h"
@@ -125,6 +127,44 @@ TEST(MethodTemplate, MirrorSpheresAfterTheOffsetAndIdenticalForOneAndTwoThreads)
       EXPECT_LT(std::abs(s.bias[k][a]), 0.1) << "sphere " << k << " axis " << a;
     }
   }
+}
+
+TEST(RunTrack, AutoStatesItsChoiceOnStderrAndInTheFileWithTheTemplatesOffsets) {
+  dimer::testing::TempDir dir;
+  testing::WriteSimFile(dir / "sim.h5", testing::DriftTrajectory(24, 2000.0), 2000.0);
+  RenderArgs ra;
+  ra.input = dir / "sim.h5";
+  ra.output = dir / "frames";
+  ra.quiet = true;
+  ra.image.lighting = Lighting::kReflect;
+  RunRender(ra);
+  TrackArgs t;
+  t.input = dir / "frames";
+  t.output = dir / "track.h5";
+  t.m_per_px = 2e-4;
+  t.sequence.chunk_frames = 8;
+  t.quiet = false;
+  ::testing::internal::CaptureStderr();
+  RunTrack(t);  // method: the default, auto
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("dimerlab track: method auto -> template (reason: "), std::string::npos) << err;
+  EXPECT_NE(err.find("left sphere: offset to the centre col "), std::string::npos) << err;
+  H5Reader h(t.output);
+  EXPECT_EQ(h.AttrString("/", "method"), "template");
+  EXPECT_EQ(h.AttrString("/", "method_requested"), "auto");
+  EXPECT_NE(h.AttrString("/", "method_reason").value_or("").find("clean silhouettes"), std::string::npos);
+  Dims dims;
+  const std::vector<double> offset = h.ReadDoubles("/template/offset", &dims);
+  EXPECT_EQ(dims, (Dims{2, 2}));
+  const std::vector<double> offset_err = h.ReadDoubles("/template/offset_err");
+  for (double e : offset_err) EXPECT_TRUE(std::isfinite(e) && e > 0 && e < 0.2) << e;
+  const std::vector<std::string> sources = h.ReadStrings("/template/offset_source");
+  ASSERT_EQ(sources.size(), 4u);
+  EXPECT_EQ(sources[1], "plate_contact");  // the left sphere rests
+  EXPECT_EQ(sources[0], "symmetry");
+  h.ReadDoubles("/template/left", &dims);
+  EXPECT_EQ(dims[0], dims[1]);
+  EXPECT_EQ(dims[0] % 2, 1u);
 }
 
 }  // namespace
