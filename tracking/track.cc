@@ -283,6 +283,7 @@ void WriteTemplateGroup(H5Writer& w, const SequenceResult& r) {
   w.SetAttr("/template/offset_err", "description", "standard uncertainty of /template/offset");
   w.WriteInt64("/template/offset_frames", frames, {2, 2});
   w.SetAttr("/template/offset_frames", "units", "1");
+  w.SetAttr("/template/offset_frames", "columns", "col,row");
   w.SetAttr("/template/offset_frames", "description", "frames each offset rests on");
   w.WriteStrings("/template/offset_source", sources);
   w.SetAttr("/template/offset_source", "description",
@@ -293,11 +294,15 @@ void WriteTemplateGroup(H5Writer& w, const SequenceResult& r) {
     std::vector<uint8_t> mask(a.mask.begin<uint8_t>(), a.mask.end<uint8_t>());
     const std::string name = std::string("/template/") + (k == 0 ? "left" : "right");
     const size_t size = size_t(a.image.rows);
-    w.WriteDoubles(name, img, {size, size}, "grey levels");
+    std::string columns;  // each column's offset from the reference column, px
+    for (int x = -a.half; x <= a.half; ++x) columns += (columns.empty() ? "" : ",") + std::to_string(x);
+    w.WriteDoubles(name, img, {size, size}, "grey levels", columns);
     w.SetAttr(name, "description",
               "the learnt appearance, reference point at the centre pixel; frame grey levels");
     w.WriteUint8(name + "_mask", mask, {size, size});
+    w.SetAttr(name + "_mask", "columns", columns);
     w.SetAttr(name + "_mask", "codes", "0=not part of the sphere's appearance (rod, plate, unseen),1=used");
+    w.SetAttr(name + "_mask", "description", "which pixels of the learnt appearance are used");
   }
 }
 
