@@ -63,7 +63,7 @@ Eigen::Vector2d PeakWithVertex(const cv::Mat& res, const cv::Point& p) {
 }  // namespace
 
 bool RegisterTranslation(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
-                         Eigen::Vector2d* t) {
+                         Eigen::Vector2d* t, double* rho) {
   const cv::TermCriteria stop(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, kEccMaxIter,
                               kEccEpsilon);
   cv::Mat warp = (cv::Mat_<float>(2, 3) << 1, 0, float(t->x()), 0, 1, float(t->y()));
@@ -82,8 +82,9 @@ bool RegisterTranslation(const cv::Mat& fixed, const cv::Mat& moving, const cv::
     cv::warpAffine(mask, shifted_mask, shift, mask.size(),
                    cv::INTER_NEAREST | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT, cv::Scalar(0));
     cv::Mat residual = cv::Mat::eye(2, 3, CV_32F);
-    cv::findTransformECC(fixed, shifted, residual, cv::MOTION_TRANSLATION, stop, shifted_mask,
-                         kEccGaussSize);
+    const double r = cv::findTransformECC(fixed, shifted, residual, cv::MOTION_TRANSLATION, stop,
+                                          shifted_mask, kEccGaussSize);
+    if (rho) *rho = r;
     *t = {tx + residual.at<float>(0, 2), ty + residual.at<float>(1, 2)};
   } catch (const cv::Exception&) {
     return false;
@@ -130,15 +131,18 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   }
   cv::Mat mask = FrameMask(a, guess, ctx);
   if (cv::countNonZero(mask) < kMinMaskedFraction * size * size) return out;
-  cv::Mat res;
-  cv::matchTemplate(ToFloat(frame(search)), a.image, res, cv::TM_CCOEFF_NORMED, mask);
-  cv::patchNaNs(res, -1.0);  // a flat window has no defined correlation
-  double best = 0;
-  cv::Point at;
-  cv::minMaxLoc(res, nullptr, &best, nullptr, &at);
-  out.score = best;
-  const Eigen::Vector2d peak = PeakWithVertex(res, at);
-  const Eigen::Vector2d start(search.x + peak.x() + a.half, search.y + peak.y() + a.half);
+  Eigen::Vector2d start = guess;
+  if (search_px > 0) {
+    cv::Mat res;
+    cv::matchTemplate(ToFloat(frame(search)), a.image, res, cv::TM_CCOEFF_NORMED, mask);
+    cv::patchNaNs(res, -1.0);  // a flat window has no defined correlation
+    double best = 0;
+    cv::Point at;
+    cv::minMaxLoc(res, nullptr, &best, nullptr, &at);
+    out.score = best;
+    const Eigen::Vector2d peak = PeakWithVertex(res, at);
+    start = {search.x + peak.x() + a.half, search.y + peak.y() + a.half};
+  }
 
   // ECC: the frame patch is ECC's template, the appearance its input image, so that the
   // appearance's mask (input mask) moves with the sphere. It finds t with A(x + t) = F(x): the
@@ -146,16 +150,20 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   const cv::Point g2(int(std::lround(start.x())), int(std::lround(start.y())));
   const cv::Rect patch(g2.x - a.half, g2.y - a.half, size, size);
   out.position = start;
-  out.ok = true;
+  out.ok = search_px > 0;  // without the search, only a converged ECC counts
   if (!Inside(frame, patch)) return out;
   const cv::Mat frame_patch = ToFloat(frame(patch));
   const cv::Mat refine_mask = FrameMask(a, start, ctx);
   Eigen::Vector2d t(g2.x - start.x(), g2.y - start.y());
-  if (!RegisterTranslation(frame_patch, a.image, refine_mask, &t)) {
+  double rho = 0;
+  if (!RegisterTranslation(frame_patch, a.image, refine_mask, &t, &rho)) {
     return out;  // ECC did not converge: the correlation peak stands
   }
   const Eigen::Vector2d refined(g2.x - t.x(), g2.y - t.y());
-  if ((refined - start).norm() <= kEccMaxMovePx) out.position = refined;
+  if ((refined - start).norm() <= kEccMaxMovePx) {
+    out.position = refined;
+    if (search_px == 0) out.ok = true, out.score = rho;
+  }
   return out;
 }
 std::vector<Located> FindAppearance(const cv::Mat& frame, const Appearance& a, double plate_row,

@@ -54,9 +54,11 @@ struct Located {
 // from *t: cv::findTransformECC, then once more on `moving` pre-shifted by Lanczos
 // interpolation. False when ECC does not converge. Both images CV_32F, same size.
 bool RegisterTranslation(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
-                         Eigen::Vector2d* t);
+                         Eigen::Vector2d* t, double* rho = nullptr);
 
-// Searches +-search_px (whole pixels) around `guess`, then refines. `frame` is CV_8U or CV_16U
+// Searches +-search_px (whole pixels) around `guess`, then refines. search_px = 0: no search,
+// ECC from the guess (a tracker's prediction), ok only if it converges within a pixel of it,
+// score = ECC's correlation coefficient. `frame` is CV_8U or CV_16U
 // (or CV_32F), single channel.
 Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
                          int search_px, const MaskContext& ctx);

@@ -74,6 +74,17 @@ SphereMeasurement SequenceTracker::Locate(const cv::Mat& frame, int sphere,
   return m;
 }
 
+// Following with the template: ECC straight from the prediction (no correlation search: the
+// search costs more than the refinement), the whole-pixel search only when that fails (a
+// prediction more than a pixel off, e.g. at an impact).
+SphereMeasurement SequenceTracker::FollowTemplate(const cv::Mat& frame, int k,
+                                                  const std::array<Eigen::Vector2d, 2>& predicted,
+                                                  double plate_row) const {
+  const SphereMeasurement m = Locate(frame, k, predicted[k], &predicted[1 - k], plate_row, 0);
+  if (m.found()) return m;
+  return Locate(frame, k, predicted[k], &predicted[1 - k], plate_row, kFollowSearchPx);
+}
+
 double SequenceTracker::PlateRow(const cv::Mat& frame, double guess,
                                  const std::array<Eigen::Vector2d, 2>& centres, int n) const {
   std::vector<std::pair<double, double>> excluded;
@@ -93,7 +104,7 @@ bool SequenceTracker::Follow(const cv::Mat& frame, FrameTrack* out) {
     ctx.precise_guess = true;  // constant-velocity prediction, < 1 px per frame at 2000 frames/s
     const SphereMeasurement m =
         uses_template()
-            ? Locate(frame, k, predicted[k], &predicted[1 - k], out->plate_row, kFollowSearchPx)
+            ? FollowTemplate(frame, k, predicted, out->plate_row)
             : MeasureSphere(frame, predicted[k], radius_px_, ctx, options_.method);
     if (!m.found()) return false;
     out->found[k] = true;

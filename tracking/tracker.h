@@ -55,6 +55,9 @@ class SequenceTracker {
   bool uses_template() const;
   SphereMeasurement Locate(const cv::Mat& frame, int sphere, const Eigen::Vector2d& guess,
                            const Eigen::Vector2d* other, double plate_row, int search_px) const;
+  SphereMeasurement FollowTemplate(const cv::Mat& frame, int k,
+                                   const std::array<Eigen::Vector2d, 2>& predicted,
+                                   double plate_row) const;
   double PlateRow(const cv::Mat& frame, double guess,
                   const std::array<Eigen::Vector2d, 2>& centres, int n) const;
   void Commit(const FrameTrack& t);
