@@ -3,7 +3,10 @@
 // Prints, per method: RMS error and pixel locking on uniform discs at sigma = 2 with the
 // Cramér-Rao bound computed from the exact disc model; scatter about the bias on reflect-lit
 // spheres (both methods end with the rim fit on mirror spheres); in-memory tracking rate on 1
-// and all cores for uniform and mirror spheres; and PNG decode-only vs end-to-end rates. It also
+// and all cores for uniform and mirror spheres; the sequence-level methods (template, auto)
+// against the centroid on a resting + bouncing sequence, reflect and backlit (worst bias and
+// scatter over both spheres and axes after the template's offset, rates with the learning
+// included); and PNG decode-only vs end-to-end rates. It also
 // prints the load average and how many cores a busy loop really gets, since the machine may be
 // shared.
 #include <opencv2/imgcodecs.hpp>
@@ -136,6 +139,79 @@ double InMemoryRate(Method method, const std::vector<cv::Mat>& frames, int threa
   return best;
 }
 
+// A sequence in memory for the sequence-level methods (template, auto): the left sphere rests
+// on the plate, the right one lifts up to 14 px and lands every 80 frames, the dimer creeps
+// 0.05 px per frame. Truth per frame.
+struct Sequence {
+  std::vector<cv::Mat> frames;
+  std::vector<SceneGeometry> truth;
+};
+Sequence HopSequence(int n, Lighting l) {
+  RenderOptions o;
+  o.lighting = l;
+  o.noise = kSigma;
+  Sequence q;
+  for (int i = 0; i < n; ++i) {
+    SceneGeometry s;
+    s.radius_px = kRadius;
+    s.rod_half_width_px = kRodHalf;
+    s.plate_row = 200;
+    s.left = {150 + 0.05 * i, 200 - kRadius};
+    const double lift = 14.0 * std::abs(std::sin(M_PI * i / 80.0));
+    const double d = 137.75;
+    s.right = s.left + Eigen::Vector2d(std::sqrt(d * d - lift * lift), -lift);
+    q.truth.push_back(s);
+    q.frames.push_back(RenderFrame({s}, o, i));
+  }
+  return q;
+}
+
+struct SequenceAccuracy {
+  double worst_bias = 0, worst_scatter = 0, found = 0, rate1 = 0, rate2 = 0;
+  std::string method;
+};
+
+SequenceAccuracy MeasureSequence(Method method, const Sequence& q, int cores) {
+  SequenceAccuracy a;
+  for (int threads : {1, cores}) {
+    double best = 0;
+    SequenceResult r;
+    for (int rep = 0; rep < 3; ++rep) {
+      MemorySource src(q.frames);
+      SequenceOptions opts;
+      opts.tracker.method = method;
+      opts.threads = threads;
+      opts.contact_radius_px = kRadius;  // the scale is known
+      const auto t0 = Clock::now();
+      r = TrackSequence(src, opts);
+      best = std::max(best, double(r.frames.size()) / Seconds(t0));
+    }
+    (threads == 1 ? a.rate1 : a.rate2) = best;
+    if (threads != 1) continue;
+    a.method = ToString(r.method);
+    double sum[2][2] = {}, sum2[2][2] = {};
+    size_t n = 0;
+    for (size_t i = 0; i < r.frames.size(); ++i) {
+      const FrameTrack& t = r.frames[i];
+      if (!t.found[0] || !t.found[1]) continue;
+      ++n;
+      for (int k = 0; k < 2; ++k) {
+        const Eigen::Vector2d e = t.centre[k] - (k == 0 ? q.truth[i].left : q.truth[i].right);
+        for (int ax = 0; ax < 2; ++ax) sum[k][ax] += e(ax), sum2[k][ax] += e(ax) * e(ax);
+      }
+    }
+    for (int k = 0; k < 2; ++k) {
+      for (int ax = 0; ax < 2; ++ax) {
+        const double b = sum[k][ax] / double(n);
+        a.worst_bias = std::max(a.worst_bias, std::abs(b));
+        a.worst_scatter = std::max(a.worst_scatter, std::sqrt(std::max(0.0, sum2[k][ax] / double(n) - b * b)));
+      }
+    }
+    a.found = double(n) / double(q.frames.size());
+  }
+  return a;
+}
+
 // How many cores this process really gets right now: CPU time over wall time of `threads`
 // busy loops (2.0 on an idle 2-core machine; less when another job competes).
 double AvailableCores(int threads) {
@@ -184,6 +260,21 @@ int main(int argc, char** argv) {
                 disc.rms, disc.rms / (std::sqrt(2.0) * crb), disc.locking, refl.scatter,
                 InMemoryRate(m, frames, 1), InMemoryRate(m, frames, cores),
                 InMemoryRate(m, mirror, cores));
+  }
+  // Sequence-level methods: learnt appearance (template) and the per-footage choice (auto),
+  // against the centroid, on a sequence with a resting and a bouncing sphere.
+  std::printf("\nSequences of %d frames (left sphere resting, right one bouncing; learning and "
+              "offset estimation included in the rates):\n\n", std::min(n, 800));
+  std::printf("| lighting | method asked | method run | worst |bias| (px) | worst scatter (px) | found | frames/s 1 thread | frames/s %d threads |\n", cores);
+  std::printf("|---|---|---|---|---|---|---|---|\n");
+  for (Lighting l : {Lighting::kReflect, Lighting::kBacklit}) {
+    const Sequence q = HopSequence(std::min(n, 800), l);
+    for (Method m : {Method::kCentroid, Method::kTemplate, Method::kAuto}) {
+      const SequenceAccuracy a = MeasureSequence(m, q, cores);
+      std::printf("| %s | %s | %s | %.4f | %.4f | %.1f %% | %.0f | %.0f |\n", ToString(l).c_str(),
+                  ToString(m).c_str(), a.method.c_str(), a.worst_bias, a.worst_scatter,
+                  100 * a.found, a.rate1, a.rate2);
+    }
   }
   // End to end from PNG files against decode only, both on all cores.
   const std::string dir = (std::filesystem::temp_directory_path() / "bench_tracking_png").string();

@@ -46,7 +46,9 @@ constexpr double kRadiusStartStepPx = 2.0;
 constexpr double kCoreShiftPx = 1.25;
 
 const std::pair<Method, const char*> kMethodNames[] = {{Method::kCentroid, "centroid"},
-                                                       {Method::kDiscFit, "discfit"}};
+                                                       {Method::kDiscFit, "discfit"},
+                                                       {Method::kTemplate, "template"},
+                                                       {Method::kAuto, "auto"}};
 
 using Window = PixelWindow;
 
@@ -554,7 +556,7 @@ Method ParseMethod(const std::string& name, const std::string& option) {
   for (const auto& [value, n] : kMethodNames) {
     if (name == n) return value;
   }
-  throw UsageError(option + " '" + name + "': expected centroid or discfit");
+  throw UsageError(option + " '" + name + "': expected auto, centroid, discfit or template");
 }
 
 SphereMeasurement MeasureSphere(const cv::Mat& frame, const Eigen::Vector2d& guess,

@@ -27,7 +27,10 @@
 
 namespace dimer::tracking {
 
-enum class Method { kCentroid, kDiscFit };
+// kTemplate and kAuto are sequence-level methods (track.h): the learnt appearance is located
+// per frame by template_locator.h, and auto chooses per footage (method_choice.h). Given to
+// MeasureSphere they measure as kCentroid.
+enum class Method { kCentroid, kDiscFit, kTemplate, kAuto };
 std::string ToString(Method m);
 Method ParseMethod(const std::string& name, const std::string& option = "--method");
 

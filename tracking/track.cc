@@ -119,6 +119,10 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
   bool have_ref = false;
   size_t next = 0;
   bool exhausted = false;
+  TrackerOptions chunk_opts = options.tracker;
+  SequenceMethod prepared;
+  const bool sequence_level = options.tracker.method == Method::kTemplate ||
+                              options.tracker.method == Method::kAuto;
   std::deque<std::future<ChunkResult>> inflight;
   auto launch = [&]() {
     std::vector<Frame> buffer;
@@ -139,9 +143,29 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
         Frame f = buffer.empty() ? source.Read(next + j) : buffer[j];
         if (f.error.empty()) ref = MakeReference(f.image, options.tracker), have_ref = true;
       }
+      if (have_ref && sequence_level) {
+        // Learning frames by index only (sequential sources: within the first chunk, which is
+        // decoded ahead anyway); the method and appearances are fixed before any chunk runs.
+        std::vector<Frame> learning;
+        for (size_t i : LearningIndices(buffer.empty() ? source.size() : buffer.size())) {
+          Frame f = buffer.empty() ? source.Read(i) : buffer[i];
+          if (f.error.empty() && f.image.cols == ref.width && f.image.rows == ref.height) {
+            learning.push_back(std::move(f));
+          }
+        }
+        TrackerOptions reference = options.tracker;
+        reference.polarity = ref.polarity;
+        // The template is sized by the true radius when the scale is known (the silhouette
+        // radius of a front-lit steel sphere can be pixels short).
+        reference.radius_px = std::isfinite(options.contact_radius_px) ? options.contact_radius_px
+                                                                       : ref.radius_px;
+        prepared = PrepareSequenceMethod(learning, reference, options.tracker.method);
+        chunk_opts.method = prepared.choice.method;
+        chunk_opts.appearance = prepared.appearance;
+      }
     }
     inflight.push_back(std::async(std::launch::async, TrackChunk, std::cref(source), next, count,
-                                  std::move(buffer), options.tracker, ref));
+                                  std::move(buffer), chunk_opts, ref));
     next += count;
     if (source.random_access() && next >= source.size()) exhausted = true;
   };
@@ -164,6 +188,15 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
     if (on_progress) on_progress(result.frames.size() + result.skipped.size());
   }
   if (InterruptRequested()) result.complete = false;
+  result.method = sequence_level ? prepared.choice.method : options.tracker.method;
+  result.method_reason = prepared.choice.reason;
+  if (chunk_opts.appearance) {
+    result.appearance = *chunk_opts.appearance;
+    const double r = std::isfinite(options.contact_radius_px) ? options.contact_radius_px
+                                                              : ref.radius_px;
+    result.offsets = EstimateOffsets(prepared, result.frames, r);
+    ApplyOffsets(result.offsets, &result.frames);
+  }
   result.polarity = ref.polarity;
   result.width = ref.width;
   result.height = ref.height;
@@ -254,6 +287,51 @@ std::string TriggerTimeText(int64_t seconds, int64_t fraction) {
   return out;
 }
 
+// The template method's learnt appearances and offsets (docs/FORMATS.md).
+void WriteTemplateGroup(H5Writer& w, const SequenceResult& r) {
+  std::vector<double> offset, err;
+  std::vector<int64_t> frames;
+  std::vector<std::string> sources;
+  for (int k = 0; k < 2; ++k) {
+    for (const OffsetEstimate* e : {&r.offsets.col[k], &r.offsets.row[k]}) {
+      offset.push_back(e->value);
+      err.push_back(e->err);
+      frames.push_back(int64_t(e->n));
+      sources.push_back(e->source);
+    }
+  }
+  w.WriteDoubles("/template/offset", offset, {2, 2}, "px", "col,row");
+  w.SetAttr("/template/offset", "rows", "left,right");
+  w.SetAttr("/template/offset", "description",
+            "offset from each learnt appearance's reference point to the sphere centre, added to "
+            "every located position (already applied to /pixels)");
+  w.WriteDoubles("/template/offset_err", err, {2, 2}, "px", "col,row");
+  w.SetAttr("/template/offset_err", "description", "standard uncertainty of /template/offset");
+  w.WriteInt64("/template/offset_frames", frames, {2, 2});
+  w.SetAttr("/template/offset_frames", "units", "1");
+  w.SetAttr("/template/offset_frames", "columns", "col,row");
+  w.SetAttr("/template/offset_frames", "description", "frames each offset rests on");
+  w.WriteStrings("/template/offset_source", sources);
+  w.SetAttr("/template/offset_source", "description",
+            "left col, left row, right col, right row: silhouette, plate_contact, symmetry or none");
+  for (int k = 0; k < 2; ++k) {
+    const Appearance& a = r.appearance[k];
+    std::vector<double> img(a.image.begin<float>(), a.image.end<float>());
+    std::vector<uint8_t> mask(a.mask.begin<uint8_t>(), a.mask.end<uint8_t>());
+    const std::string name = std::string("/template/") + (k == 0 ? "left" : "right");
+    const size_t size = size_t(a.image.rows);
+    std::string columns;  // each column's offset from the reference column, px
+    for (int x = -a.half; x <= a.half; ++x) columns += (columns.empty() ? "" : ",") + std::to_string(x);
+    w.WriteDoubles(name, img, {size, size}, "grey levels", columns);
+    w.SetAttr(name, "description",
+              "the learnt appearance, reference point at the centre pixel; frame grey levels");
+    w.WriteUint8(name + "_mask", mask, {size, size});
+    w.SetAttr(name + "_mask", "columns", columns);
+    w.SetAttr(name + "_mask", "codes", "0=not part of the sphere's appearance (rod, plate, unseen),1=used");
+    w.SetAttr(name + "_mask", "description", "which pixels of the learnt appearance are used");
+  }
+}
+
 void WriteTrackFile(const std::string& path, const TrackArgs& args, const SequenceResult& r,
                     const Calibration& cal, const Recording& rec) {
   const size_t n = r.frames.size();
@@ -284,7 +362,9 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
     skipped_reasons.push_back(s.reason);
   }
   AttrList attrs = {{"source", args.input}, {"frames", args.frames.empty() ? "all" : args.frames},
-                    {"method", args.method}, {"fps", args.fps}, {"fps_source", rec.fps_from}};
+                    {"method", ToString(r.method)}, {"method_requested", args.method},
+                    {"method_reason", r.method_reason}, {"fps", args.fps},
+                    {"fps_source", rec.fps_from}};
   AttrUnits units = {{"fps", "1/s"}, {"m_per_px", "m/px"}, {"row0", "px"}, {"diameter", "m"},
                      {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
                      {"frames_tracked", "1"}, {"frames_skipped", "1"}};
@@ -337,6 +417,7 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
   w.SetAttr("/found", "columns", "left,right");
   w.SetAttr("/found", "codes", "0=not found (its tips and pixels are NaN),1=found");
   w.SetAttr("/found", "description", "whether each sphere was found in the frame");
+  if (r.method == Method::kTemplate) WriteTemplateGroup(w, r);
   w.WriteStrings("/skipped/files", skipped_names);
   w.SetAttr("/skipped/files", "description", "frames that could not be used");
   w.WriteStrings("/skipped/reasons", skipped_reasons);
@@ -409,6 +490,11 @@ void RunTrack(const TrackArgs& args) {
   args.Check();
   SequenceOptions seq = args.sequence;
   seq.tracker.method = ParseMethod(args.method);
+  // The plate-contact offset of the template method needs the radius in pixels: from the
+  // scale when it is given, else the measured one (which then also sets the scale).
+  if (!std::isnan(args.m_per_px) && std::isnan(seq.contact_radius_px)) {
+    seq.contact_radius_px = 0.5 * args.diameter / args.m_per_px;
+  }
   seq.tracker.polarity = args.polarity == "bright" ? 1 : args.polarity == "dark" ? -1 : 0;
   AtomicOutput out(args.output, args.force);  // refuses an existing output before any work
   auto source = SelectFrames(FrameSource::Open(args.input), ParseFrameRange(args.frames),
@@ -421,6 +507,21 @@ void RunTrack(const TrackArgs& args) {
     throw InputError(args.input + ": no readable frame (all " +
                      std::to_string(r.skipped.size()) + " were skipped)");
   }
+  // The choice and its evidence (also in the file); -q keeps stderr empty on success.
+  if (!r.method_reason.empty() && !args.quiet) {
+    std::fprintf(stderr, "dimerlab track: method %s -> %s (reason: %s)\n", args.method.c_str(),
+                 ToString(r.method).c_str(), r.method_reason.c_str());
+  }
+  if (r.method == Method::kTemplate && !args.quiet) {
+    for (int k = 0; k < 2; ++k) {
+      const OffsetEstimate &c = r.offsets.col[k], &w = r.offsets.row[k];
+      std::fprintf(stderr,
+                   "dimerlab track: %s sphere: offset to the centre col %+.3f +- %.3f px (%s), "
+                   "row %+.3f +- %.3f px (%s, %zu frames)\n",
+                   k == 0 ? "left" : "right", c.value, c.err, c.source.c_str(), w.value, w.err,
+                   w.source.c_str(), w.n);
+    }
+  }
   const Calibration cal = Calibrate(args, r);
   WriteTrackFile(out.temp_path(), resolved, r, cal, rec);
   out.Commit();
@@ -429,7 +530,7 @@ void RunTrack(const TrackArgs& args) {
   for (const auto& f : r.frames) both += f.found[0] && f.found[1];
   std::printf("%s: %zu frames tracked, %zu skipped, both spheres found in %zu, %s, %.4g m/px%s\n",
               (args.output_label.empty() ? args.output : args.output_label).c_str(), r.frames.size(),
-              r.skipped.size(), both, args.method.c_str(),
+              r.skipped.size(), both, ToString(r.method).c_str(),
               cal.m_per_px, r.complete ? "" : " (interrupted: partial)");
   if (!r.complete) throw Interrupted();
 }

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "tracking/frame_source.h"
+#include "tracking/template_sequence.h"
 #include "tracking/tracker.h"
 
 namespace dimer::tracking {
@@ -25,6 +26,8 @@ struct SequenceOptions {
   TrackerOptions tracker;
   int threads = 0;            // worker threads; 0: all cores
   size_t chunk_frames = 512;  // frames per chunk (changing it may change the last digits)
+  // Template method: the sphere radius for the plate-contact offset, px; NaN: the measured one.
+  double contact_radius_px = std::numeric_limits<double>::quiet_NaN();
   void Check() const;
 };
 
@@ -40,6 +43,10 @@ struct SequenceResult {
   int polarity = 0;                     // the polarity used
   int width = 0, height = 0;            // frame size
   bool complete = true;                 // false when interrupted
+  Method method = Method::kCentroid;    // the method used (auto resolved)
+  std::string method_reason;            // why (auto, template); empty for centroid/discfit asked
+  std::array<Appearance, 2> appearance; // template: the learnt appearances
+  TemplateOffsets offsets;              // template: reference -> centre, already applied
 };
 
 // Tracks every frame of `source`. `on_progress(done)` is called from the calling thread.
@@ -62,7 +69,7 @@ struct TrackArgs {
   double m_per_px = std::numeric_limits<double>::quiet_NaN();  // m/px; NaN: from --diameter
   double diameter = 9.5e-3;     // sphere diameter, m (calibration when m_per_px is not given)
   double row0 = std::numeric_limits<double>::quiet_NaN();      // z = 0 row, px; NaN: plate median
-  std::string method = "centroid";
+  std::string method = "auto";  // auto | centroid | discfit | template
   std::string polarity = "auto";  // auto | bright | dark
   SequenceOptions sequence;
   bool quiet = false;           // no progress on stderr

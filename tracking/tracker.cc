@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "tracking/detector.h"
 #include "tracking/plate_edge.h"
+#include "tracking/template_locator.h"
 #include "tracking/tolerances.h"
 
 namespace dimer::tracking {
@@ -16,6 +17,16 @@ namespace {
 // Before the radius is known, windows are sized from the distance-transform radius with this
 // headroom (the silhouette of a mirror sphere can look smaller than the sphere).
 constexpr double kProvisionalRadiusScale = 1.25;
+// Template method: whole-pixel search around a prediction (< 1 px per frame at 2000 frames/s)
+// and around an acquisition's coarse match (its parabola is within ~0.5 px), px.
+constexpr int kFollowSearchPx = 2;
+constexpr int kAcquireSearchPx = 4;
+// A learnt appearance is found where its correlation coefficient reaches this (a present sphere
+// scores > 0.9 at sigma = 2; an empty window or the plate scores far less).
+constexpr double kMinTemplateScore = 0.5;
+// Acquisition by template: a second match is another sphere when at least this far away (in
+// radii) and scoring at least kMinTemplateScore.
+constexpr double kTemplateSeparationR = 1.5;
 
 RefineContext Context(int polarity, double plate_row, const Eigen::Vector2d& self,
                       const Eigen::Vector2d* other) {
@@ -41,6 +52,40 @@ SequenceTracker::SequenceTracker(const TrackerOptions& options)
   options_.Check();
 }
 
+bool SequenceTracker::uses_template() const {
+  return options_.method == Method::kTemplate && options_.appearance;
+}
+
+// The template method's measurement: the reference point of sphere `sphere`'s appearance
+// (the track's offset turns it into the centre afterwards, track.cc), radius as known.
+SphereMeasurement SequenceTracker::Locate(const cv::Mat& frame, int sphere,
+                                          const Eigen::Vector2d& guess,
+                                          const Eigen::Vector2d* other, double plate_row,
+                                          int search_px) const {
+  MaskContext ctx;
+  ctx.plate_row = plate_row;
+  if (other && (*other - guess).norm() > 0) ctx.rod_dir = (*other - guess).normalized();
+  const Located l = LocateAppearance(frame, (*options_.appearance)[sphere], guess, search_px, ctx);
+  SphereMeasurement m;
+  m.status = l.clipped ? SphereMeasurement::Status::kClipped
+                       : (l.ok && l.score >= kMinTemplateScore ? SphereMeasurement::Status::kFound
+                                                               : SphereMeasurement::Status::kMissing);
+  m.centre = l.position;
+  m.radius_px = radius_px_;
+  return m;
+}
+
+// Following with the template: ECC straight from the prediction (no correlation search: the
+// search costs more than the refinement), the whole-pixel search only when that fails (a
+// prediction more than a pixel off, e.g. at an impact).
+SphereMeasurement SequenceTracker::FollowTemplate(const cv::Mat& frame, int k,
+                                                  const std::array<Eigen::Vector2d, 2>& predicted,
+                                                  double plate_row) const {
+  const SphereMeasurement m = Locate(frame, k, predicted[k], &predicted[1 - k], plate_row, 0);
+  if (m.found()) return m;
+  return Locate(frame, k, predicted[k], &predicted[1 - k], plate_row, kFollowSearchPx);
+}
+
 double SequenceTracker::PlateRow(const cv::Mat& frame, double guess,
                                  const std::array<Eigen::Vector2d, 2>& centres, int n) const {
   std::vector<std::pair<double, double>> excluded;
@@ -58,7 +103,10 @@ bool SequenceTracker::Follow(const cv::Mat& frame, FrameTrack* out) {
   for (int k = 0; k < 2; ++k) {
     RefineContext ctx = Context(polarity_, out->plate_row, predicted[k], &predicted[1 - k]);
     ctx.precise_guess = true;  // constant-velocity prediction, < 1 px per frame at 2000 frames/s
-    const SphereMeasurement m = MeasureSphere(frame, predicted[k], radius_px_, ctx, options_.method);
+    const SphereMeasurement m =
+        uses_template()
+            ? FollowTemplate(frame, k, predicted, out->plate_row)
+            : MeasureSphere(frame, predicted[k], radius_px_, ctx, options_.method);
     if (!m.found()) return false;
     out->found[k] = true;
     out->centre[k] = m.centre;
@@ -70,7 +118,18 @@ bool SequenceTracker::Follow(const cv::Mat& frame, FrameTrack* out) {
 void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
   *out = FrameTrack{out->index};
   out->acquired = true;
-  const Detection det = DetectSpheres(frame, polarity_);
+  Detection det = DetectSpheres(frame, polarity_);
+  if (uses_template()) {
+    // The learnt appearance finds the spheres whatever they look like (a silhouette detector
+    // can miss a sphere that shows only its highlights).
+    det.centres.clear();
+    for (const Located& l :
+         FindAppearance(frame, (*options_.appearance)[0], det.plate_row,
+                        kTemplateSeparationR * radius_px_, kMinTemplateScore)) {
+      det.centres.push_back(l.position);
+    }
+    det.radii_px.assign(det.centres.size(), radius_px_);
+  }
   const int n = int(det.centres.size());
   std::array<Eigen::Vector2d, 2> coarse{};
   for (int k = 0; k < n; ++k) coarse[k] = det.centres[k];
@@ -104,7 +163,14 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
   for (int k = 0; k < n; ++k) {
     const RefineContext ctx =
         Context(polarity_, out->plate_row, coarse[k], n > 1 ? &coarse[1 - k] : nullptr);
-    const SphereMeasurement m = MeasureSphere(frame, coarse[k], radius_px_, ctx, options_.method);
+    SphereMeasurement m;
+    if (uses_template()) {  // coarse only: refined below with the identity's own appearance
+      m.status = SphereMeasurement::Status::kFound;
+      m.centre = coarse[k];
+      m.radius_px = radius_px_;
+    } else {
+      m = MeasureSphere(frame, coarse[k], radius_px_, ctx, options_.method);
+    }
     if (m.found()) found.push_back(m);
   }
   // Identities: nearest last position if any is known, else left = smaller column.
@@ -127,7 +193,14 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
       slot_of[0] = c.x() < 0.5 * frame.cols ? 0 : 1;
     }
   }
+  if (uses_template()) {
+    for (size_t i = 0; i < found.size(); ++i) {
+      const Eigen::Vector2d* other = found.size() == 2 ? &found[1 - i].centre : nullptr;
+      found[i] = Locate(frame, slot_of[i], found[i].centre, other, out->plate_row, kAcquireSearchPx);
+    }
+  }
   for (size_t i = 0; i < found.size(); ++i) {
+    if (!found[i].found()) continue;
     out->found[slot_of[i]] = true;
     out->centre[slot_of[i]] = found[i].centre;
     out->radius_px[slot_of[i]] = found[i].radius_px;

@@ -15,8 +15,10 @@
 #include <array>
 #include <cstddef>
 #include <limits>
+#include <memory>
 
 #include "tracking/refiner.h"
+#include "tracking/template_locator.h"
 
 namespace dimer::tracking {
 
@@ -24,6 +26,8 @@ struct TrackerOptions {
   Method method = Method::kCentroid;  // sub-pixel method
   int polarity = 0;                   // +1 bright spheres, -1 dark (backlit), 0 automatic
   double radius_px = std::numeric_limits<double>::quiet_NaN();  // sphere radius, px; NaN: measured
+  // Method::kTemplate: the learnt appearances (left, right), shared by every chunk's tracker.
+  std::shared_ptr<const std::array<Appearance, 2>> appearance;
 
   void Check() const;  // InputError listing every invalid field
 };
@@ -48,6 +52,12 @@ class SequenceTracker {
  private:
   bool Follow(const cv::Mat& frame, FrameTrack* out);
   void Acquire(const cv::Mat& frame, FrameTrack* out);
+  bool uses_template() const;
+  SphereMeasurement Locate(const cv::Mat& frame, int sphere, const Eigen::Vector2d& guess,
+                           const Eigen::Vector2d* other, double plate_row, int search_px) const;
+  SphereMeasurement FollowTemplate(const cv::Mat& frame, int k,
+                                   const std::array<Eigen::Vector2d, 2>& predicted,
+                                   double plate_row) const;
   double PlateRow(const cv::Mat& frame, double guess,
                   const std::array<Eigen::Vector2d, 2>& centres, int n) const;
   void Commit(const FrameTrack& t);

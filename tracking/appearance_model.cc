@@ -1,0 +1,280 @@
+#include "tracking/appearance_model.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace dimer::tracking {
+namespace {
+
+// Template half-size beyond the radius, px: the silhouette edge and a little background.
+constexpr double kTemplateMarginPx = 4.0;
+// A template pixel is known when at least this fraction of the samples showed it (others were
+// rod or plate there), and at least kMinSamplesPerPixel.
+constexpr double kMinSeenFraction = 0.3;
+constexpr int kMinSamplesPerPixel = 2;
+// Fewer usable samples than this and no appearance is learnt.
+constexpr size_t kMinSamples = 3;
+// Registration of the samples to the mean: whole-pixel search, px (rough centres of the
+// existing methods scatter by up to ~2 px on footage they do not suit).
+constexpr int kLearnSearchPx = 4;
+// Re-centring on the plate contact only when the rough centres are off by more than this, px.
+constexpr double kRecentreMinPx = 1.0;
+// Symmetry: levels above this quantile of the appearance are clipped to it (highlights).
+constexpr double kSymmetryClipQuantile = 0.9;
+// Symmetry from the rim: the ring [R - kRimInsidePx, R + kRimOutsidePx] holds the outline and
+// the grazing reflections of the surroundings, not the lamps' highlights (which face the camera).
+constexpr double kRimInsidePx = 5.0, kRimOutsidePx = 3.0;
+// Floor of the symmetry offset's uncertainty, px (ECC's own repeatability on a template).
+constexpr double kSymmetryErrFloorPx = 0.01;
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// The patch of `image` (CV_32F) with `pos` at its centre pixel, bicubic; false if it leaves the
+// frame.
+bool Patch(const cv::Mat& image, const Eigen::Vector2d& pos, int half, cv::Mat* out) {
+  const double x0 = pos.x() - half, y0 = pos.y() - half;
+  if (x0 < 1 || y0 < 1 || x0 + 2 * half + 2 > image.cols || y0 + 2 * half + 2 > image.rows) {
+    return false;
+  }
+  const cv::Mat m = (cv::Mat_<double>(2, 3) << 1, 0, x0, 0, 1, y0);
+  cv::warpAffine(image, *out, m, cv::Size(2 * half + 1, 2 * half + 1),
+                 cv::INTER_CUBIC | cv::WARP_INVERSE_MAP, cv::BORDER_REPLICATE);
+  return true;
+}
+
+MaskContext ContextOf(const LearningSample& s, int k) {
+  MaskContext ctx;
+  ctx.plate_row = s.plate_row;
+  const Eigen::Vector2d d = s.centre[1 - k] - s.centre[k];
+  if (d.norm() > 0) ctx.rod_dir = d.normalized();
+  return ctx;
+}
+
+// Mean of the samples' patches over the pixels that show the sphere.
+Appearance Average(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
+                   const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
+                   int k, int half, double radius_px) {
+  const int size = 2 * half + 1;
+  Appearance all;
+  all.half = half;
+  all.radius_px = radius_px;
+  all.mask = cv::Mat::ones(size, size, CV_8U);
+  cv::Mat sum = cv::Mat::zeros(size, size, CV_32F), count = cv::Mat::zeros(size, size, CV_32F);
+  cv::Mat patch, mask_f;
+  int n = 0;
+  for (size_t i = 0; i < used.size(); ++i) {
+    if (!Patch(images[used[i]], pos[i], half, &patch)) continue;
+    const cv::Mat mask = FrameMask(all, pos[i], ContextOf(samples[used[i]], k));
+    mask.convertTo(mask_f, CV_32F);
+    sum += patch.mul(mask_f);
+    count += mask_f;
+    ++n;
+  }
+  Appearance a = all;
+  const float min_count = float(std::max(double(kMinSamplesPerPixel), kMinSeenFraction * n));
+  a.mask = count >= min_count;  // 255 / 0
+  a.mask /= 255;
+  if (n < int(kMinSamples) || cv::countNonZero(a.mask) == 0) return Appearance{};
+  cv::divide(sum, cv::max(count, 1.0f), a.image);
+  // Unknown pixels hold the mean known level: masked everywhere, but finite and neutral.
+  const cv::Scalar mean = cv::mean(a.image, a.mask);
+  a.image.setTo(mean, a.mask == 0);
+  return a;
+}
+
+}  // namespace
+
+namespace {
+
+// Learns sphere k's appearance from `start` positions (one per used sample): kLearnPasses of
+// averaging and registration to the mean. Invalid appearance if too few samples.
+void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
+              const std::vector<size_t>& used, int k, int half, double radius_px,
+              std::vector<Eigen::Vector2d> pos, LearntSphere* s) {
+  Appearance a;
+  for (int pass = 0; pass <= kLearnPasses; ++pass) {
+    a = Average(images, samples, used, pos, k, half, radius_px);
+    if (!a.valid()) return;
+    // Register every sample to the mean (the last pass only to report where they sit).
+    for (size_t i = 0; i < used.size(); ++i) {
+      const Located l = LocateAppearance(samples[used[i]].image, a, pos[i], kLearnSearchPx,
+                                         ContextOf(samples[used[i]], k));
+      if (l.ok) pos[i] = l.position;
+    }
+  }
+  s->appearance = a;
+  s->registered = pos;
+}
+
+}  // namespace
+
+std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& samples,
+                                             double radius_px, bool recentre) {
+  std::array<LearntSphere, 2> out;
+  std::vector<cv::Mat> images(samples.size());
+  std::vector<size_t> used;
+  for (size_t j = 0; j < samples.size(); ++j) {
+    if (!samples[j].found[0] || !samples[j].found[1]) continue;
+    samples[j].image.convertTo(images[j], CV_32F);
+    used.push_back(j);
+  }
+  if (used.size() < kMinSamples || !(radius_px > 0)) return out;
+  const int half = int(std::ceil(radius_px + kTemplateMarginPx));
+  for (int k = 0; k < 2; ++k) {
+    out[k].samples = used;
+    for (size_t j : used) out[k].rough.push_back(samples[j].centre[k]);
+    LearnOne(images, samples, used, k, half, radius_px, out[k].rough, &out[k]);
+    if (!out[k].appearance.valid()) return {};
+  }
+  if (!recentre) return out;
+  // Rough centres of footage that is not made of silhouettes can be pixels off (vertically:
+  // the visible part of a front-lit steel sphere is its lower half), and a template framed
+  // around them would cut the sphere and misplace the rod and plate cuts. The sphere that rests
+  // in the learning frames tells how far: no sphere sinks below plate - R, so the smallest
+  // (plate - R - row) over both spheres is the provisional row offset; both appearances are
+  // learnt again around their rough centres shifted by it (the final offset is estimated on
+  // the whole track, appearance_model.h).
+  double shift = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 2; ++k) {
+    for (size_t i = 0; i < used.size(); ++i) {
+      const double g = samples[used[i]].plate_row - radius_px - out[k].registered[i].y();
+      if (std::isfinite(g)) shift = std::min(shift, g);
+    }
+  }
+  if (!std::isfinite(shift) || std::abs(shift) < kRecentreMinPx) return out;
+  for (int k = 0; k < 2; ++k) {
+    std::vector<Eigen::Vector2d> start = out[k].registered;
+    for (Eigen::Vector2d& p : start) p.y() += shift;
+    LearnOne(images, samples, used, k, half, radius_px, start, &out[k]);
+    if (!out[k].appearance.valid()) return {};
+  }
+  return out;
+}
+
+OffsetEstimate SilhouetteOffset(const LearntSphere& s, int axis) {
+  OffsetEstimate e;
+  e.source = "silhouette";
+  std::vector<double> d;
+  for (size_t i = 0; i < s.rough.size(); ++i) d.push_back(s.rough[i](axis) - s.registered[i](axis));
+  if (d.empty()) return OffsetEstimate{};
+  e.value = Median(d);
+  std::vector<double> dev;
+  for (double v : d) dev.push_back(std::abs(v - e.value));
+  // Standard error of a median: 1.2533 sigma / sqrt(n), sigma = 1.4826 MAD.
+  e.err = 1.2533 * 1.4826 * Median(dev) / std::sqrt(double(d.size()));
+  e.n = d.size();
+  return e;
+}
+
+OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
+                                const std::vector<double>& plate_rows, double radius_px) {
+  OffsetEstimate e;
+  e.source = "plate_contact";
+  std::vector<double> gap;  // plate - R - reference row: the offset if the sphere rests
+  for (size_t i = 0; i < reference_rows.size(); ++i) {
+    const double g = plate_rows[i] - radius_px - reference_rows[i];
+    if (std::isfinite(g)) gap.push_back(g);
+  }
+  if (gap.empty() || !(radius_px > 0)) return OffsetEstimate{0, NAN, 0, "none"};
+  // gap = plate - R - (row + offset) >= 0 in every frame, = 0 while resting: the offset is the
+  // lower edge of (plate - R - row), where the resting frames cluster. The cluster's centre is
+  // found in two steps: the median of the values within kContactBandPx of the lowest, then the
+  // mean over a window of +-kContactBandPx about that median (symmetric about the cluster, so
+  // the noise of the plate row and of the position does not bias it; a single low outlier only
+  // moves the first window).
+  std::sort(gap.begin(), gap.end());
+  std::vector<double> low;
+  for (double g : gap) {
+    if (g > gap.front() + kContactBandPx) break;
+    low.push_back(g);
+  }
+  const double centre = low[low.size() / 2];
+  double sum = 0, sum2 = 0;
+  size_t n = 0;
+  for (double g : gap) {
+    if (std::abs(g - centre) > kContactBandPx) continue;
+    sum += g;
+    sum2 += g * g;
+    ++n;
+  }
+  e.n = n;
+  e.value = sum / double(n);
+  const double var = n > 1 ? std::max(0.0, (sum2 - sum * sum / double(n)) / double(n - 1)) : 0.0;
+  // Standard error of the mean, floored at a tenth of the window (a few frames near the edge of
+  // the window can move the mean by that much).
+  e.err = std::max(std::sqrt(var / double(n)), kContactBandPx / 10.0);
+  return e;
+}
+
+namespace {
+
+// Axis of mirror symmetry of `image` about its centre column (relative to it), by registering
+// the image to its own mirror image: A_f(x) = A(2 h - x); A_f(x + t) = A(x) gives axis -t/2.
+bool SymmetryAxis(const cv::Mat& image, const cv::Mat& mask, double* axis) {
+  cv::Mat flipped, flipped_mask;
+  cv::flip(image, flipped, 1);
+  cv::flip(mask, flipped_mask, 1);
+  Eigen::Vector2d t(0, 0);
+  if (!RegisterTranslation(image, flipped, flipped_mask & mask, &t)) return false;
+  *axis = -0.5 * t.x();
+  return std::isfinite(*axis);
+}
+
+}  // namespace
+
+OffsetEstimate SymmetryColumnOffset(const Appearance& a) {
+  OffsetEstimate e;
+  if (!a.valid()) return OffsetEstimate{0, NAN, 0, "none"};
+  std::vector<float> levels;
+  for (int y = 0; y < a.image.rows; ++y) {
+    for (int x = 0; x < a.image.cols; ++x) {
+      if (a.mask.at<uint8_t>(y, x)) levels.push_back(a.image.at<float>(y, x));
+    }
+  }
+  auto q = levels.begin() + std::ptrdiff_t(kSymmetryClipQuantile * double(levels.size() - 1));
+  std::nth_element(levels.begin(), q, levels.end());
+  const cv::Mat clipped = cv::min(a.image, *q);
+  cv::Mat rim = cv::Mat::zeros(a.mask.size(), CV_8U);
+  cv::circle(rim, cv::Point(a.half, a.half), int(std::lround(a.radius_px + kRimOutsidePx)),
+             cv::Scalar(1), cv::FILLED);
+  cv::circle(rim, cv::Point(a.half, a.half), int(std::lround(a.radius_px - kRimInsidePx)),
+             cv::Scalar(0), cv::FILLED);
+  double at_rim = 0, whole = 0;
+  if (!SymmetryAxis(clipped, a.mask & rim, &at_rim)) return OffsetEstimate{0, NAN, 0, "none"};
+  if (!SymmetryAxis(clipped, a.mask, &whole)) whole = at_rim;
+  e.value = at_rim;
+  // Where the rim and the whole (clipped) appearance disagree, the lighting is not symmetric:
+  // half the difference is the uncertainty.
+  e.err = std::max(kSymmetryErrFloorPx, 0.5 * std::abs(whole - at_rim));
+  e.n = 1;
+  e.source = "symmetry";
+  return e;
+}
+
+OffsetEstimate TransferOffset(const Appearance& from, const Appearance& to,
+                              const OffsetEstimate& from_offset, int axis) {
+  if (!from.valid() || !to.valid() || from.image.size() != to.image.size()) {
+    return OffsetEstimate{0, NAN, 0, "none"};
+  }
+  // to(x + t) = from(x): the centre, at reference + offset in `from`, is at that + t in `to`.
+  Eigen::Vector2d forward(0, 0), backward(0, 0);
+  const cv::Mat both = from.mask & to.mask;
+  if (!RegisterTranslation(from.image, to.image, both, &forward) ||
+      !RegisterTranslation(to.image, from.image, both, &backward)) {
+    return OffsetEstimate{0, NAN, 0, "none"};
+  }
+  OffsetEstimate e;
+  e.value = from_offset.value + 0.5 * (forward(axis) - backward(axis));
+  e.err = std::hypot(from_offset.err, 0.5 * std::abs(forward(axis) + backward(axis)));
+  e.n = from_offset.n;
+  e.source = "plate_contact_of_other";
+  return e;
+}
+
+}  // namespace dimer::tracking

@@ -1,0 +1,99 @@
+#pragma once
+// Each sphere's appearance, learnt from the footage itself, and the offset from that appearance
+// to the sphere's true centre (`--method template`, template_locator.h locates it per frame).
+//
+// Learning. A fixed set of frames (chosen by frame index only, so it does not depend on the
+// thread count or the chunking), with rough centres from the existing methods, gives one patch
+// per sphere per frame. The patches are averaged over the pixels that show the sphere (the rod
+// corridor toward the other sphere and the plate rows are left out per frame), then each patch
+// is registered to the mean (template_locator.h) and the mean rebuilt from patches resampled at
+// the registered sub-pixel positions (cv::warpAffine, bicubic); kLearnPasses times. The rough
+// centres need only be within a few pixels and consistent: registration to the mean replaces
+// them. The result is fixed for the whole sequence and shared by every chunk.
+//
+// Offset. The template's reference point is where the rough centres put it, not the sphere's
+// centre (a front-lit steel sphere's rim fit is biased by pixels). It is estimated once per
+// sequence, with its uncertainty, from what the footage shows:
+//   - silhouette: when the spheres are clean uniform silhouettes (backlit, bright background,
+//     matte discs), the existing centroid is unbiased; offset = median over the learning frames
+//     of (silhouette centre - registered position);
+//   - plate contact (rows): a sphere resting on the plate has its centre R above the plate's top
+//     surface; over the whole track, the frames whose reference row is lowest relative to the
+//     plate (within kContactBandPx of the lowest) are taken as resting, offset = mean of
+//     (plate - R - reference row);
+//   - symmetry (columns): with the camera and the lights in a vertical plane through the sphere,
+//     the appearance is mirror symmetric about the vertical through the centre; the template is
+//     registered to its own mirror image (cv::findTransformECC) and the axis is half the shift.
+//     Highlights are clipped first (kSymmetryClipQuantile) so that two lamps placed unevenly
+//     weigh less than the silhouette and the plate's reflection, which are symmetric.
+#include <opencv2/core.hpp>
+
+#include <Eigen/Core>
+#include <array>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "tracking/template_locator.h"
+
+namespace dimer::tracking {
+
+// Learning frames: every k-th of the first kLearnSpanFrames, k chosen for kLearnFrames frames.
+inline constexpr size_t kLearnFrames = 48;
+inline constexpr size_t kLearnSpanFrames = 4000;
+// Registration passes (patches to the mean, mean rebuilt): the mean moves < 0.01 px after 3.
+inline constexpr int kLearnPasses = 3;
+// Frames whose reference row is within this of the lowest (relative to the plate) rest, px.
+inline constexpr double kContactBandPx = 0.3;
+
+// One learning frame with the rough centres of the existing methods (left, right).
+struct LearningSample {
+  cv::Mat image;
+  double plate_row = std::numeric_limits<double>::quiet_NaN();
+  std::array<bool, 2> found{false, false};
+  std::array<Eigen::Vector2d, 2> centre{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
+};
+
+struct LearntSphere {
+  Appearance appearance;
+  std::vector<size_t> samples;               // learning samples used (both spheres found)
+  std::vector<Eigen::Vector2d> rough;        // their rough centres
+  std::vector<Eigen::Vector2d> registered;   // their reference positions after learning
+};
+
+// Both spheres' appearances (0 left, 1 right); invalid appearance if too few samples.
+// `recentre` (footage without clean silhouettes): the templates are framed again around the
+// rough centres shifted by a provisional row offset from the plate contact (see the .cc).
+std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& samples,
+                                             double radius_px, bool recentre);
+
+struct OffsetEstimate {
+  double value = 0;                                        // px, reference -> centre
+  double err = std::numeric_limits<double>::quiet_NaN();   // standard uncertainty, px
+  size_t n = 0;                                            // frames it rests on
+  std::string source;                                      // silhouette | plate_contact | symmetry | none
+};
+
+// Silhouette: median of rough - registered per axis (0 column, 1 row), error from the MAD.
+OffsetEstimate SilhouetteOffset(const LearntSphere& s, int axis);
+// Plate contact from the whole track: reference rows and plate rows per frame (NaN: not found).
+OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
+                                const std::vector<double>& plate_rows, double radius_px);
+// Symmetry axis of the appearance, relative to its reference column.
+OffsetEstimate SymmetryColumnOffset(const Appearance& a);
+// A plate-contact estimate rests on a resting sphere when at least this many frames are in its
+// cluster; fewer (a sphere that only lands now and then, or never in the footage) and the
+// lowest frames are flight, not contact.
+inline constexpr size_t kMinRestingFrames = 5;
+// A sphere with fewer than this fraction of the other's contact frames bounces while the other
+// rests (drift): it takes the other's row offset (TransferOffset).
+inline constexpr double kTransferBelowFraction = 0.5;
+// The other sphere's offset carried over: two steel spheres under the same lights look alike,
+// so the shift that registers appearance `to` onto appearance `from` (cv::findTransformECC)
+// carries `from`'s offset (axis 0 column, 1 row) to `to`'s reference. Source
+// "plate_contact_of_other". The uncertainty adds the registration's asymmetry (forward vs
+// backward) to `from`'s.
+OffsetEstimate TransferOffset(const Appearance& from, const Appearance& to,
+                              const OffsetEstimate& from_offset, int axis);
+
+}  // namespace dimer::tracking

@@ -1,0 +1,72 @@
+#pragma once
+// Locating a sphere's learnt appearance (appearance_model.h) in a frame to a fraction of a pixel,
+// with OpenCV's own registration tools, nothing hand-rolled:
+//   1. cv::matchTemplate (normalised correlation coefficient, with the template's mask) over a
+//      small search window around the guess: the whole-pixel peak;
+//   2. a quadratic through the peak's 3x3 neighbourhood (one parabola per axis): a sub-pixel
+//      start within ~0.2 px;
+//   3. cv::findTransformECC (translation only, the template's mask warped with it): the final
+//      shift, which maximises the enhanced correlation coefficient between the frame and the
+//      template over the masked pixels (Evangelidis & Psarakis 2008).
+// Nothing is assumed about how the sphere looks: a silhouette, a few highlights, a reflection,
+// all are a pattern fixed to the sphere (a mirror sphere looks the same whatever its spin). The
+// rod (a corridor toward the other sphere) and the plate (the rows at and below its top edge,
+// with the sphere's reflection in it) are not part of the sphere: they are cut from the mask
+// for each frame, where they are in that frame.
+//
+// The result is the position of the template's reference point in the frame, not the sphere's
+// centre: the offset between the two is estimated once per sequence (appearance_model.h).
+#include <opencv2/core.hpp>
+
+#include <Eigen/Core>
+#include <limits>
+#include <vector>
+
+namespace dimer::tracking {
+
+// A learnt appearance: (2 half + 1) pixels square, the reference point at (half, half).
+struct Appearance {
+  cv::Mat image;         // CV_32F, the mean appearance (masked pixels hold the mean level)
+  cv::Mat mask;          // CV_8U, 1 where the appearance is known (seen, not rod nor plate)
+  int half = 0;          // half-size, px
+  double radius_px = 0;  // sphere radius the masks are sized for, px
+  bool valid() const { return !image.empty(); }
+};
+
+// Where the rod and the plate are in one frame, relative to a sphere.
+struct MaskContext {
+  Eigen::Vector2d rod_dir{0, 0};  // unit vector toward the other sphere; zero: no rod cut
+  double plate_row = std::numeric_limits<double>::quiet_NaN();  // plate top surface, px
+};
+
+// The appearance's mask with the rod corridor and the plate rows of the frame cut, for the
+// reference point at `position` (frame coordinates, px).
+cv::Mat FrameMask(const Appearance& a, const Eigen::Vector2d& position, const MaskContext& ctx);
+
+struct Located {
+  bool ok = false;              // false: window outside the frame, too few pixels, flat peak
+  bool clipped = false;         // the window left the frame
+  Eigen::Vector2d position{0, 0};  // reference point in the frame (col, row), px
+  double score = 0;             // correlation coefficient at the peak (-1..1)
+};
+
+// Translation t with moving(x + t) ~ fixed(x) over `mask` (moving's pixels, CV_8U), starting
+// from *t: cv::findTransformECC, then once more on `moving` pre-shifted by Lanczos
+// interpolation. False when ECC does not converge. Both images CV_32F, same size.
+bool RegisterTranslation(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
+                         Eigen::Vector2d* t, double* rho = nullptr);
+
+// Searches +-search_px (whole pixels) around `guess`, then refines. search_px = 0: no search,
+// ECC from the guess (a tracker's prediction), ok only if it converges within a pixel of it,
+// score = ECC's correlation coefficient. `frame` is CV_8U or CV_16U
+// (or CV_32F), single channel.
+Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
+                         int search_px, const MaskContext& ctx);
+
+// Whole-frame search (acquisition): the best match above `plate_row` (NaN: anywhere), and the
+// best one at least `min_separation_px` from it (if any scores above `min_score`).
+// Sub-pixel refined. Returns 0, 1 or 2 positions, best first.
+std::vector<Located> FindAppearance(const cv::Mat& frame, const Appearance& a, double plate_row,
+                                    double min_separation_px, double min_score);
+
+}  // namespace dimer::tracking

@@ -1,0 +1,169 @@
+#include "tracking/template_sequence.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "tracking/plate_edge.h"
+
+namespace dimer::tracking {
+namespace {
+
+// Highlights seed: a pixel is a highlight when it stands this many robust sigmas above the
+// median of the region above the plate, and above the midpoint between that median and the
+// brightest pixel.
+constexpr double kHighlightSigmas = 10.0;
+// Fewer learning frames than this with both spheres found by the silhouette methods, and the
+// rough centres come from the highlights instead.
+constexpr size_t kMinSeededFrames = 3;
+
+// Rough centres from the highlights alone (footage where the silhouette methods find nothing:
+// dark steel on a dark background, under-exposed): the bright blobs above the plate, split into
+// two groups at the widest gap between their columns (the two spheres, more than a radius
+// apart), each group's mean position. Pixels off vertically (highlights sit above the centre):
+// learning re-centres on the plate contact (appearance_model.h).
+bool HighlightSeed(const cv::Mat& image, double plate_row, double radius_px, LearningSample* s) {
+  const int rows = std::isfinite(plate_row) ? std::clamp(int(plate_row) - 2, 1, image.rows)
+                                            : image.rows;
+  cv::Mat above;
+  image(cv::Rect(0, 0, image.cols, rows)).convertTo(above, CV_32F);
+  std::vector<float> v(above.begin<float>(), above.end<float>());
+  auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  const double median = *mid;
+  const double top = *std::max_element(v.begin(), v.end());
+  for (float& x : v) x = float(std::abs(x - median));
+  std::nth_element(v.begin(), mid, v.end());
+  const double sigma = std::max(1.4826 * *mid, 0.5);
+  const double level = std::max(median + kHighlightSigmas * sigma, 0.5 * (median + top));
+  cv::Mat bright = above > level;
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(bright, labels, stats, centroids, 8, CV_32S);
+  std::vector<Eigen::Vector2d> blobs;
+  for (int i = 1; i < n; ++i) blobs.emplace_back(centroids.at<double>(i, 0), centroids.at<double>(i, 1));
+  if (blobs.size() < 2) return false;
+  std::sort(blobs.begin(), blobs.end(), [](const auto& a, const auto& b) { return a.x() < b.x(); });
+  size_t cut = 1;
+  for (size_t i = 1; i < blobs.size(); ++i) {
+    if (blobs[i].x() - blobs[i - 1].x() > blobs[cut].x() - blobs[cut - 1].x()) cut = i;
+  }
+  if (blobs[cut].x() - blobs[cut - 1].x() < radius_px) return false;
+  Eigen::Vector2d left(0, 0), right(0, 0);
+  for (size_t i = 0; i < blobs.size(); ++i) (i < cut ? left : right) += blobs[i];
+  s->centre = {left / double(cut), right / double(blobs.size() - cut)};
+  s->found = {true, true};
+  if (!std::isfinite(s->plate_row)) s->plate_row = plate_row;
+  return true;
+}
+
+}  // namespace
+
+std::vector<size_t> LearningIndices(size_t frames) {
+  const size_t span = std::min(frames, kLearnSpanFrames);
+  const size_t step = std::max<size_t>(1, span / kLearnFrames);
+  std::vector<size_t> out;
+  for (size_t i = 0; i < span && out.size() < kLearnFrames; i += step) out.push_back(i);
+  return out;
+}
+
+SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
+                                     const TrackerOptions& reference, Method requested) {
+  SequenceMethod m;
+  std::vector<FrameTrack> probes;
+  std::vector<LearningSample> samples;
+  std::vector<std::array<bool, 2>> clean;
+  TrackerOptions o = reference;
+  o.method = Method::kCentroid;
+  o.appearance.reset();
+  for (const Frame& f : learning) {
+    SequenceTracker t(o);  // a fresh acquisition per frame: the learning frames are far apart
+    probes.push_back(t.Process(f.image, f.index));
+    LearningSample s;
+    s.image = f.image;
+    s.plate_row = probes.back().plate_row;
+    s.found = probes.back().found;
+    s.centre = probes.back().centre;
+    samples.push_back(s);
+    std::array<bool, 2> c{false, false};
+    for (int k = 0; k < 2; ++k) {
+      if (s.found[0] && s.found[1]) {
+        c[k] = CleanSilhouette(f.image, s.centre[k], reference.radius_px, s.centre[1 - k],
+                               s.plate_row);
+      } else if (s.found[k]) {
+        c[k] = CleanSilhouette(f.image, s.centre[k], reference.radius_px, s.centre[k], s.plate_row);
+      }
+    }
+    clean.push_back(c);
+  }
+  m.choice = ChooseMethod(probes, clean, requested);
+  if (m.choice.method != Method::kTemplate) return m;
+  size_t seeded = 0;
+  for (const LearningSample& s : samples) seeded += s.found[0] && s.found[1];
+  if (seeded < kMinSeededFrames) {
+    size_t from_highlights = 0;
+    for (size_t i = 0; i < samples.size(); ++i) {
+      LearningSample& s = samples[i];
+      const double plate = std::isfinite(s.plate_row) ? s.plate_row : FindPlateRowCoarse(s.image);
+      if (!(s.found[0] && s.found[1])) from_highlights += HighlightSeed(s.image, plate, reference.radius_px, &s);
+    }
+    if (from_highlights > 0) {
+      m.choice.reason += "; rough centres of " + std::to_string(from_highlights) +
+                         " learning frames from the highlights";
+    }
+  }
+  m.learnt = LearnAppearances(samples, reference.radius_px, !m.choice.silhouettes);
+  if (!m.learnt[0].appearance.valid() || !m.learnt[1].appearance.valid()) {
+    // Nothing to learn from (fewer than 3 learning frames with both spheres): the silhouette
+    // methods are what is left.
+    m.choice.method = Method::kCentroid;
+    m.choice.reason += "; too few learning frames with both spheres to learn an appearance, "
+                       "centroid instead";
+    return m;
+  }
+  m.appearance = std::make_shared<const std::array<Appearance, 2>>(
+      std::array<Appearance, 2>{m.learnt[0].appearance, m.learnt[1].appearance});
+  return m;
+}
+
+TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<FrameTrack>& frames,
+                                double contact_radius_px) {
+  TemplateOffsets o;
+  for (int k = 0; k < 2; ++k) {
+    if (m.choice.silhouettes) {
+      o.col[k] = SilhouetteOffset(m.learnt[k], 0);
+      o.row[k] = SilhouetteOffset(m.learnt[k], 1);
+      continue;
+    }
+    std::vector<double> rows, plate;
+    for (const FrameTrack& f : frames) {
+      rows.push_back(f.found[k] ? f.centre[k].y() : std::nan(""));
+      plate.push_back(f.plate_row);
+    }
+    o.row[k] = ContactRowOffset(rows, plate, contact_radius_px);
+    o.col[k] = SymmetryColumnOffset(m.learnt[k].appearance);
+  }
+  if (m.choice.silhouettes) return o;
+  // The sphere that rests longer (more frames in its contact cluster) sets the contact; the
+  // other one, if it rests much less (it bounces: the frames near its impacts are flight, up to
+  // a few tenths of a pixel above contact, and bias its own estimate upward), gets that offset
+  // carried over by registering the two appearances.
+  const int ref = o.row[1].n > o.row[0].n ? 1 : 0, other = 1 - ref;
+  if (o.row[ref].source == "plate_contact" && o.row[ref].n >= kMinRestingFrames &&
+      double(o.row[other].n) < kTransferBelowFraction * double(o.row[ref].n)) {
+    const OffsetEstimate t = TransferOffset(m.learnt[ref].appearance, m.learnt[other].appearance,
+                                            o.row[ref], 1);
+    if (t.source != "none") o.row[other] = t;
+  }
+  return o;
+}
+
+void ApplyOffsets(const TemplateOffsets& o, std::vector<FrameTrack>* frames) {
+  for (FrameTrack& f : *frames) {
+    for (int k = 0; k < 2; ++k) {
+      if (f.found[k]) f.centre[k] += Eigen::Vector2d(o.col[k].value, o.row[k].value);
+    }
+  }
+}
+
+}  // namespace dimer::tracking

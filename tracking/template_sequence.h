@@ -1,0 +1,42 @@
+#pragma once
+// The sequence-level part of `--method template` and `--method auto` (track.cc calls it):
+// which frames the appearances are learnt from, the choice of method, and the offsets applied
+// to the template's positions once the whole sequence is tracked (appearance_model.h).
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "tracking/appearance_model.h"
+#include "tracking/frame_source.h"
+#include "tracking/method_choice.h"
+#include "tracking/tracker.h"
+
+namespace dimer::tracking {
+
+// Learning frames among `frames` (0..frames-1): every k-th of the first kLearnSpanFrames, about
+// kLearnFrames of them. Frame indices only: the same for any thread count.
+std::vector<size_t> LearningIndices(size_t frames);
+
+struct SequenceMethod {
+  MethodChoice choice;
+  std::shared_ptr<const std::array<Appearance, 2>> appearance;  // template only
+  std::array<LearntSphere, 2> learnt;
+};
+
+// Measures the learning frames with the existing methods (a fresh acquisition each, with the
+// reference's polarity and radius in `reference`), chooses the method and, for the template
+// method, learns both appearances. `requested` is kAuto or an explicit method.
+SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
+                                     const TrackerOptions& reference, Method requested);
+
+struct TemplateOffsets {
+  std::array<OffsetEstimate, 2> col, row;  // per sphere (left, right): reference -> centre
+};
+
+// From silhouettes when the footage has clean ones, else rows from the plate contact over the
+// whole track (`contact_radius_px`) and columns from the appearance's mirror symmetry.
+TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<FrameTrack>& frames,
+                                double contact_radius_px);
+void ApplyOffsets(const TemplateOffsets& o, std::vector<FrameTrack>* frames);
+
+}  // namespace dimer::tracking
