@@ -22,10 +22,14 @@
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/progress.h"
+#include "tracking/seeded_noise.h"
 
 namespace dimer::footage {
 namespace fs = std::filesystem;
 namespace {
+
+using tracking::FrameSeed;
+using tracking::Gaussian;
 
 // Bumped whenever the post-processing changes, so that cached footage is re-rendered.
 constexpr const char* kGeneratorVersion = "povray_footage 1";
@@ -81,36 +85,6 @@ std::string LastLines(const std::string& text, int lines) {
   return tail;
 }
 
-// Standard normal deviates by the Box-Muller transform (explicit: identical everywhere).
-class Gaussian {
- public:
-  explicit Gaussian(uint64_t seed) : rng_(seed) {}
-  double Next() {
-    if (has_spare_) {
-      has_spare_ = false;
-      return spare_;
-    }
-    constexpr double kTwoPow53 = 9007199254740992.0;
-    const double u1 = (double(rng_() >> 11) + 1.0) / (kTwoPow53 + 1.0);  // (0, 1]
-    const double u2 = double(rng_() >> 11) / kTwoPow53;
-    const double mag = std::sqrt(-2.0 * std::log(u1));
-    spare_ = mag * std::sin(2.0 * std::numbers::pi * u2);
-    has_spare_ = true;
-    return mag * std::cos(2.0 * std::numbers::pi * u2);
-  }
-
- private:
-  std::mt19937_64 rng_;
-  double spare_ = 0;
-  bool has_spare_ = false;
-};
-
-uint64_t FrameSeed(uint64_t seed, uint64_t frame) {  // SplitMix64 finaliser of the pair
-  uint64_t z = seed * 0x9E3779B97F4A7C15ull + frame + 0x632BE59BD9B4E019ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
 
 // The instants of frame i's exposure slices: the middle of each of `n` equal slices of the
 // shutter interval centred on the sample time (their mean is the sample time).
