@@ -3,16 +3,12 @@
 #include <fstream>
 
 #include "common/error.h"
+#include "common/trim.h"
 
 namespace dimer::app {
 namespace {
 
-std::string Trim(const std::string& s) {
-  const size_t a = s.find_first_not_of(" \t\r");
-  if (a == std::string::npos) return "";
-  const size_t b = s.find_last_not_of(" \t\r");
-  return s.substr(a, b - a + 1);
-}
+using dimer::Trim;
 
 std::string Unquote(const std::string& s) {
   if (s.size() >= 2 && (s.front() == '"' || s.front() == '\'') && s.back() == s.front()) {

@@ -35,6 +35,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/available_cores.h"
 #include "tracking/cine_writer.h"
 #include "tracking/frame_source.h"
 #include "tracking/scene_renderer.h"
@@ -183,22 +184,7 @@ Rate InMemoryRate(const std::vector<cv::Mat>& frames) {
   return best;
 }
 
-double AvailableCores(int threads) {  // CPU time over wall time of `threads` busy loops
-  rusage before, after;
-  getrusage(RUSAGE_SELF, &before);
-  const auto t0 = Clock::now();
-  std::vector<std::thread> pool;
-  for (int k = 0; k < threads; ++k) {
-    pool.emplace_back([] {
-      volatile double x = 0;
-      for (long i = 0; i < 200000000; ++i) x = x + 1e-9;
-    });
-  }
-  for (auto& t : pool) t.join();
-  getrusage(RUSAGE_SELF, &after);
-  auto cpu = [](const rusage& u) { return u.ru_utime.tv_sec + 1e-6 * u.ru_utime.tv_usec; };
-  return (cpu(after) - cpu(before)) / Seconds(t0);
-}
+using dimer::bench::AvailableCores;
 
 }  // namespace
 

@@ -24,6 +24,7 @@
 #include <sys/resource.h>
 #include <thread>
 
+#include "bench/available_cores.h"
 #include "tracking/disc_coverage.h"
 #include "tracking/frame_source.h"
 #include "tracking/refiner.h"
@@ -212,24 +213,7 @@ SequenceAccuracy MeasureSequence(Method method, const Sequence& q, int cores) {
   return a;
 }
 
-// How many cores this process really gets right now: CPU time over wall time of `threads`
-// busy loops (2.0 on an idle 2-core machine; less when another job competes).
-double AvailableCores(int threads) {
-  rusage before, after;
-  getrusage(RUSAGE_SELF, &before);
-  const auto t0 = Clock::now();
-  std::vector<std::thread> pool;
-  for (int k = 0; k < threads; ++k) {
-    pool.emplace_back([] {
-      volatile double x = 0;
-      for (long i = 0; i < 200000000; ++i) x = x + 1e-9;
-    });
-  }
-  for (auto& t : pool) t.join();
-  getrusage(RUSAGE_SELF, &after);
-  auto cpu = [](const rusage& u) { return u.ru_utime.tv_sec + 1e-6 * u.ru_utime.tv_usec; };
-  return (cpu(after) - cpu(before)) / Seconds(t0);
-}
+using dimer::bench::AvailableCores;
 
 std::string LoadAverage() {
   std::ifstream in("/proc/loadavg");

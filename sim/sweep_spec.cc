@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 
+#include "common/trim.h"
 #include "common/error.h"
 
 namespace dimer::sim {
@@ -257,12 +258,7 @@ std::string SweepSpec::Canonical() const {
 namespace dimer::sim {
 namespace {
 
-std::string Trim(const std::string& s) {
-  const size_t a = s.find_first_not_of(" \t\r");
-  if (a == std::string::npos) return "";
-  const size_t b = s.find_last_not_of(" \t\r");
-  return s.substr(a, b - a + 1);
-}
+using dimer::Trim;
 
 // "--tilt-deg" and "tilt-deg" -> "tilt_deg".
 std::string Normalise(std::string name) {
