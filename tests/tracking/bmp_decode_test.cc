@@ -8,6 +8,7 @@
 
 #include <random>
 
+#include "tests/tracking/decoded_image.h"
 #include "tracking/frame_source.h"
 
 namespace dimer::tracking {
@@ -17,17 +18,6 @@ std::vector<uint8_t> Encode(const cv::Mat& m) {
   std::vector<uint8_t> b;
   EXPECT_TRUE(cv::imencode(".bmp", m, b));
   return b;
-}
-cv::Mat OpenCvGrey(const std::vector<uint8_t>& b) {
-  return cv::imdecode(b, cv::IMREAD_ANYDEPTH | cv::IMREAD_GRAYSCALE);
-}
-bool Same(const cv::Mat& a, const cv::Mat& b) {
-  return a.type() == b.type() && a.size() == b.size() && cv::norm(a, b, cv::NORM_INF) == 0;
-}
-cv::Mat Random(int w, int h, int type, uint64_t seed) {
-  cv::Mat m(h, w, type);
-  cv::RNG(seed).fill(m, cv::RNG::UNIFORM, 0, 256);
-  return m;
 }
 
 TEST(GreyBmp, SameAsOpenCvForEveryRowPadding) {

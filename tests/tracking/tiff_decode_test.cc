@@ -9,6 +9,7 @@
 #include <fstream>
 #include <random>
 
+#include "tests/tracking/decoded_image.h"
 #include "tracking/frame_source.h"
 
 namespace dimer::tracking {
@@ -18,17 +19,6 @@ std::vector<uint8_t> Encode(const cv::Mat& m, int compression) {
   std::vector<uint8_t> b;
   EXPECT_TRUE(cv::imencode(".tif", m, b, {cv::IMWRITE_TIFF_COMPRESSION, compression}));
   return b;
-}
-cv::Mat OpenCvGrey(const std::vector<uint8_t>& b) {
-  return cv::imdecode(b, cv::IMREAD_ANYDEPTH | cv::IMREAD_GRAYSCALE);
-}
-bool Same(const cv::Mat& a, const cv::Mat& b) {
-  return a.type() == b.type() && a.size() == b.size() && cv::norm(a, b, cv::NORM_INF) == 0;
-}
-cv::Mat Random(int w, int h, int type, uint64_t seed) {
-  cv::Mat m(h, w, type);
-  cv::RNG(seed).fill(m, cv::RNG::UNIFORM, 0, type == CV_16UC1 ? 65536 : 256);
-  return m;
 }
 
 TEST(PlainTiff, SameAsOpenCvFor8And16BitAndManyStrips) {
