@@ -123,7 +123,7 @@ bool TrackAccuracy::MeetsTargets(std::string* why) const {
 }
 
 TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string& method,
-                                   int threads) {
+                                   int threads, bool scale_given) {
   double radius = kNaN;
   const std::vector<TruthRow> truth = ReadTruthCsv(folder + "/truth.csv", &radius);
   std::map<std::string, const TruthRow*> by_file;
@@ -132,6 +132,7 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
   tracking::SequenceOptions opt;
   opt.tracker.method = tracking::ParseMethod(method);
   opt.threads = threads;
+  if (scale_given) opt.contact_radius_px = radius;
   auto source = tracking::FrameSource::Open(folder);
   const auto start = std::chrono::steady_clock::now();
   const tracking::SequenceResult res = tracking::TrackSequence(*source, opt);

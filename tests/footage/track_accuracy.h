@@ -60,9 +60,12 @@ inline constexpr double kFoundTarget = 0.99;
 inline constexpr double kPlateTargetPx = 0.3;
 
 // Tracks `folder` (every image in it) with `method` (a `--method` name of tracking/refiner.h)
-// and compares with `folder`/truth.csv. `threads` 0: all cores.
+// and compares with `folder`/truth.csv. `threads` 0: all cores. `scale_given`: the tracker is
+// told the scale, as `dimerlab track --m-per-px` is by a user with a calibrated camera (the
+// sphere radius in pixels, from truth.csv's header); without it the tracker measures the radius
+// from the spheres' look, which is what a front-lit steel sphere does not show.
 TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string& method,
-                                   int threads = 0);
+                                   int threads = 0, bool scale_given = true);
 
 // One table row: "| method | found L/R | bias L/R | scatter L/R | swaps | plate |".
 std::string AccuracyRow(const TrackAccuracy& a);

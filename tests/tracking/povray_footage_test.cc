@@ -3,7 +3,9 @@
 // issue's targets (tests/footage/track_accuracy.h): per sphere scatter <= 0.05 px after the
 // constant offset, |bias| <= 0.1 px, >= 99 % found; no identity swap; plate row within 0.3 px.
 //
-// The method is the one the tracker will use by default: the environment variable
+// The tracker is told the scale (the sphere radius in pixels from truth.csv), as a user passes
+// `--m-per-px` from the camera's calibration: the template method's plate-contact offset rests
+// on it. The method is the one the tracker will use by default: the environment variable
 // DIMERLAB_POVRAY_METHOD, else the compile-time DIMERLAB_POVRAY_TEST_METHOD (CMake cache
 // variable of the same name, default `centroid`, today's default). The targets are the issue's
 // and are never loosened here: a failing case is a finding about the tracker.
