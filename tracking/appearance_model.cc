@@ -1,5 +1,7 @@
 #include "tracking/appearance_model.h"
 
+#include "tracking/limb_fit.h"
+
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -19,8 +21,6 @@ constexpr size_t kMinSamples = 3;
 // Registration of the samples to the mean: whole-pixel search, px (rough centres of the
 // existing methods scatter by up to ~2 px on footage they do not suit).
 constexpr int kLearnSearchPx = 4;
-// Re-centring on the plate contact only when the rough centres are off by more than this, px.
-constexpr double kRecentreMinPx = 1.0;
 // Symmetry: levels above this quantile of the appearance are clipped to it (highlights).
 constexpr double kSymmetryClipQuantile = 0.9;
 // Symmetry from the rim: the ring [R - kRimInsidePx, R + kRimOutsidePx] holds the outline and
@@ -115,7 +115,9 @@ void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSamp
 }  // namespace
 
 std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& samples,
-                                             double radius_px, bool recentre) {
+                                             double radius_px, bool recentre, bool fit_radius,
+                                             bool* radius_from_outline) {
+  if (radius_from_outline) *radius_from_outline = false;
   std::array<LearntSphere, 2> out;
   std::vector<cv::Mat> images(samples.size());
   std::vector<size_t> used;
@@ -125,7 +127,18 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
     used.push_back(j);
   }
   if (used.size() < kMinSamples || !(radius_px > 0)) return out;
-  const int half = int(std::ceil(radius_px + kTemplateMarginPx));
+  // Footage of silhouettes: the rough centres are right, the template is framed around them.
+  // Otherwise they can be pixels off (the visible part of a front-lit steel sphere is its lower
+  // half; highlight seeds sit where the lamps are reflected), and so can the radius, and a
+  // template framed around them would cut the sphere and misplace the rod and plate cuts: a
+  // first, wider template is learnt, its outline (limb_fit.h) gives each sphere's column shift
+  // and, if asked, the radius; the plate contact of the sphere that rests in the learning frames
+  // gives the row shift (no sphere sinks below plate - R, so the smallest (plate - R - row) over
+  // both spheres); both appearances are then learnt again around the rough centres so shifted.
+  // The final offsets are estimated on the whole track (appearance_model.h).
+  const double wide_radius = fit_radius ? kRecentreRadiusHigh * radius_px : radius_px;
+  const int half = int(std::ceil((recentre ? wide_radius + kRecentreSearchPx : radius_px) +
+                                 kTemplateMarginPx));
   for (int k = 0; k < 2; ++k) {
     out[k].samples = used;
     for (size_t j : used) out[k].rough.push_back(samples[j].centre[k]);
@@ -133,13 +146,23 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
     if (!out[k].appearance.valid()) return {};
   }
   if (!recentre) return out;
-  // Rough centres of footage that is not made of silhouettes can be pixels off (vertically:
-  // the visible part of a front-lit steel sphere is its lower half), and a template framed
-  // around them would cut the sphere and misplace the rod and plate cuts. The sphere that rests
-  // in the learning frames tells how far: no sphere sinks below plate - R, so the smallest
-  // (plate - R - row) over both spheres is the provisional row offset; both appearances are
-  // learnt again around their rough centres shifted by it (the final offset is estimated on
-  // the whole track, appearance_model.h).
+  std::array<double, 2> col_shift{0, 0};
+  std::vector<double> radii;
+  for (int k = 0; k < 2; ++k) {
+    LimbFitOptions lo;
+    lo.radius_px = radius_px;
+    lo.fit_radius = fit_radius;
+    lo.max_shift_px = kRecentreSearchPx;
+    const LimbFit limb = FitLimb(out[k].appearance, lo);
+    if (!limb.ok) continue;
+    col_shift[k] = limb.centre.x();
+    radii.push_back(limb.radius_px);
+  }
+  if (fit_radius && radii.size() == 2 &&
+      std::abs(radii[0] - radii[1]) <= kOutlineRadiusAgreement * 0.5 * (radii[0] + radii[1])) {
+    radius_px = 0.5 * (radii[0] + radii[1]);
+    if (radius_from_outline) *radius_from_outline = true;
+  }
   double shift = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 2; ++k) {
     for (size_t i = 0; i < used.size(); ++i) {
@@ -147,11 +170,12 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
       if (std::isfinite(g)) shift = std::min(shift, g);
     }
   }
-  if (!std::isfinite(shift) || std::abs(shift) < kRecentreMinPx) return out;
+  if (!std::isfinite(shift)) shift = 0;
+  const int final_half = int(std::ceil(radius_px + kTemplateMarginPx));
   for (int k = 0; k < 2; ++k) {
     std::vector<Eigen::Vector2d> start = out[k].registered;
-    for (Eigen::Vector2d& p : start) p.y() += shift;
-    LearnOne(images, samples, used, k, half, radius_px, start, &out[k]);
+    for (Eigen::Vector2d& p : start) p += Eigen::Vector2d(col_shift[k], shift);
+    LearnOne(images, samples, used, k, final_half, radius_px, start, &out[k]);
     if (!out[k].appearance.valid()) return {};
   }
   return out;
@@ -254,6 +278,21 @@ OffsetEstimate SymmetryColumnOffset(const Appearance& a) {
   e.err = std::max(kSymmetryErrFloorPx, 0.5 * std::abs(whole - at_rim));
   e.n = 1;
   e.source = "symmetry";
+  return e;
+}
+
+OffsetEstimate LimbColumnOffset(const Appearance& a, double row_offset) {
+  LimbFitOptions lo;
+  lo.radius_px = a.radius_px;
+  lo.max_shift_px = kLimbOffsetMaxPx;
+  lo.row = row_offset;
+  const LimbFit limb = FitLimb(a, lo);
+  if (!limb.ok) return OffsetEstimate{0, NAN, 0, "none"};
+  OffsetEstimate e;
+  e.value = limb.centre.x();
+  e.err = limb.centre_err.x();
+  e.n = size_t(limb.rays);
+  e.source = "limb";
   return e;
 }
 

@@ -21,11 +21,14 @@
 //     surface; over the whole track, the frames whose reference row is lowest relative to the
 //     plate (within kContactBandPx of the lowest) are taken as resting, offset = mean of
 //     (plate - R - reference row);
-//   - symmetry (columns): with the camera and the lights in a vertical plane through the sphere,
-//     the appearance is mirror symmetric about the vertical through the centre; the template is
-//     registered to its own mirror image (cv::findTransformECC) and the axis is half the shift.
-//     Highlights are clipped first (kSymmetryClipQuantile) so that two lamps placed unevenly
-//     weigh less than the silhouette and the plate's reflection, which are symmetric.
+//   - limb (columns): the centre of the sphere's outline in the appearance (limb_fit.h), which
+//     does not depend on where the lamps are;
+//   - symmetry (columns, where the outline cannot be fitted): with the camera and the lights in
+//     a vertical plane through the sphere, the appearance is mirror symmetric about the vertical
+//     through the centre; the template is registered to its own mirror image
+//     (cv::findTransformECC) and the axis is half the shift. Highlights are clipped first
+//     (kSymmetryClipQuantile) so that two lamps placed unevenly weigh less than the silhouette
+//     and the plate's reflection, which are symmetric. Lamps to one side defeat it (pixels off).
 #include <opencv2/core.hpp>
 
 #include <Eigen/Core>
@@ -61,11 +64,26 @@ struct LearntSphere {
   std::vector<Eigen::Vector2d> registered;   // their reference positions after learning
 };
 
+// Re-centring (footage without clean silhouettes): the first template reaches this much beyond
+// the radius to hold a sphere whose rough centre is off by up to that, px; with the radius
+// unknown, it is sized for kRecentreRadiusHigh times the guess.
+inline constexpr double kRecentreSearchPx = 14.0;
+inline constexpr double kRecentreRadiusHigh = 1.3;
+// The limb column offset of a re-centred template is within this of its reference point, px.
+inline constexpr double kLimbOffsetMaxPx = 4.0;
+
 // Both spheres' appearances (0 left, 1 right); invalid appearance if too few samples.
 // `recentre` (footage without clean silhouettes): the templates are framed again around the
-// rough centres shifted by a provisional row offset from the plate contact (see the .cc).
+// rough centres shifted by provisional offsets, columns from the outline, rows from the plate
+// contact (see the .cc). `fit_radius` (with `recentre`; the scale is not given): `radius_px` is
+// only a guess and the radius is taken from the outline; the appearances' radius_px holds it.
 std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& samples,
-                                             double radius_px, bool recentre);
+                                             double radius_px, bool recentre,
+                                             bool fit_radius = false,
+                                             bool* radius_from_outline = nullptr);
+// Both spheres' outline radii must agree within this fraction to be taken (fit_radius): one
+// that does not has caught a reflection's boundary instead of the outline.
+inline constexpr double kOutlineRadiusAgreement = 0.03;
 
 struct OffsetEstimate {
   double value = 0;                                        // px, reference -> centre
@@ -79,6 +97,10 @@ OffsetEstimate SilhouetteOffset(const LearntSphere& s, int axis);
 // Plate contact from the whole track: reference rows and plate rows per frame (NaN: not found).
 OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
                                 const std::vector<double>& plate_rows, double radius_px);
+// Centre column of the appearance's outline (limb_fit.h), relative to its reference column;
+// `row_offset` (reference -> centre, NaN: unknown) holds the circle's row where only one side of
+// the outline shows.
+OffsetEstimate LimbColumnOffset(const Appearance& a, double row_offset);
 // Symmetry axis of the appearance, relative to its reference column.
 OffsetEstimate SymmetryColumnOffset(const Appearance& a);
 // A plate-contact estimate rests on a resting sphere when at least this many frames are in its

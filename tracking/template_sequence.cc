@@ -68,7 +68,8 @@ std::vector<size_t> LearningIndices(size_t frames) {
 }
 
 SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
-                                     const TrackerOptions& reference, Method requested) {
+                                     const TrackerOptions& reference, Method requested,
+                                     bool radius_known) {
   SequenceMethod m;
   std::vector<FrameTrack> probes;
   std::vector<LearningSample> samples;
@@ -112,7 +113,8 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
                          " learning frames from the highlights";
     }
   }
-  m.learnt = LearnAppearances(samples, reference.radius_px, !m.choice.silhouettes);
+  m.learnt = LearnAppearances(samples, reference.radius_px, !m.choice.silhouettes,
+                              !m.choice.silhouettes && !radius_known, &m.radius_from_outline);
   if (!m.learnt[0].appearance.valid() || !m.learnt[1].appearance.valid()) {
     // Nothing to learn from (fewer than 3 learning frames with both spheres): the silhouette
     // methods are what is left.
@@ -141,7 +143,6 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
       plate.push_back(f.plate_row);
     }
     o.row[k] = ContactRowOffset(rows, plate, contact_radius_px);
-    o.col[k] = SymmetryColumnOffset(m.learnt[k].appearance);
   }
   if (m.choice.silhouettes) return o;
   // The sphere that rests longer (more frames in its contact cluster) sets the contact; the
@@ -154,6 +155,12 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
     const OffsetEstimate t = TransferOffset(m.learnt[ref].appearance, m.learnt[other].appearance,
                                             o.row[ref], 1);
     if (t.source != "none") o.row[other] = t;
+  }
+  // Columns from the outline, whose row is then known (where only one side of it shows).
+  for (int k = 0; k < 2; ++k) {
+    const double row = o.row[k].source == "none" ? std::nan("") : o.row[k].value;
+    o.col[k] = LimbColumnOffset(m.learnt[k].appearance, row);
+    if (o.col[k].source == "none") o.col[k] = SymmetryColumnOffset(m.learnt[k].appearance);
   }
   return o;
 }

@@ -21,13 +21,18 @@ struct SequenceMethod {
   MethodChoice choice;
   std::shared_ptr<const std::array<Appearance, 2>> appearance;  // template only
   std::array<LearntSphere, 2> learnt;
+  bool radius_from_outline = false;  // the appearances' radius_px was measured on the outline
 };
 
 // Measures the learning frames with the existing methods (a fresh acquisition each, with the
 // reference's polarity and radius in `reference`), chooses the method and, for the template
-// method, learns both appearances. `requested` is kAuto or an explicit method.
+// method, learns both appearances. `requested` is kAuto or an explicit method. `radius_known`:
+// the reference's radius comes from the scale; otherwise it is the silhouette methods' measure
+// and, on footage that is not made of silhouettes, the radius is taken from the spheres'
+// outline (limb_fit.h) and held in the appearances' radius_px.
 SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
-                                     const TrackerOptions& reference, Method requested);
+                                     const TrackerOptions& reference, Method requested,
+                                     bool radius_known);
 
 struct TemplateOffsets {
   std::array<OffsetEstimate, 2> col, row;  // per sphere (left, right): reference -> centre

@@ -159,9 +159,18 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
         // radius of a front-lit steel sphere can be pixels short).
         reference.radius_px = std::isfinite(options.contact_radius_px) ? options.contact_radius_px
                                                                        : ref.radius_px;
-        prepared = PrepareSequenceMethod(learning, reference, options.tracker.method);
+        prepared = PrepareSequenceMethod(learning, reference, options.tracker.method,
+                                         std::isfinite(options.contact_radius_px));
         chunk_opts.method = prepared.choice.method;
         chunk_opts.appearance = prepared.appearance;
+        // The template's radius (the scale's, or its outline's) is every frame's radius, which
+        // calibrates the scale when it is not given.
+        if (prepared.appearance) {
+          ref.radius_px = (*prepared.appearance)[0].radius_px;
+          result.radius_source = std::isfinite(options.contact_radius_px) ? "scale"
+                                 : prepared.radius_from_outline       ? "outline"
+                                                                      : "silhouette";
+        }
       }
     }
     inflight.push_back(std::async(std::launch::async, TrackChunk, std::cref(source), next, count,
@@ -192,9 +201,7 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
   result.method_reason = prepared.choice.reason;
   if (chunk_opts.appearance) {
     result.appearance = *chunk_opts.appearance;
-    const double r = std::isfinite(options.contact_radius_px) ? options.contact_radius_px
-                                                              : ref.radius_px;
-    result.offsets = EstimateOffsets(prepared, result.frames, r);
+    result.offsets = EstimateOffsets(prepared, result.frames, ref.radius_px);
     ApplyOffsets(result.offsets, &result.frames);
   }
   result.polarity = ref.polarity;
@@ -313,7 +320,7 @@ void WriteTemplateGroup(H5Writer& w, const SequenceResult& r) {
   w.SetAttr("/template/offset_frames", "description", "frames each offset rests on");
   w.WriteStrings("/template/offset_source", sources);
   w.SetAttr("/template/offset_source", "description",
-            "left col, left row, right col, right row: silhouette, plate_contact, symmetry or none");
+            "left col, left row, right col, right row: silhouette, plate_contact, plate_contact_of_other, limb, symmetry or none");
   for (int k = 0; k < 2; ++k) {
     const Appearance& a = r.appearance[k];
     std::vector<double> img(a.image.begin<float>(), a.image.end<float>());
@@ -520,6 +527,21 @@ void RunTrack(const TrackArgs& args) {
                    "row %+.3f +- %.3f px (%s, %zu frames)\n",
                    k == 0 ? "left" : "right", c.value, c.err, c.source.c_str(), w.value, w.err,
                    w.source.c_str(), w.n);
+    }
+    // Rows rest on plate - R: a radius error is a row bias, so say where R came from.
+    if (r.radius_source == "outline") {
+      std::fprintf(stderr,
+                   "dimerlab track: sphere radius %.2f px from the spheres' outline (no "
+                   "--m-per-px); on mirror spheres it can be ~0.5 px short, which lowers every "
+                   "row by as much: pass --m-per-px when the scale is known\n",
+                   r.appearance[0].radius_px);
+    } else if (r.radius_source == "silhouette" && r.method == Method::kTemplate &&
+               !r.method_reason.empty() && r.appearance[0].valid()) {
+      std::fprintf(stderr,
+                   "dimerlab track: warning: sphere radius %.2f px from the silhouette methods, "
+                   "not the outline (the two spheres' outlines disagree); rows rest on it: "
+                   "pass --m-per-px\n",
+                   r.appearance[0].radius_px);
     }
   }
   const Calibration cal = Calibrate(args, r);

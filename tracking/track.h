@@ -47,6 +47,9 @@ struct SequenceResult {
   std::string method_reason;            // why (auto, template); empty for centroid/discfit asked
   std::array<Appearance, 2> appearance; // template: the learnt appearances
   TemplateOffsets offsets;              // template: reference -> centre, already applied
+  // Where the sphere radius in pixels came from: "scale" (contact_radius_px given), "outline"
+  // (template on footage without silhouettes: limb_fit.h) or "silhouette" (the methods' measure).
+  std::string radius_source = "silhouette";
 };
 
 // Tracks every frame of `source`. `on_progress(done)` is called from the calling thread.

@@ -161,7 +161,7 @@ TEST(RunTrack, AutoStatesItsChoiceOnStderrAndInTheFileWithTheTemplatesOffsets) {
   const std::vector<std::string> sources = h.ReadStrings("/template/offset_source");
   ASSERT_EQ(sources.size(), 4u);
   EXPECT_EQ(sources[1], "plate_contact");  // the left sphere rests
-  EXPECT_EQ(sources[0], "symmetry");
+  EXPECT_EQ(sources[0], "limb");  // the column from the outline
   h.ReadDoubles("/template/left", &dims);
   EXPECT_EQ(dims[0], dims[1]);
   EXPECT_EQ(dims[0] % 2, 1u);

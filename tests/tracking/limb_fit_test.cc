@@ -1,0 +1,136 @@
+// The outline fit of a learnt appearance (tracking/limb_fit.h) on synthetic mirror-sphere-like
+// appearances with an exact centre: lamps to one side, a gain ramp, masks cut by the plate and
+// the rod, an unknown radius.
+#include "tracking/limb_fit.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "tracking/disc_coverage.h"
+
+namespace dimer::tracking {
+namespace {
+
+constexpr int kHalf = 32;
+
+struct Look {
+  double radius = 23.75;
+  Eigen::Vector2d centre{0.37, -0.21};  // relative to (kHalf, kHalf)
+  double gain_slope = 0;                // relative gain change per px, left to right
+  bool one_lamp = false;                // one highlight, far to the right (one-sided light)
+  double noise = 0.3;                   // grey levels (a mean of ~20 frames of sigma 2)
+  int plate_cut_below = 1000;           // mask rows below this offset from the reference
+  bool rod_right = false;               // rod corridor cut toward +x
+};
+
+// A front-lit steel sphere as the footage shows it: faint upper half (12 above the backdrop),
+// the plate reflected in the lower half (90), highlights, the outline antialiased by exact pixel
+// coverage, then a gain ramp across the columns and noise.
+Appearance Make(const Look& l, unsigned seed = 3) {
+  Appearance a;
+  a.half = kHalf;
+  a.radius_px = l.radius;
+  const int n = 2 * kHalf + 1;
+  a.image.create(n, n, CV_32F);
+  a.mask = cv::Mat::ones(n, n, CV_8U);
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, l.noise);
+  const Eigen::Vector2d c = l.centre + Eigen::Vector2d(kHalf, kHalf);
+  for (int y = 0; y < n; ++y) {
+    for (int x = 0; x < n; ++x) {
+      const double dx = x - c.x(), dy = y - c.y();
+      const double inside = DiscPixelArea(x, y, c, l.radius);
+      double body = dy > 4 ? 90.0 : 12.0;
+      auto spot = [&](double x0, double y0, double amp) {
+        return amp * std::exp(-((dx - x0) * (dx - x0) + (dy - y0) * (dy - y0)) / 2.0);
+      };
+      if (l.one_lamp) {
+        body += spot(9, -8, 200);
+      } else {
+        body += spot(-7, -8, 200) + spot(5, -6, 160);
+      }
+      const double gain = 1.0 + l.gain_slope * (x - kHalf);
+      a.image.at<float>(y, x) = float(gain * (4.0 + inside * body) + noise(rng));
+      if (y - kHalf > l.plate_cut_below) a.mask.at<uint8_t>(y, x) = 0;
+      if (l.rod_right && x - kHalf > l.radius - 2 && std::abs(y - c.y()) < 3) {
+        a.mask.at<uint8_t>(y, x) = 0;
+      }
+    }
+  }
+  return a;
+}
+
+LimbFitOptions Opts(double radius, bool fit_radius, double max_shift) {
+  LimbFitOptions o;
+  o.radius_px = radius;
+  o.fit_radius = fit_radius;
+  o.max_shift_px = max_shift;
+  return o;
+}
+
+TEST(LimbFit, CentreOfAMirrorSphereWithKnownRadius) {
+  const Look l;
+  const LimbFit f = FitLimb(Make(l), Opts(l.radius, false, 6.0));
+  ASSERT_TRUE(f.ok);
+  EXPECT_NEAR(f.centre.x(), l.centre.x(), 0.02);
+  EXPECT_NEAR(f.centre.y(), l.centre.y(), 0.05);
+  EXPECT_GT(f.rays, kLimbRays / 2);
+  EXPECT_LT(f.centre_err.x(), 0.02);
+}
+
+TEST(LimbFit, LampsToOneSideAndAGainRampDoNotMoveTheColumn) {
+  Look l;
+  l.one_lamp = true;
+  l.gain_slope = 0.02;  // 0.36 -> 1.64 across the template
+  l.plate_cut_below = 20;
+  l.rod_right = true;
+  const LimbFit f = FitLimb(Make(l), Opts(l.radius, false, 6.0));
+  ASSERT_TRUE(f.ok);
+  EXPECT_NEAR(f.centre.x(), l.centre.x(), 0.03);
+}
+
+TEST(LimbFit, FindsACentrePixelsAwayFromTheReference) {
+  Look l;
+  l.centre = {-10.6, 2.3};
+  l.radius = 20.0;
+  const LimbFit f = FitLimb(Make(l), Opts(l.radius, false, 14.0));
+  ASSERT_TRUE(f.ok);
+  EXPECT_NEAR(f.centre.x(), l.centre.x(), 0.03);
+  // Beyond max_shift_px: refused, not a wrong answer.
+  EXPECT_FALSE(FitLimb(Make(l), Opts(l.radius, false, 8.0)).ok);
+}
+
+TEST(LimbFit, MeasuresAnUnknownRadius) {
+  const Look l;
+  const LimbFit f = FitLimb(Make(l), Opts(0.82 * l.radius, true, 6.0));  // a silhouette radius 18 % short
+  ASSERT_TRUE(f.ok);
+  EXPECT_NEAR(f.radius_px, l.radius, 0.1);
+  EXPECT_NEAR(f.centre.x(), l.centre.x(), 0.03);
+}
+
+TEST(LimbFit, AnOutlineSeenOnOneSideGivesTheColumnWhenTheRowIsKnown) {
+  const Look l;
+  Appearance a = Make(l);
+  a.mask.colRange(kHalf + 2, a.mask.cols).setTo(0);  // the right half unknown
+  EXPECT_FALSE(FitLimb(a, Opts(l.radius, false, 6.0)).ok) << "one side, row free: refused";
+  LimbFitOptions o = Opts(l.radius, false, 6.0);
+  o.row = l.centre.y();
+  const LimbFit f = FitLimb(a, o);
+  ASSERT_TRUE(f.ok);
+  EXPECT_EQ(f.pairs, 0);
+  EXPECT_NEAR(f.centre.x(), l.centre.x(), 0.05);
+  EXPECT_NEAR(f.centre.y(), l.centre.y(), 1e-9) << "the row is held";
+}
+
+TEST(LimbFit, NoOutlineNoFit) {
+  Look l;
+  l.radius = 23.75;
+  Appearance a = Make(l);
+  a.image.setTo(7.0f);  // a flat patch: nothing to fit
+  EXPECT_FALSE(FitLimb(a, Opts(l.radius, false, 6.0)).ok);
+}
+
+}  // namespace
+}  // namespace dimer::tracking

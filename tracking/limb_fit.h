@@ -1,0 +1,79 @@
+#pragma once
+// The sphere's outline (its limb) in a learnt appearance (template_locator.h): where the sphere
+// ends, whatever it reflects. The template method's column offset and, when the scale is not
+// given, the sphere's radius come from it (appearance_model.h).
+//
+// Why the limb. A front-lit steel sphere is a mirror: its image is its surroundings (the lamps as
+// highlights, the plate over the lower half), so its brightness pattern says nothing certain
+// about where the centre is; lamps to one side, a gain ramp across the frame or a perspective
+// camera make that pattern lopsided (a mirror-symmetry axis was pixels off on such footage). The
+// outline does not depend on the lighting: a circle of the sphere's radius about the centre
+// (under a pinhole camera the projection of a sphere is an ellipse whose centre is within
+// (R / f)^2 x (distance from the image centre) of the projected centre: < 0.01 px here). Its
+// contrast does depend on the lighting (the bright reflected plate against the dark backdrop in
+// the lower half, a faint grey against black in the upper half, nothing where the backdrop is
+// reflected at grazing incidence), so each part of the outline is weighed by its contrast.
+//
+// Method, on the mean appearance (noise already averaged over the learning frames):
+//   1. gradient by cv::Sobel; only pixels whose 5x5 neighbourhood is known (not rod, not plate);
+//   2. coarse centre by a gradient Hough transform: every pixel with a clear gradient votes at
+//      +-R along its gradient for every R in the radius range; the accumulator, smoothed, peaks
+//      at the centre within about a pixel (highlights vote in rings and do not pile up);
+//   3. per ray from that centre (kLimbRays of them), the edge is the sub-pixel peak of the
+//      radial derivative within kLimbBandPx of the radius (whatever its sign: the outline is
+//      brighter or darker than the backdrop depending on what it reflects);
+//   4. weighted least squares circle fit (Gauss-Newton on centre and, if unknown, radius),
+//      weights the squared edge contrast (the position error of an edge is noise / contrast),
+//      rays more than kLimbOutlierSigmas robust sigmas off dropped; steps 3-4 repeated from the
+//      fitted circle;
+//   5. the column from the midpoints of mirrored pairs of envelope rays (theta, pi - theta),
+//      which needs neither the radius nor the row, when there are enough pairs.
+// The horizontal position of an edge is insensitive to the contrast on either side (a blurred
+// step's steepest point is the step), and rays come in left-right pairs, so the column is
+// unbiased; a systematic inward shift of every edge (the grazing rim reflecting the backdrop)
+// shortens the radius and, where only the lower half has edges, moves the row: the template
+// method takes its rows from the plate contact, not from here.
+#include <Eigen/Core>
+#include <limits>
+
+#include "tracking/template_locator.h"
+
+namespace dimer::tracking {
+
+inline constexpr int kLimbRays = 120;
+// Edge search band about the current radius, px (the coarse centre is within ~1 px).
+inline constexpr double kLimbBandPx = 3.0;
+// Rays further off the circle than this many robust sigmas (and kLimbOutlierFloorPx) are not
+// limb: a highlight or a reflection's boundary caught in the search band.
+inline constexpr double kLimbOutlierSigmas = 3.0;
+inline constexpr double kLimbOutlierFloorPx = 0.5;
+// At least this many rays with an edge, on both sides of the vertical, or no fit.
+inline constexpr int kLimbMinRays = 12;
+// The column comes from mirrored pairs of rays when at least this many pairs have both edges,
+// else from the circle fit.
+inline constexpr int kLimbMinPairs = 6;
+
+struct LimbFit {
+  bool ok = false;
+  Eigen::Vector2d centre{0, 0};    // relative to the reference point (half, half), px
+  double radius_px = 0;
+  Eigen::Vector2d centre_err{0, 0};  // standard uncertainty (col, row), px
+  double radius_err = 0;
+  int rays = 0;                    // rays whose edge entered the fit
+  int pairs = 0;                   // mirrored pairs of rays the column came from (0: the fit)
+};
+
+struct LimbFitOptions {
+  double radius_px = 0;       // the known radius, or (fit_radius) a guess within ~30 %
+  bool fit_radius = false;
+  double max_shift_px = 4;    // how far from the reference point the centre may be
+  // The centre row relative to the reference point when known (the plate contact): only the
+  // column (and radius) are fitted, and an outline seen on one side only still gives it. NaN:
+  // the row is fitted too.
+  double row = std::numeric_limits<double>::quiet_NaN();
+};
+
+// Fits the outline of the sphere in `a` (CV_32F appearance with its mask).
+LimbFit FitLimb(const Appearance& a, const LimbFitOptions& o);
+
+}  // namespace dimer::tracking
