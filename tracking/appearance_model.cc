@@ -26,6 +26,9 @@ constexpr double kSymmetryClipQuantile = 0.9;
 // Symmetry from the rim: the ring [R - kRimInsidePx, R + kRimOutsidePx] holds the outline and
 // the grazing reflections of the surroundings, not the lamps' highlights (which face the camera).
 constexpr double kRimInsidePx = 5.0, kRimOutsidePx = 3.0;
+// The plate reflection's horizon (ReflectionHorizon) is looked for in this part of the sphere.
+constexpr double kHorizonHalfWidthR = 0.5, kHorizonTopR = 0.3, kHorizonBottomR = 0.7;
+constexpr double kHorizonMinRatio = 4.0;
 // Floor of the symmetry offset's uncertainty, px (ECC's own repeatability on a template).
 constexpr double kSymmetryErrFloorPx = 0.01;
 
@@ -56,10 +59,46 @@ MaskContext ContextOf(const LearningSample& s, int k) {
   return ctx;
 }
 
-// Mean of the samples' patches over the pixels that show the sphere.
+// Row (template coordinates) of the horizon of the plate's reflection in a mirror sphere: the
+// strongest mean vertical step across the central columns (|x| <= kHorizonHalfWidthR R) between
+// kHorizonTopR R above and kHorizonBottomR R below the centre, if it stands kHorizonMinRatio
+// times above the median step there; -1 if there is none (a matte sphere, a backlit one).
+int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, double radius_px) {
+  cv::Mat gy;
+  cv::Sobel(image, gy, CV_32F, 0, 1, 3, 1.0 / 8.0);
+  const int x0 = std::max(1, half - int(kHorizonHalfWidthR * radius_px));
+  const int x1 = std::min(image.cols - 2, half + int(kHorizonHalfWidthR * radius_px));
+  const int y0 = std::max(1, half - int(kHorizonTopR * radius_px));
+  const int y1 = std::min(image.rows - 2, half + int(kHorizonBottomR * radius_px));
+  std::vector<double> step;
+  int best = -1;
+  double best_step = 0;
+  for (int y = y0; y <= y1; ++y) {
+    double sum = 0;
+    int n = 0;
+    for (int x = x0; x <= x1; ++x) {
+      if (!mask.at<uint8_t>(y - 1, x) || !mask.at<uint8_t>(y, x) || !mask.at<uint8_t>(y + 1, x)) {
+        continue;
+      }
+      sum += gy.at<float>(y, x);
+      ++n;
+    }
+    if (n < (x1 - x0 + 1) / 2) continue;
+    step.push_back(std::abs(sum / n));
+    if (step.back() > best_step) {
+      best_step = step.back();
+      best = y;
+    }
+  }
+  if (step.size() < 3) return -1;
+  return best_step > kHorizonMinRatio * Median(step) ? best : -1;
+}
+
+// Mean of the samples' patches over the pixels that show the sphere; `cut_reflection`: without
+// the plate's reflection (appearance_model.h, kHorizonGuardPx).
 Appearance Average(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
                    const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
-                   int k, int half, double radius_px) {
+                   int k, int half, double radius_px, bool cut_reflection) {
   const int size = 2 * half + 1;
   Appearance all;
   all.half = half;
@@ -82,6 +121,11 @@ Appearance Average(const std::vector<cv::Mat>& images, const std::vector<Learnin
   a.mask /= 255;
   if (n < int(kMinSamples) || cv::countNonZero(a.mask) == 0) return Appearance{};
   cv::divide(sum, cv::max(count, 1.0f), a.image);
+  if (cut_reflection) {
+    const int horizon = ReflectionHorizon(a.image, a.mask, half, radius_px);
+    if (horizon >= 0) a.mask.rowRange(std::max(0, horizon - kHorizonGuardPx), size).setTo(0);
+    if (cv::countNonZero(a.mask) == 0) return Appearance{};
+  }
   // Unknown pixels hold the mean known level: masked everywhere, but finite and neutral.
   const cv::Scalar mean = cv::mean(a.image, a.mask);
   a.image.setTo(mean, a.mask == 0);
@@ -96,10 +140,10 @@ namespace {
 // averaging and registration to the mean. Invalid appearance if too few samples.
 void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
               const std::vector<size_t>& used, int k, int half, double radius_px,
-              std::vector<Eigen::Vector2d> pos, LearntSphere* s) {
+              bool cut_reflection, std::vector<Eigen::Vector2d> pos, LearntSphere* s) {
   Appearance a;
   for (int pass = 0; pass <= kLearnPasses; ++pass) {
-    a = Average(images, samples, used, pos, k, half, radius_px);
+    a = Average(images, samples, used, pos, k, half, radius_px, cut_reflection);
     if (!a.valid()) return;
     // Register every sample to the mean (the last pass only to report where they sit).
     for (size_t i = 0; i < used.size(); ++i) {
@@ -135,14 +179,15 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   // and, if asked, the radius; the plate contact of the sphere that rests in the learning frames
   // gives the row shift (no sphere sinks below plate - R, so the smallest (plate - R - row) over
   // both spheres); both appearances are then learnt again around the rough centres so shifted.
-  // The final offsets are estimated on the whole track (appearance_model.h).
+  // The final offsets are estimated on the whole track (appearance_model.h). The final
+  // appearances leave out the plate's reflection where there is one (kHorizonGuardPx).
   const double wide_radius = fit_radius ? kRecentreRadiusHigh * radius_px : radius_px;
   const int half = int(std::ceil((recentre ? wide_radius + kRecentreSearchPx : radius_px) +
                                  kTemplateMarginPx));
   for (int k = 0; k < 2; ++k) {
     out[k].samples = used;
     for (size_t j : used) out[k].rough.push_back(samples[j].centre[k]);
-    LearnOne(images, samples, used, k, half, radius_px, out[k].rough, &out[k]);
+    LearnOne(images, samples, used, k, half, radius_px, false, out[k].rough, &out[k]);
     if (!out[k].appearance.valid()) return {};
   }
   if (!recentre) return out;
@@ -175,7 +220,7 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   for (int k = 0; k < 2; ++k) {
     std::vector<Eigen::Vector2d> start = out[k].registered;
     for (Eigen::Vector2d& p : start) p += Eigen::Vector2d(col_shift[k], shift);
-    LearnOne(images, samples, used, k, final_half, radius_px, start, &out[k]);
+    LearnOne(images, samples, used, k, final_half, radius_px, true, start, &out[k]);
     if (!out[k].appearance.valid()) return {};
   }
   return out;
@@ -293,6 +338,22 @@ OffsetEstimate LimbColumnOffset(const Appearance& a, double row_offset) {
   e.err = limb.centre_err.x();
   e.n = size_t(limb.rays);
   e.source = "limb";
+  return e;
+}
+
+OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to,
+                                    const OffsetEstimate& from_offset) {
+  LimbFitOptions lo;
+  lo.radius_px = from.radius_px;
+  lo.max_shift_px = kLimbOffsetMaxPx;
+  const LimbFit a = FitLimb(from, lo), b = FitLimb(to, lo);
+  if (!a.ok || !b.ok) return OffsetEstimate{0, NAN, 0, "none"};
+  OffsetEstimate e;
+  e.value = from_offset.value + (b.centre.y() - a.centre.y());
+  e.err = std::sqrt(from_offset.err * from_offset.err + a.centre_err.y() * a.centre_err.y() +
+                    b.centre_err.y() * b.centre_err.y());
+  e.n = from_offset.n;
+  e.source = "plate_contact_of_other_outline";
   return e;
 }
 

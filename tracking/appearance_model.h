@@ -72,10 +72,20 @@ inline constexpr double kRecentreRadiusHigh = 1.3;
 // The limb column offset of a re-centred template is within this of its reference point, px.
 inline constexpr double kLimbOffsetMaxPx = 4.0;
 
+// A steel sphere on a plate reflects the plate in its lower part, and that reflection is not
+// fixed to the sphere: its horizon (the plate's far edge seen in the sphere, a strong horizontal
+// step) moves as the sphere rises, and near the rim the reflection ends before the outline does,
+// by different amounts on the two sides. Matched with it, a bouncing sphere's row drifted by
+// 0.05 px per px of lift and the outline's centre column was 0.2 px off on the POV-Ray footage
+// (docs/BENCHMARKS.md; a guard of 2 px did better there than 4 or 6). So the final appearance of a sphere that is not a silhouette leaves out
+// everything from kHorizonGuardPx above that horizon down, when the appearance has one; what
+// remains is fixed to the sphere: the outline against the backdrop, the lamps' highlights.
+inline constexpr int kHorizonGuardPx = 2;
+
 // Both spheres' appearances (0 left, 1 right); invalid appearance if too few samples.
 // `recentre` (footage without clean silhouettes): the templates are framed again around the
 // rough centres shifted by provisional offsets, columns from the outline, rows from the plate
-// contact (see the .cc). `fit_radius` (with `recentre`; the scale is not given): `radius_px` is
+// contact (see the .cc), and leave out the plate's reflection (kHorizonGuardPx). `fit_radius` (with `recentre`; the scale is not given): `radius_px` is
 // only a guess and the radius is taken from the outline; the appearances' radius_px holds it.
 std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& samples,
                                              double radius_px, bool recentre,
@@ -117,5 +127,11 @@ inline constexpr double kTransferBelowFraction = 0.5;
 // backward) to `from`'s.
 OffsetEstimate TransferOffset(const Appearance& from, const Appearance& to,
                               const OffsetEstimate& from_offset, int axis);
+// The same carried through the two outlines (limb_fit.h, row fitted): whatever bias the outline
+// fit has (an edge seen a fraction of a pixel inside the rim) is common to two spheres under the
+// same lights and cancels: to's offset = from's + (to's outline row - from's outline row).
+// Source "plate_contact_of_other_outline".
+OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to,
+                                    const OffsetEstimate& from_offset);
 
 }  // namespace dimer::tracking

@@ -152,8 +152,13 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
   const int ref = o.row[1].n > o.row[0].n ? 1 : 0, other = 1 - ref;
   if (o.row[ref].source == "plate_contact" && o.row[ref].n >= kMinRestingFrames &&
       double(o.row[other].n) < kTransferBelowFraction * double(o.row[ref].n)) {
-    const OffsetEstimate t = TransferOffset(m.learnt[ref].appearance, m.learnt[other].appearance,
-                                            o.row[ref], 1);
+    OffsetEstimate t = TransferOffset(m.learnt[ref].appearance, m.learnt[other].appearance,
+                                      o.row[ref], 1);
+    // Appearances too unlike to register (the lamps reflected at different places in the two
+    // spheres once the plate's reflection is left out): through their outlines instead.
+    if (t.source == "none") {
+      t = TransferRowByOutline(m.learnt[ref].appearance, m.learnt[other].appearance, o.row[ref]);
+    }
     if (t.source != "none") o.row[other] = t;
   }
   // Columns from the outline, whose row is then known (where only one side of it shows).
