@@ -5,7 +5,8 @@
 //   bench_tracking_footage [frames] [subframes] [cache_dir] [methods]
 // Defaults: 40 frames of the hop motion, 6 exposure slices (300 us at 2000 frames/s), cache
 // folder bench_footage_cache (footage is reused while its scenes are unchanged), methods
-// "centroid,discfit" (comma-separated `--method` names of tracking/refiner.h).
+// "auto,centroid,template" (comma-separated `--method` names of tracking/refiner.h; auto is the
+// default a user gets). The tracker is given the scale, as with `--m-per-px`.
 // Prints the POV-Ray CPU time per frame of each footage (every slice, antialiased), then one
 // row per footage and method, and the machine (cores, load average).
 #include <cstdio>
@@ -64,7 +65,7 @@ int main(int argc, char** argv) {
   const int slices = argc > 2 ? std::atoi(argv[2]) : 6;
   const std::string cache = argc > 3 ? argv[3] : "bench_footage_cache";
   const std::vector<std::string> methods =
-      SplitList(argc > 4 ? argv[4] : "centroid,discfit");
+      SplitList(argc > 4 ? argv[4] : "auto,centroid,template");
   std::vector<Case> cases;
   for (Lighting l : AllLightings()) cases.push_back({ToString(l), l, 3.9});
   for (double ar : {2.0, 2.1, 2.3}) {
