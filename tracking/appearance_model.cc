@@ -55,7 +55,10 @@ MaskContext ContextOf(const LearningSample& s, int k) {
   MaskContext ctx;
   ctx.plate_row = s.plate_row;
   const Eigen::Vector2d d = s.centre[1 - k] - s.centre[k];
-  if (d.norm() > 0) ctx.rod_dir = d.normalized();
+  if (d.norm() > 0) {
+    ctx.rod_dir = d.normalized();
+    ctx.other = d;
+  }
   return ctx;
 }
 

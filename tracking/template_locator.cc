@@ -100,12 +100,22 @@ cv::Mat FrameMask(const Appearance& a, const Eigen::Vector2d& position, const Ma
   const double rod_inset = a.radius_px - kRodCutInsetPx;
   const double last_row = std::isfinite(ctx.plate_row) ? ctx.plate_row - kTemplatePlateGuardPx
                                                        : std::numeric_limits<double>::infinity();
+  // The other sphere's disc only when it can reach the template (touching spheres).
+  const double other_r = a.radius_px + kOtherSphereMarginPx;
+  const double other_r2 = other_r * other_r;
+  const bool other_cut = ctx.other.allFinite() && ctx.other.norm() < other_r + 1.5 * a.half;
   for (int y = 0; y < m.rows; ++y) {
     uint8_t* row = m.ptr<uint8_t>(y);
     const double dy = y - a.half;
     if (position.y() + dy > last_row) {
       std::fill(row, row + m.cols, uint8_t(0));
       continue;
+    }
+    if (other_cut) {
+      for (int x = 0; x < m.cols; ++x) {
+        const double ox = x - a.half - ctx.other.x(), oy = dy - ctx.other.y();
+        if (ox * ox + oy * oy < other_r2) row[x] = 0;
+      }
     }
     if (!rod) continue;
     for (int x = 0; x < m.cols; ++x) {

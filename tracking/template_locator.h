@@ -33,10 +33,15 @@ struct Appearance {
   bool valid() const { return !image.empty(); }
 };
 
-// Where the rod and the plate are in one frame, relative to a sphere.
+// Where the rod, the plate and the other sphere are in one frame, relative to a sphere.
 struct MaskContext {
   Eigen::Vector2d rod_dir{0, 0};  // unit vector toward the other sphere; zero: no rod cut
   double plate_row = std::numeric_limits<double>::quiet_NaN();  // plate top surface, px
+  // The other sphere's position minus this one's (px; NaN: unknown): spheres in contact
+  // (A_r 2.0) reach into each other's templates, and the other's disc widened by
+  // kOtherSphereMarginPx is cut, its look changing with the tilt.
+  Eigen::Vector2d other{std::numeric_limits<double>::quiet_NaN(),
+                        std::numeric_limits<double>::quiet_NaN()};
 };
 
 // The appearance's mask with the rod corridor and the plate rows of the frame cut, for the

@@ -64,7 +64,10 @@ SphereMeasurement SequenceTracker::Locate(const cv::Mat& frame, int sphere,
                                           int search_px) const {
   MaskContext ctx;
   ctx.plate_row = plate_row;
-  if (other && (*other - guess).norm() > 0) ctx.rod_dir = (*other - guess).normalized();
+  if (other && (*other - guess).norm() > 0) {
+    ctx.rod_dir = (*other - guess).normalized();
+    ctx.other = *other - guess;
+  }
   const Located l = LocateAppearance(frame, (*options_.appearance)[sphere], guess, search_px, ctx);
   SphereMeasurement m;
   m.status = l.clipped ? SphereMeasurement::Status::kClipped
