@@ -57,7 +57,9 @@ struct LimbFit {
   bool ok = false;
   Eigen::Vector2d centre{0, 0};    // relative to the reference point (half, half), px
   double radius_px = 0;
-  Eigen::Vector2d centre_err{0, 0};  // standard uncertainty (col, row), px
+  // Standard uncertainty (col, row), px; the column's includes half the difference between the
+  // pairs' and the circle's answers.
+  Eigen::Vector2d centre_err{0, 0};
   double radius_err = 0;
   int rays = 0;                    // rays whose edge entered the fit
   int pairs = 0;                   // mirrored pairs of rays the column came from (0: the fit)
