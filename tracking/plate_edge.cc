@@ -56,7 +56,90 @@ double MinStep(double sigma, int n, const cv::Mat& frame) {
                   kPlateMinStepGreyLevels * FullScale(frame) / 255.0);
 }
 
+// The camera's blur across rows: a Gaussian of `sigma` px sampled on the pixel grid to 3 sigma
+// (as cv::GaussianBlur applies it; sigma 0: none), normalised.
+std::vector<double> PsfTaps(double sigma) {
+  if (!(sigma > 0)) return {1.0};
+  const int half = int(std::ceil(3 * sigma));
+  std::vector<double> taps(2 * half + 1);
+  double sum = 0;
+  for (int t = -half; t <= half; ++t) sum += taps[t + half] = std::exp(-0.5 * t * t / (sigma * sigma));
+  for (double& w : taps) w /= sum;
+  return taps;
+}
+
+// Share of row `row` that the side below an edge at `y` gives after the blur: each row's box
+// coverage (pixel r spans [r - 1/2, r + 1/2]) spread over its neighbours by `taps`.
+double BlurredCover(int row, double y, const std::vector<double>& taps) {
+  const int half = int(taps.size() / 2);
+  double cover = 0;
+  for (int t = -half; t <= half; ++t) {
+    cover += taps[t + half] * std::clamp(row - t + 0.5 - y, 0.0, 1.0);
+  }
+  return cover;
+}
+
 }  // namespace
+
+double ClippedEdgeRowInProfile(const std::vector<double>& profile, int first_row, int k,
+                               double clip, double pixel_sigma, double profile_sigma,
+                               double psf_sigma_px) {
+  const int n = int(profile.size());
+  const std::vector<double> taps = PsfTaps(psf_sigma_px);
+  if (k - kBracketRows < 0 || k + kBracketRows >= n) return kNaN;
+  // The clipped side is the brighter one; +1 when it lies below the edge.
+  const bool below = profile[k + kBracketRows] > profile[k - kBracketRows];
+  const double dark = below ? profile[k - kBracketRows] : profile[k + kBracketRows];
+  const double at_clip = clip - kPlateClipMarginSigmas * pixel_sigma;
+  const double at_floor = kPlateClipMarginSigmas * pixel_sigma;
+  double best_cost = std::numeric_limits<double>::infinity();
+  std::vector<std::pair<double, double>> fits;  // (cost, step) per grid row
+  const double y0 = first_row + k - 1.5, y1 = first_row + k + 2.5;
+  const int steps = int(std::lround((y1 - y0) / kPlateClipGridPx));
+  fits.reserve(steps + 1);
+  for (int i = 0; i <= steps; ++i) {
+    const double y = y0 + i * kPlateClipGridPx;
+    double lo = 0, hi = std::numeric_limits<double>::infinity(), num = 0, den = 0;
+    for (int j = k - kBracketRows; j <= k + kBracketRows; ++j) {
+      const double cover = BlurredCover(first_row + j, y, taps);
+      const double b = below ? cover : 1.0 - cover;  // the clipped side's share of row j
+      const double d = profile[j] - dark;
+      if (profile[j] >= at_clip) {
+        lo = b > 0 ? std::max(lo, (at_clip - dark) / b) : std::numeric_limits<double>::infinity();
+      } else if (d < at_floor) {
+        if (b > 0) hi = std::min(hi, at_floor / b);
+      } else {
+        num += d * b;
+        den += b * b;
+      }
+    }
+    if (lo > hi) {
+      fits.emplace_back(std::numeric_limits<double>::infinity(), 0.0);
+      continue;
+    }
+    const double step = std::clamp(den > 0 ? num / den : lo, lo, hi);
+    double cost = 0;
+    for (int j = k - kBracketRows; j <= k + kBracketRows; ++j) {
+      const double d = profile[j] - dark;
+      if (profile[j] >= at_clip || d < at_floor) continue;
+      const double cover = BlurredCover(first_row + j, y, taps);
+      const double r = (d - step * (below ? cover : 1.0 - cover)) / profile_sigma;
+      cost += r * r;
+    }
+    fits.emplace_back(cost, step);
+    best_cost = std::min(best_cost, cost);
+  }
+  if (!std::isfinite(best_cost)) return kNaN;
+  // Among the rows that fit within one unit of chi-square, the one needing the least light on
+  // the clipped side: with a single unclipped sample the fit is flat in the direction of a
+  // brighter clipped side, and the least over-exposure that still explains the clip is the
+  // only choice the data do not contradict at its boundary.
+  int pick = -1;
+  for (int i = 0; i <= steps; ++i) {
+    if (fits[i].first <= best_cost + 1.0 && (pick < 0 || fits[i].second < fits[pick].second)) pick = i;
+  }
+  return y0 + pick * kPlateClipGridPx;
+}
 
 double EdgeRowInProfile(const std::vector<double>& profile, int first_row, double min_step) {
   const int n = int(profile.size());
@@ -106,7 +189,7 @@ double FindPlateRowCoarse(const cv::Mat& frame) {
 }
 
 double RefinePlateRow(const cv::Mat& frame, double row_guess,
-                      const std::vector<std::pair<double, double>>& excluded) {
+                      const std::vector<std::pair<double, double>>& excluded, double psf_sigma_px) {
   if (!std::isfinite(row_guess)) return kNaN;
   const int r0 = std::max(0, int(std::lround(row_guess)) - kPlateBandHalfPx);
   const int r1 = std::min(frame.rows - 1, int(std::lround(row_guess)) + kPlateBandHalfPx);
@@ -185,7 +268,17 @@ double RefinePlateRow(const cv::Mat& frame, double row_guess,
   }
   if (inliers < kPlateMinBlocks) return kNaN;
   for (double& p : profile) p /= n_cols;
-  return EdgeRowInProfile(profile, r0, MinStep(sigma, n_cols, frame));
+  const double row = EdgeRowInProfile(profile, r0, MinStep(sigma, n_cols, frame));
+  if (!std::isfinite(row)) return row;
+  // One side at the clip: its level is unknown, and the coverage sum (which reads it three rows
+  // off) would take the clip for it; fit the blurred edge to the unclipped rows instead.
+  const int k = std::clamp(int(std::floor(row - 0.5)) - r0, kBracketRows, rows - 1 - kBracketRows);
+  const double clip = FullScale(frame);
+  const double bright = std::max(profile[k - kBracketRows], profile[k + kBracketRows]);
+  if (bright < clip - kPlateClipMarginSigmas * sigma) return row;
+  const double fitted = ClippedEdgeRowInProfile(profile, r0, k, clip, sigma, sigma / std::sqrt(n_cols),
+                                                psf_sigma_px);
+  return std::isfinite(fitted) ? fitted : row;
 }
 
 }  // namespace dimer::tracking

@@ -10,6 +10,8 @@
 // least 4 px thick (the renderer's kPlateEdgeBandPx), or the edge a plain step.
 #include <opencv2/core.hpp>
 
+#include "tracking/tolerances.h"
+
 #include <utility>
 #include <vector>
 
@@ -19,6 +21,26 @@ namespace dimer::tracking {
 // first_row + i), or NaN when there is no step of at least `min_step` or it is too close to the
 // ends of the profile to bracket.
 double EdgeRowInProfile(const std::vector<double>& profile, int first_row, double min_step);
+
+// Sub-pixel row of an edge whose bright side clips at `clip`, the strongest step lying between
+// profile[k] and profile[k + 1] (rows k -+ 3 must be in the profile). The clipped level is
+// unknown, so the coverage sum cannot be used; what is still measured is the shape of the
+// unclipped rows under a known blur. Model: the edge box-sampled (pixel r spans
+// [r - 1/2, r + 1/2]), then blurred across rows by a Gaussian of `psf_sigma_px` sampled on the
+// pixel grid (the camera's blur; 0: none), the dark level read three rows off. The edge row and
+// the clipped side's level are fitted by least squares to the rows that are neither at the clip
+// nor at the dark level; the rows at the clip must reach it and those at the dark level must
+// stay there (censored samples: a row within kPlateClipMarginSigmas `pixel_sigma` of either is
+// bent by the clipped noise, so only its side counts). When two rows are partly lit the fit is
+// determined. With one (the blur's spill above an edge whose own pixel clips), every edge row
+// in that pixel fits for some brighter clipped side; of the rows that fit within one unit of
+// chi-square (`profile_sigma`: the profile's noise), the one needing the least light on the
+// clipped side is returned: the smallest over-exposure that explains the data. The error is
+// then one-sided and grows with the over-exposure (docs/BENCHMARKS.md). NaN if no edge row is
+// consistent with the clip.
+double ClippedEdgeRowInProfile(const std::vector<double>& profile, int first_row, int k,
+                               double clip, double pixel_sigma, double profile_sigma,
+                               double psf_sigma_px);
 
 // Acquisition: the strongest step of the per-row median over sampled columns (the median
 // ignores the spheres, which cover less than half the width). Whole-pixel accuracy; NaN if no
@@ -34,9 +56,10 @@ double FindPlateRowCoarse(const cv::Mat& frame);
 // median row are averaged into one profile, whose edge is the result. A horizontal gain ramp
 // only scales each block's step (not its row); a reflection, a highlight or a clipped block
 // is an outlier. Where one side of the edge clips (over-exposure) its true level is unknown,
-// and the edge can only be placed within the pixel that holds it (docs/BENCHMARKS.md).
+// and the row comes from ClippedEdgeRowInProfile with the camera's blur `psf_sigma_px`.
 // NaN if fewer than kPlateMinBlocks blocks agree.
 double RefinePlateRow(const cv::Mat& frame, double row_guess,
-                      const std::vector<std::pair<double, double>>& excluded);
+                      const std::vector<std::pair<double, double>>& excluded,
+                      double psf_sigma_px = kPlatePsfSigmaPx);
 
 }  // namespace dimer::tracking

@@ -57,6 +57,14 @@ inline constexpr int kPlateMinBlocks = 3;
 // profile) and at least kPlateMinStepGreyLevels grey levels of the 8-bit scale.
 inline constexpr double kPlateStepSigmas = 8.0;
 inline constexpr double kPlateMinStepGreyLevels = 2.0;
+// Clipped plate edge (ClippedEdgeRowInProfile): the camera's blur assumed by the tracker, a
+// Gaussian of this sigma sampled on the pixel grid, px (the POV-Ray footage's PSF, a focused
+// lens's order of magnitude; only a clipped edge depends on it, the coverage sum does not); a row within
+// kPlateClipMarginSigmas pixel-noise sigmas of the clip or of the dark level is censored (its
+// mean is bent by the clipped noise); the edge row is searched on a grid of kPlateClipGridPx.
+inline constexpr double kPlatePsfSigmaPx = 0.5;
+inline constexpr double kPlateClipMarginSigmas = 3.0;
+inline constexpr double kPlateClipGridPx = 0.002;
 // Acquisition: a second distance-transform peak is a sphere if at least this fraction of the
 // first one (a rod or a clipped sliver gives much less).
 inline constexpr double kSecondPeakFraction = 0.6;

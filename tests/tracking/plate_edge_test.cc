@@ -129,9 +129,11 @@ TEST_P(PlateEdgeLightingVariants, RowWithinTheTargetOnEveryFrame) {
     const double coarse = FindPlateRowCoarse(img);
     EXPECT_NEAR(coarse, plate, 1.0);
     const double clear = s.radius_px + kPlateSphereClearPx;
+    // Our renderer box-samples the scene with no blur: psf 0.
     const double fine = RefinePlateRow(
         img, coarse,
-        {{s.left.x() - clear, s.left.x() + clear}, {s.right.x() - clear, s.right.x() + clear}});
+        {{s.left.x() - clear, s.left.x() + clear}, {s.right.x() - clear, s.right.x() + clear}},
+        0.0);
     if (variant == Variant::kOverexposed) {
       // A known miss of the 0.3 px target. Where one side of the edge clips, its true level is
       // unknown, and so is the covered fraction of the pixel that holds the edge: the edge can
