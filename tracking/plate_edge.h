@@ -22,25 +22,23 @@ namespace dimer::tracking {
 // ends of the profile to bracket.
 double EdgeRowInProfile(const std::vector<double>& profile, int first_row, double min_step);
 
-// Sub-pixel row of an edge whose bright side clips at `clip`, the strongest step lying between
-// profile[k] and profile[k + 1] (rows k -+ 3 must be in the profile). The clipped level is
-// unknown, so the coverage sum cannot be used; what is still measured is the shape of the
-// unclipped rows under a known blur. Model: the edge box-sampled (pixel r spans
-// [r - 1/2, r + 1/2]), then blurred across rows by a Gaussian of `psf_sigma_px` sampled on the
-// pixel grid (the camera's blur; 0: none), the dark level read three rows off. The edge row and
-// the clipped side's level are fitted by least squares to the rows that are neither at the clip
-// nor at the dark level; the rows at the clip must reach it and those at the dark level must
-// stay there (censored samples: a row within kPlateClipMarginSigmas `pixel_sigma` of either is
-// bent by the clipped noise, so only its side counts). When two rows are partly lit the fit is
-// determined. With one (the blur's spill above an edge whose own pixel clips), every edge row
-// in that pixel fits for some brighter clipped side; of the rows that fit within one unit of
-// chi-square (`profile_sigma`: the profile's noise), the one needing the least light on the
-// clipped side is returned: the smallest over-exposure that explains the data. The error is
-// then one-sided and grows with the over-exposure (docs/BENCHMARKS.md). NaN if no edge row is
-// consistent with the clip.
-double ClippedEdgeRowInProfile(const std::vector<double>& profile, int first_row, int k,
-                               double clip, double pixel_sigma, double profile_sigma,
-                               double psf_sigma_px);
+// Sub-pixel row of the strongest step of `profile` when its bright side clips at `clip` (NaN if
+// the step is within three rows of the profile's ends). The clipped level is unknown, so the
+// coverage sum cannot be used; what is still measured is the shape of the partly lit rows under
+// a known blur. Model of a row's mean: the edge box-sampled (pixel r spans [r - 1/2, r + 1/2]),
+// blurred across rows by a Gaussian of `psf_sigma_px` sampled on the pixel grid (the camera's
+// blur; 0: none), read with Gaussian pixel noise `pixel_sigma` and clipped to [0, clip] (so a
+// dark or clipped row's mean is bent by its cut noise: censored samples, modelled rather than
+// left out). The dark level comes from the row three rows off on the dark side. For each trial
+// edge row the clipped side's true level is fitted (least squares, `profile_sigma` the noise of
+// a profile row), and the row minimising chi-square + 2 ln(level) is returned: the most
+// probable row under a scale-invariant prior on the unknown level. When two rows are partly lit
+// the chi-square fixes the row. With one (the blur's spill above an edge whose own pixel
+// clips), any edge row in that pixel fits for some brighter clipped side, and the prior picks
+// the least light that reaches the clip: the error is then towards the dark side, at most the
+// pixel's covered part, and grows with the over-exposure (docs/BENCHMARKS.md).
+double ClippedEdgeRowInProfile(const std::vector<double>& profile, int first_row, double clip,
+                               double pixel_sigma, double profile_sigma, double psf_sigma_px);
 
 // Acquisition: the strongest step of the per-row median over sampled columns (the median
 // ignores the spheres, which cover less than half the width). Whole-pixel accuracy; NaN if no
