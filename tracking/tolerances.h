@@ -57,6 +57,18 @@ inline constexpr int kPlateMinBlocks = 3;
 // profile) and at least kPlateMinStepGreyLevels grey levels of the 8-bit scale.
 inline constexpr double kPlateStepSigmas = 8.0;
 inline constexpr double kPlateMinStepGreyLevels = 2.0;
+// Clipped plate edge (ClippedEdgeRowInProfile). The camera's blur assumed by the tracker: a
+// Gaussian of kPlatePsfSigmaPx sampled on the pixel grid (the POV-Ray footage's PSF, a focused
+// lens's order of magnitude; only a clipped edge depends on it, the coverage sum does not).
+// The edge row is searched every kPlateClipCoarsePx, then every kPlateClipGridPx about the
+// choice; the clipped side's level by at most kPlateClipFitIterations Gauss-Newton steps.
+inline constexpr double kPlatePsfSigmaPx = 0.5;
+inline constexpr double kPlateClipCoarsePx = 0.05;
+inline constexpr double kPlateClipGridPx = 0.002;
+inline constexpr int kPlateClipFitIterations = 8;
+// A profile row whose mean lies within this fraction of the clip from 0 or from the clip is
+// left out of the pixel noise measured for the clipped fit (its noise is cut by the clip).
+inline constexpr double kPlateClipNoiseRowMargin = 0.1;
 // Acquisition: a second distance-transform peak is a sphere if at least this fraction of the
 // first one (a rod or a clipped sliver gives much less).
 inline constexpr double kSecondPeakFraction = 0.6;

@@ -44,6 +44,7 @@ void TrackerOptions::Check() const {
   std::string bad;
   if (polarity < -1 || polarity > 1) bad += "polarity must be -1, 0 or +1; ";
   if (!std::isnan(radius_px) && !(radius_px >= 3)) bad += "sphere radius must be >= 3 px; ";
+  if (!(psf_sigma_px >= 0 && psf_sigma_px <= 5)) bad += "PSF sigma must be 0..5 px; ";
   if (!bad.empty()) throw UsageError(bad.substr(0, bad.size() - 2));
 }
 
@@ -94,7 +95,7 @@ double SequenceTracker::PlateRow(const cv::Mat& frame, double guess,
   std::vector<std::pair<double, double>> excluded;
   const double r = (std::isnan(radius_px_) ? 0.0 : radius_px_) + kPlateSphereClearPx;
   for (int k = 0; k < n; ++k) excluded.emplace_back(centres[k].x() - r, centres[k].x() + r);
-  return RefinePlateRow(frame, guess, excluded);
+  return RefinePlateRow(frame, guess, excluded, options_.psf_sigma_px);
 }
 
 bool SequenceTracker::Follow(const cv::Mat& frame, FrameTrack* out) {

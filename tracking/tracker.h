@@ -19,6 +19,7 @@
 
 #include "tracking/refiner.h"
 #include "tracking/template_locator.h"
+#include "tracking/tolerances.h"
 
 namespace dimer::tracking {
 
@@ -26,6 +27,9 @@ struct TrackerOptions {
   Method method = Method::kCentroid;  // sub-pixel method
   int polarity = 0;                   // +1 bright spheres, -1 dark (backlit), 0 automatic
   double radius_px = std::numeric_limits<double>::quiet_NaN();  // sphere radius, px; NaN: measured
+  // The camera's blur, a Gaussian sigma in px: only a clipped plate edge's row depends on it
+  // (ClippedEdgeRowInProfile); measure it on an unclipped edge of the same camera and lens.
+  double psf_sigma_px = kPlatePsfSigmaPx;
   // Method::kTemplate: the learnt appearances (left, right), shared by every chunk's tracker.
   std::shared_ptr<const std::array<Appearance, 2>> appearance;
 

@@ -8,6 +8,8 @@
 #include <random>
 #include <tuple>
 
+#include <opencv2/imgproc.hpp>
+
 #include "tests/tracking/synthetic.h"
 #include "tracking/tolerances.h"
 
@@ -26,6 +28,80 @@ TEST(PlateEdge, ExactOnABoxSampledStepAtAnySubPixelRow) {
 TEST(PlateEdge, NoStepNoEdge) {
   std::vector<double> p(40, 50.0);
   EXPECT_TRUE(std::isnan(EdgeRowInProfile(p, 0, 5.0)));
+}
+
+// A plate edge as the POV-Ray footage makes it (tests/footage/povray_footage.cc): the scene
+// box-sampled (dark 0 above row `edge`, 128 x gain below), a Gaussian blur of sigma 0.5 px,
+// noise sigma 2, rounded and clipped to 8 bits.
+cv::Mat ClippedBlurredEdge(double edge, double gain, uint64_t seed) {
+  cv::Mat f(120, 320, CV_32F);
+  for (int row = 0; row < f.rows; ++row) {
+    f.row(row).setTo(128.0 * gain * std::clamp(row + 0.5 - edge, 0.0, 1.0));
+  }
+  cv::GaussianBlur(f, f, cv::Size(5, 5), 0.5, 0.5, cv::BORDER_REFLECT_101);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, 2.0);
+  cv::Mat out(f.size(), CV_8U);
+  for (int row = 0; row < f.rows; ++row) {
+    for (int col = 0; col < f.cols; ++col) {
+      out.at<uint8_t>(row, col) =
+          uint8_t(std::clamp(std::round(f.at<float>(row, col) + noise(rng)), 0.0, 255.0));
+    }
+  }
+  return out;
+}
+
+TEST(PlateEdgeClipped, ExactWhereTheEdgePixelIsStillBelowTheClip) {
+  // Gain 4: the plate at twice the clip. An edge in the lower half of pixel 60 leaves that
+  // pixel and the blur's spill above it unclipped: two rows fix the row and the clipped level.
+  double worst = 0, worst_coverage = 0;
+  for (int i = 0; i < 12; ++i) {
+    const double y = 60.02 + 0.04 * i;
+    const cv::Mat img = ClippedBlurredEdge(y, 4.0, 7);
+    const double row = RefinePlateRow(img, 60.5, {}, 0.5);
+    EXPECT_NEAR(row, y, 0.05) << "edge at " << y;
+    worst = std::max(worst, std::abs(row - y));
+    std::vector<double> profile(20);  // the coverage sum, which takes the clip for the level
+    for (int r = 0; r < 20; ++r) profile[r] = cv::mean(img.row(50 + r))[0];
+    worst_coverage = std::max(worst_coverage, std::abs(EdgeRowInProfile(profile, 50, 5.0) - y));
+  }
+  EXPECT_GT(worst_coverage, 0.3) << "the coverage sum is not the answer on a clipped edge";
+  std::printf("[ stats    ] clipped edge, gain 4, lower half-pixel: worst %.4f px (coverage sum "
+              "%.4f)\n", worst, worst_coverage);
+}
+
+TEST(PlateEdgeClipped, OneLitRowErrsOnlyTowardTheDarkSideWithinItsPixel) {
+  // Gain 4, edge in the upper half of pixel 60: the pixel clips and only the spill above it is
+  // lit, which any edge row in the pixel explains with some brighter plate. The least light
+  // places the edge at the pixel's dark boundary at worst, never past the truth.
+  for (int i = 0; i < 12; ++i) {
+    const double y = 59.52 + 0.04 * i;
+    const double row = RefinePlateRow(ClippedBlurredEdge(y, 4.0, 9), 60.5, {}, 0.5);
+    EXPECT_LE(row, y + 0.05) << "edge at " << y;
+    EXPECT_GE(row, 59.5 - 0.05) << "edge at " << y;
+  }
+}
+
+TEST(PlateEdgeClipped, WithinTheTargetAtModestOverExposure) {
+  // Gain 2.4 (the plate at 1.2 x the clip): the edge pixel clips only when nearly covered, and
+  // its mean, bent by the clipped noise, is still modelled: within 0.1 px anywhere in the pixel
+  // (measured: 0.05).
+  for (int i = 0; i < 25; ++i) {
+    const double y = 59.51 + 0.04 * i;
+    const double row = RefinePlateRow(ClippedBlurredEdge(y, 2.4, 11), 60.5, {}, 0.5);
+    EXPECT_NEAR(row, y, 0.1) << "edge at " << y;
+  }
+}
+
+TEST(PlateEdgeClipped, BrightSideAboveIsTheSameFitMirrored) {
+  // The clipped side above the edge: the frame flipped upside down (row r becomes 119 - r, so
+  // an edge at e becomes one at 119 - e); edges where two rows are lit, as in the first test.
+  for (int i = 0; i < 6; ++i) {
+    const double e = 60.02 + 0.08 * i;
+    cv::Mat img;
+    cv::flip(ClippedBlurredEdge(e, 4.0, 13), img, 0);
+    EXPECT_NEAR(RefinePlateRow(img, 119.0 - e, {}, 0.5), 119.0 - e, 0.05) << "edge at " << e;
+  }
 }
 
 class PlateEdgeRendered : public ::testing::TestWithParam<Lighting> {};
@@ -129,9 +205,11 @@ TEST_P(PlateEdgeLightingVariants, RowWithinTheTargetOnEveryFrame) {
     const double coarse = FindPlateRowCoarse(img);
     EXPECT_NEAR(coarse, plate, 1.0);
     const double clear = s.radius_px + kPlateSphereClearPx;
+    // Our renderer box-samples the scene with no blur: psf 0.
     const double fine = RefinePlateRow(
         img, coarse,
-        {{s.left.x() - clear, s.left.x() + clear}, {s.right.x() - clear, s.right.x() + clear}});
+        {{s.left.x() - clear, s.left.x() + clear}, {s.right.x() - clear, s.right.x() + clear}},
+        0.0);
     if (variant == Variant::kOverexposed) {
       // A known miss of the 0.3 px target. Where one side of the edge clips, its true level is
       // unknown, and so is the covered fraction of the pixel that holds the edge: the edge can

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
+#include "common/error.h"
 #include "tests/tracking/synthetic.h"
 #include "tracking/detector.h"
 #include "tracking/pixel_map.h"
@@ -9,6 +12,15 @@
 
 namespace dimer::tracking {
 namespace {
+
+TEST(Tracker, ThePsfSigmaMustBeABlurWidth) {
+  TrackerOptions o;
+  EXPECT_NO_THROW(o.Check());
+  for (double bad : {-0.1, 5.5, std::numeric_limits<double>::quiet_NaN()}) {
+    o.psf_sigma_px = bad;
+    EXPECT_THROW(o.Check(), UsageError) << bad;
+  }
+}
 
 TEST(Detector, PolarityFollowsTheLighting) {
   for (Lighting l : {Lighting::kDisc, Lighting::kBacklit, Lighting::kReflect}) {
