@@ -346,10 +346,18 @@ OffsetEstimate LimbColumnOffset(const Appearance& a, double row_offset) {
 
 OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to,
                                     const OffsetEstimate& from_offset) {
+  if (!from.valid() || !to.valid() || from.image.size() != to.image.size()) {
+    return OffsetEstimate{0, NAN, 0, "none"};
+  }
+  // Both outlines over the same pixels (the rod's side of each and the lower cuts of both left
+  // out of both): the arcs fitted are the same, and so is their bias.
+  Appearance f = from, t = to;
+  f.mask = from.mask & to.mask;
+  t.mask = f.mask;
   LimbFitOptions lo;
   lo.radius_px = from.radius_px;
   lo.max_shift_px = kLimbOffsetMaxPx;
-  const LimbFit a = FitLimb(from, lo), b = FitLimb(to, lo);
+  const LimbFit a = FitLimb(f, lo), b = FitLimb(t, lo);
   if (!a.ok || !b.ok) return OffsetEstimate{0, NAN, 0, "none"};
   OffsetEstimate e;
   e.value = from_offset.value + (b.centre.y() - a.centre.y());
