@@ -19,6 +19,8 @@
 #include <random>
 #include <sstream>
 #include <string>
+
+#include "tests/tracking/clipped_edge_frame.h"
 #include <tuple>
 #include <vector>
 
@@ -123,22 +125,7 @@ int TimeRefine(int calls) {
 // a plate at 1.2, 2 and 4 times the clip and a camera blur of 0.4 to 0.8 px.
 int PsfSensitivity() {
   const auto frame = [](double edge, double gain, double psf, uint64_t seed) {
-    cv::Mat f(120, 320, CV_32F);
-    for (int row = 0; row < f.rows; ++row) {
-      f.row(row).setTo(128.0 * gain * std::clamp(row + 0.5 - edge, 0.0, 1.0));
-    }
-    const int k = 2 * int(std::ceil(3 * psf)) + 1;
-    cv::GaussianBlur(f, f, cv::Size(k, k), psf, psf, cv::BORDER_REFLECT_101);
-    std::mt19937_64 rng(seed);
-    std::normal_distribution<double> noise(0.0, 2.0);
-    cv::Mat out(f.size(), CV_8U);
-    for (int row = 0; row < f.rows; ++row) {
-      for (int col = 0; col < f.cols; ++col) {
-        out.at<uint8_t>(row, col) =
-            uint8_t(std::clamp(std::round(f.at<float>(row, col) + noise(rng)), 0.0, 255.0));
-      }
-    }
-    return out;
+    return dimer::tracking::ClippedBlurredEdge(edge, gain, psf, seed);
   };
   std::printf("| true sigma (px) | plate 1.2 x clip | 2 x clip | 4 x clip |\n|---|---|---|---|\n");
   for (double psf : {0.4, 0.5, 0.6, 0.8}) {

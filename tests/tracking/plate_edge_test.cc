@@ -10,6 +10,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "tests/tracking/clipped_edge_frame.h"
 #include "tests/tracking/synthetic.h"
 #include "tracking/tolerances.h"
 
@@ -30,25 +31,9 @@ TEST(PlateEdge, NoStepNoEdge) {
   EXPECT_TRUE(std::isnan(EdgeRowInProfile(p, 0, 5.0)));
 }
 
-// A plate edge as the POV-Ray footage makes it (tests/footage/povray_footage.cc): the scene
-// box-sampled (dark 0 above row `edge`, 128 x gain below), a Gaussian blur of sigma 0.5 px,
-// noise sigma 2, rounded and clipped to 8 bits.
+// The POV-Ray footage's blur (tests/tracking/clipped_edge_frame.h).
 cv::Mat ClippedBlurredEdge(double edge, double gain, uint64_t seed) {
-  cv::Mat f(120, 320, CV_32F);
-  for (int row = 0; row < f.rows; ++row) {
-    f.row(row).setTo(128.0 * gain * std::clamp(row + 0.5 - edge, 0.0, 1.0));
-  }
-  cv::GaussianBlur(f, f, cv::Size(5, 5), 0.5, 0.5, cv::BORDER_REFLECT_101);
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> noise(0.0, 2.0);
-  cv::Mat out(f.size(), CV_8U);
-  for (int row = 0; row < f.rows; ++row) {
-    for (int col = 0; col < f.cols; ++col) {
-      out.at<uint8_t>(row, col) =
-          uint8_t(std::clamp(std::round(f.at<float>(row, col) + noise(rng)), 0.0, 255.0));
-    }
-  }
-  return out;
+  return dimer::tracking::ClippedBlurredEdge(edge, gain, 0.5, seed);
 }
 
 TEST(PlateEdgeClipped, ExactWhereTheEdgePixelIsStillBelowTheClip) {
