@@ -29,6 +29,11 @@ constexpr double kRimInsidePx = 5.0, kRimOutsidePx = 3.0;
 // The plate reflection's horizon (ReflectionHorizon) is looked for in this part of the sphere.
 constexpr double kHorizonHalfWidthR = 0.5, kHorizonTopR = 0.3, kHorizonBottomR = 0.7;
 constexpr double kHorizonMinRatio = 4.0;
+// HorizonMoves: rows about the mean horizon searched per sample; the slope (px of horizon per
+// px of height) above which it moves; the least span of heights that can show it.
+constexpr int kHorizonWindowPx = 4;
+constexpr double kHorizonMovesPerPx = 0.005;
+constexpr double kMinHeightSpanPx = 3.0;
 // Floor of the symmetry offset's uncertainty, px (ECC's own repeatability on a template).
 constexpr double kSymmetryErrFloorPx = 0.01;
 
@@ -97,11 +102,69 @@ int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, doubl
   return best_step > kHorizonMinRatio * Median(step) ? best : -1;
 }
 
-// Mean of the samples' patches over the pixels that show the sphere; `cut_reflection`: without
-// the plate's reflection (appearance_model.h, kHorizonGuardPx).
+// Whether the horizon at template row `horizon` moves within the sphere with its height above
+// the plate: per sample, the horizon's sub-pixel row (centroid of the mean vertical step across
+// the central columns, within kHorizonWindowPx rows) against the height (plate - row), fitted by
+// a straight line; it moves when the slope exceeds kHorizonMovesPerPx and three standard errors
+// over heights spanning kMinHeightSpanPx. A resting sphere (no span) or a renderer whose
+// reflection is painted on the sphere (no slope) keeps its whole appearance.
+bool HorizonMoves(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
+                  const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
+                  int half, int horizon, double radius_px) {
+  const int x0 = std::max(1, half - int(kHorizonHalfWidthR * radius_px));
+  const int x1 = std::min(2 * half - 1, half + int(kHorizonHalfWidthR * radius_px));
+  std::vector<double> h, z;
+  cv::Mat patch, gy;
+  for (size_t i = 0; i < used.size(); ++i) {
+    const double plate = samples[used[i]].plate_row;
+    if (!std::isfinite(plate) || !Patch(images[used[i]], pos[i], half, &patch)) continue;
+    cv::Sobel(patch, gy, CV_32F, 0, 1, 3, 1.0 / 8.0);
+    double sw = 0, swy = 0, peak = 0;
+    std::vector<double> step;
+    for (int y = horizon - kHorizonWindowPx; y <= horizon + kHorizonWindowPx; ++y) {
+      double sum = 0;
+      if (y >= 1 && y < patch.rows - 1) {
+        for (int x = x0; x <= x1; ++x) sum += gy.at<float>(y, x);
+        sum = std::abs(sum / (x1 - x0 + 1));
+      }
+      step.push_back(sum);
+      peak = std::max(peak, sum);
+    }
+    for (size_t j = 0; j < step.size(); ++j) {
+      const double w = std::max(0.0, step[j] - 0.5 * peak);
+      sw += w;
+      swy += w * (horizon - kHorizonWindowPx + int(j));
+    }
+    if (!(sw > 0)) continue;
+    h.push_back(swy / sw);
+    z.push_back(plate - pos[i].y());
+  }
+  if (h.size() < 3) return false;
+  const double n = double(h.size());
+  double mz = 0, mh = 0;
+  for (size_t i = 0; i < h.size(); ++i) mz += z[i] / n, mh += h[i] / n;
+  double szz = 0, szh = 0;
+  for (size_t i = 0; i < h.size(); ++i) {
+    szz += (z[i] - mz) * (z[i] - mz);
+    szh += (z[i] - mz) * (h[i] - mh);
+  }
+  const auto [zmin, zmax] = std::minmax_element(z.begin(), z.end());
+  if (*zmax - *zmin < kMinHeightSpanPx || !(szz > 0)) return false;
+  const double slope = szh / szz;
+  double rss = 0;
+  for (size_t i = 0; i < h.size(); ++i) {
+    const double r = h[i] - mh - slope * (z[i] - mz);
+    rss += r * r;
+  }
+  const double se = std::sqrt(rss / std::max(1.0, n - 2) / szz);
+  return std::abs(slope) > kHorizonMovesPerPx && std::abs(slope) > 3 * se;
+}
+
+// Mean of the samples' patches over the pixels that show the sphere; rows from `cut_row` down
+// left out (the plate's reflection, appearance_model.h; -1: none).
 Appearance Average(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
                    const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
-                   int k, int half, double radius_px, bool cut_reflection) {
+                   int k, int half, double radius_px, int cut_row) {
   const int size = 2 * half + 1;
   Appearance all;
   all.half = half;
@@ -124,9 +187,8 @@ Appearance Average(const std::vector<cv::Mat>& images, const std::vector<Learnin
   a.mask /= 255;
   if (n < int(kMinSamples) || cv::countNonZero(a.mask) == 0) return Appearance{};
   cv::divide(sum, cv::max(count, 1.0f), a.image);
-  if (cut_reflection) {
-    const int horizon = ReflectionHorizon(a.image, a.mask, half, radius_px);
-    if (horizon >= 0) a.mask.rowRange(std::max(0, horizon - kHorizonGuardPx), size).setTo(0);
+  if (cut_row >= 0 && cut_row < size) {
+    a.mask.rowRange(cut_row, size).setTo(0);
     if (cv::countNonZero(a.mask) == 0) return Appearance{};
   }
   // Unknown pixels hold the mean known level: masked everywhere, but finite and neutral.
@@ -143,10 +205,10 @@ namespace {
 // averaging and registration to the mean. Invalid appearance if too few samples.
 void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
               const std::vector<size_t>& used, int k, int half, double radius_px,
-              bool cut_reflection, std::vector<Eigen::Vector2d> pos, LearntSphere* s) {
+              int cut_row, std::vector<Eigen::Vector2d> pos, LearntSphere* s) {
   Appearance a;
   for (int pass = 0; pass <= kLearnPasses; ++pass) {
-    a = Average(images, samples, used, pos, k, half, radius_px, cut_reflection);
+    a = Average(images, samples, used, pos, k, half, radius_px, cut_row);
     if (!a.valid()) return;
     // Register every sample to the mean (the last pass only to report where they sit).
     for (size_t i = 0; i < used.size(); ++i) {
@@ -190,7 +252,7 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   for (int k = 0; k < 2; ++k) {
     out[k].samples = used;
     for (size_t j : used) out[k].rough.push_back(samples[j].centre[k]);
-    LearnOne(images, samples, used, k, half, radius_px, false, out[k].rough, &out[k]);
+    LearnOne(images, samples, used, k, half, radius_px, -1, out[k].rough, &out[k]);
     if (!out[k].appearance.valid()) return {};
   }
   if (!recentre) return out;
@@ -220,10 +282,29 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   }
   if (!std::isfinite(shift)) shift = 0;
   const int final_half = int(std::ceil(radius_px + kTemplateMarginPx));
+  std::array<std::vector<Eigen::Vector2d>, 2> start;
   for (int k = 0; k < 2; ++k) {
-    std::vector<Eigen::Vector2d> start = out[k].registered;
-    for (Eigen::Vector2d& p : start) p += Eigen::Vector2d(col_shift[k], shift);
-    LearnOne(images, samples, used, k, final_half, radius_px, true, start, &out[k]);
+    start[k] = out[k].registered;
+    for (Eigen::Vector2d& p : start[k]) p += Eigen::Vector2d(col_shift[k], shift);
+    LearnOne(images, samples, used, k, final_half, radius_px, -1, start[k], &out[k]);
+    if (!out[k].appearance.valid()) return {};
+  }
+  // The plate's reflection is left out of both appearances when the horizon of either moves
+  // with its height (HorizonMoves): the same scene and lights make both spheres' reflections
+  // alike, and the one that rests shows no motion to measure.
+  std::array<int, 2> horizon{-1, -1};
+  bool moves = false;
+  for (int k = 0; k < 2; ++k) {
+    const Appearance& a = out[k].appearance;
+    horizon[k] = ReflectionHorizon(a.image, a.mask, a.half, radius_px);
+    moves = moves || (horizon[k] >= 0 && HorizonMoves(images, samples, used, out[k].registered,
+                                                      a.half, horizon[k], radius_px));
+  }
+  if (!moves) return out;
+  for (int k = 0; k < 2; ++k) {
+    if (horizon[k] < 0) continue;
+    LearnOne(images, samples, used, k, final_half, radius_px,
+             std::max(0, horizon[k] - kHorizonGuardPx), start[k], &out[k]);
     if (!out[k].appearance.valid()) return {};
   }
   return out;
@@ -329,7 +410,20 @@ OffsetEstimate SymmetryColumnOffset(const Appearance& a) {
   return e;
 }
 
-OffsetEstimate LimbColumnOffset(const Appearance& a, double row_offset) {
+// The appearance above its plate reflection's horizon (less kHorizonGuardPx), where the outline
+// is the sphere's own and not a reflection's boundary; itself when it shows no horizon (a cut
+// template, a matte or backlit sphere).
+Appearance UpperPart(const Appearance& a) {
+  const int horizon = ReflectionHorizon(a.image, a.mask, a.half, a.radius_px);
+  if (horizon < 0) return a;
+  Appearance u = a;
+  u.mask = a.mask.clone();
+  u.mask.rowRange(std::max(0, horizon - kHorizonGuardPx), u.mask.rows).setTo(0);
+  return u;
+}
+
+OffsetEstimate LimbColumnOffset(const Appearance& a_whole, double row_offset) {
+  const Appearance a = UpperPart(a_whole);
   LimbFitOptions lo;
   lo.radius_px = a.radius_px;
   lo.max_shift_px = kLimbOffsetMaxPx;
@@ -351,8 +445,8 @@ OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to
   }
   // Both outlines over the same pixels (the rod's side of each and the lower cuts of both left
   // out of both): the arcs fitted are the same, and so is their bias.
-  Appearance f = from, t = to;
-  f.mask = from.mask & to.mask;
+  Appearance f = UpperPart(from), t = UpperPart(to);
+  f.mask = f.mask & t.mask;
   t.mask = f.mask;
   LimbFitOptions lo;
   lo.radius_px = from.radius_px;

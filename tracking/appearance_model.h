@@ -72,14 +72,18 @@ inline constexpr double kRecentreRadiusHigh = 1.3;
 // The limb column offset of a re-centred template is within this of its reference point, px.
 inline constexpr double kLimbOffsetMaxPx = 4.0;
 
-// A steel sphere on a plate reflects the plate in its lower part, and that reflection is not
-// fixed to the sphere: its horizon (the plate's far edge seen in the sphere, a strong horizontal
-// step) moves as the sphere rises, and near the rim the reflection ends before the outline does,
-// by different amounts on the two sides. Matched with it, a bouncing sphere's row drifted by
-// 0.05 px per px of lift and the outline's centre column was 0.2 px off on the POV-Ray footage
-// (docs/BENCHMARKS.md; a guard of 2 px did better there than 4 or 6). So the final appearance of a sphere that is not a silhouette leaves out
-// everything from kHorizonGuardPx above that horizon down, when the appearance has one; what
-// remains is fixed to the sphere: the outline against the backdrop, the lamps' highlights.
+// A steel sphere on a plate reflects the plate in its lower part, and on real optics that
+// reflection is not fixed to the sphere: its horizon (the plate's far edge seen in the sphere, a
+// strong horizontal step) moves as the sphere rises, and near the rim the reflection ends before
+// the outline does, by different amounts on the two sides. Matched with it, a bouncing sphere's
+// row drifted by 0.05 px per px of lift on the POV-Ray footage (docs/BENCHMARKS.md). So when the
+// horizon of either sphere moves with its height above the plate in the learning frames (a
+// straight-line fit, appearance_model.cc HorizonMoves), both final appearances leave out
+// everything from kHorizonGuardPx above their horizon down (2 px did better there than 4 or 6);
+// what remains is fixed to the sphere: the outline against the backdrop, the lamps' highlights.
+// Where it does not move (our renderer paints the reflection on the sphere) the whole appearance
+// is kept: cut, it located impacts 2x less precisely there. The outline fits (columns, the row
+// carried through the outlines) use the part above the horizon in every case.
 inline constexpr int kHorizonGuardPx = 2;
 
 // Both spheres' appearances (0 left, 1 right); invalid appearance if too few samples.
