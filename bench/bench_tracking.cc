@@ -169,8 +169,18 @@ Sequence HopSequence(int n, Lighting l) {
 
 struct SequenceAccuracy {
   double worst_bias = 0, worst_scatter = 0, found = 0, rate1 = 0, rate2 = 0;
+  // CPU microseconds per frame (user + system, all threads; least over the runs): unlike the
+  // rates, it hardly depends on what else runs on a shared machine.
+  double cpu_us1 = 1e30, cpu_us2 = 1e30;
   std::string method;
 };
+
+double SelfCpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 SequenceAccuracy MeasureSequence(Method method, const Sequence& q, int cores) {
   SequenceAccuracy a;
@@ -184,8 +194,11 @@ SequenceAccuracy MeasureSequence(Method method, const Sequence& q, int cores) {
       opts.threads = threads;
       opts.contact_radius_px = kRadius;  // the scale is known
       const auto t0 = Clock::now();
+      const double c0 = SelfCpuSeconds();
       r = TrackSequence(src, opts);
       best = std::max(best, double(r.frames.size()) / Seconds(t0));
+      double& cpu = threads == 1 ? a.cpu_us1 : a.cpu_us2;
+      cpu = std::min(cpu, 1e6 * (SelfCpuSeconds() - c0) / double(r.frames.size()));
     }
     (threads == 1 ? a.rate1 : a.rate2) = best;
     if (threads != 1) continue;
@@ -249,15 +262,15 @@ int main(int argc, char** argv) {
   // against the centroid, on a sequence with a resting and a bouncing sphere.
   std::printf("\nSequences of %d frames (left sphere resting, right one bouncing; learning and "
               "offset estimation included in the rates):\n\n", std::min(n, 800));
-  std::printf("| lighting | method asked | method run | worst |bias| (px) | worst scatter (px) | found | frames/s 1 thread | frames/s %d threads |\n", cores);
-  std::printf("|---|---|---|---|---|---|---|---|\n");
+  std::printf("| lighting | method asked | method run | worst |bias| (px) | worst scatter (px) | found | frames/s 1 thread | frames/s %d threads | µs CPU/frame 1 thread | µs CPU/frame %d threads |\n", cores, cores);
+  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   for (Lighting l : {Lighting::kReflect, Lighting::kBacklit}) {
     const Sequence q = HopSequence(std::min(n, 800), l);
     for (Method m : {Method::kCentroid, Method::kTemplate, Method::kAuto}) {
       const SequenceAccuracy a = MeasureSequence(m, q, cores);
-      std::printf("| %s | %s | %s | %.4f | %.4f | %.1f %% | %.0f | %.0f |\n", ToString(l).c_str(),
-                  ToString(m).c_str(), a.method.c_str(), a.worst_bias, a.worst_scatter,
-                  100 * a.found, a.rate1, a.rate2);
+      std::printf("| %s | %s | %s | %.4f | %.4f | %.1f %% | %.0f | %.0f | %.0f | %.0f |\n",
+                  ToString(l).c_str(), ToString(m).c_str(), a.method.c_str(), a.worst_bias,
+                  a.worst_scatter, 100 * a.found, a.rate1, a.rate2, a.cpu_us1, a.cpu_us2);
     }
   }
   // End to end from PNG files against decode only, both on all cores.

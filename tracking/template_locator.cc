@@ -62,34 +62,80 @@ Eigen::Vector2d PeakWithVertex(const cv::Mat& res, const cv::Point& p) {
 
 }  // namespace
 
-bool RegisterTranslation(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
-                         Eigen::Vector2d* t, double* rho) {
+namespace {
+
+// ECC's cost grows with the image's area, but only the masked pixels and a rim around them
+// enter its sums: ECC smooths (kEccGaussSize: 2 px), takes gradients (1 px), samples
+// bilinearly (1 px) around the masked pixels moved by the shift. Since the appearance's mask
+// may cover only part of the template (the plate's reflection cut, the rod, the plate rows),
+// both images are cut to the mask's bounding box widened by this margin: the same sums, on
+// fewer pixels. It holds for shifts up to kEccCropMarginPx - 4 px (tests/tracking/
+// register_window_test.cc: 0 px of margin is 0.025 px off, 2 px agree); ECC's answer must stay
+// within kEccMaxMovePx of a start at most half a pixel off anyway.
+constexpr int kEccCropMarginPx = 6;
+constexpr double kEccCropMaxShiftPx = kEccCropMarginPx - 4;
+
+// The mask's bounding box widened by kEccCropMarginPx, inside the image.
+cv::Rect EccWindow(const cv::Mat& mask) {
+  const cv::Rect box = cv::boundingRect(mask);
+  const cv::Rect wide(box.x - kEccCropMarginPx, box.y - kEccCropMarginPx,
+                      box.width + 2 * kEccCropMarginPx, box.height + 2 * kEccCropMarginPx);
+  return wide & cv::Rect(0, 0, mask.cols, mask.rows);
+}
+
+// The two ECC runs of RegisterTranslation on `window` (the same rectangle of both images): the
+// shift is the same as on the whole images, since both are cut alike. False: ECC did not
+// converge, or went further than the window allows (*t untouched then).
+bool RegisterInWindow(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
+                      const cv::Rect& window, Eigen::Vector2d* t, double* rho) {
   const cv::TermCriteria stop(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, kEccMaxIter,
                               kEccEpsilon);
+  const bool whole = window == cv::Rect(0, 0, fixed.cols, fixed.rows);
+  const cv::Mat fixed_w = fixed(window), moving_w = moving(window), mask_w = mask(window);
   cv::Mat warp = (cv::Mat_<float>(2, 3) << 1, 0, float(t->x()), 0, 1, float(t->y()));
   try {
-    cv::findTransformECC(fixed, moving, warp, cv::MOTION_TRANSLATION, stop, mask, kEccGaussSize);
+    cv::findTransformECC(fixed_w, moving_w, warp, cv::MOTION_TRANSLATION, stop, mask_w,
+                         kEccGaussSize);
     // ECC warps `moving` bilinearly, and its iterations settle only within a few hundredths of
     // a pixel of the optimum (bilinear interpolation blurs by an amount that depends on the
     // fractional shift). So `moving` is shifted once by ECC's answer with a Lanczos kernel
     // (nearly exact for a band-limited image) and ECC run again from zero: the residual steps
     // are small, and so is their error (on a noisy sphere the scatter falls by a third).
     const double tx = warp.at<float>(0, 2), ty = warp.at<float>(1, 2);
-    const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, tx, 0, 1, ty);
+    if (!whole && std::max(std::abs(tx), std::abs(ty)) > kEccCropMaxShiftPx) return false;
+    // The shifted window is read from the whole `moving` (the Lanczos kernel reaches 4 px).
+    const cv::Mat shift =
+        (cv::Mat_<double>(2, 3) << 1, 0, tx + window.x, 0, 1, ty + window.y);
     cv::Mat shifted, shifted_mask;
-    cv::warpAffine(moving, shifted, shift, moving.size(),
+    cv::warpAffine(moving, shifted, shift, window.size(),
                    cv::INTER_LANCZOS4 | cv::WARP_INVERSE_MAP, cv::BORDER_REPLICATE);
-    cv::warpAffine(mask, shifted_mask, shift, mask.size(),
+    cv::warpAffine(mask, shifted_mask, shift, window.size(),
                    cv::INTER_NEAREST | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT, cv::Scalar(0));
     cv::Mat residual = cv::Mat::eye(2, 3, CV_32F);
-    const double r = cv::findTransformECC(fixed, shifted, residual, cv::MOTION_TRANSLATION, stop,
-                                          shifted_mask, kEccGaussSize);
+    const double r = cv::findTransformECC(fixed_w, shifted, residual, cv::MOTION_TRANSLATION,
+                                          stop, shifted_mask, kEccGaussSize);
+    const Eigen::Vector2d found(tx + residual.at<float>(0, 2), ty + residual.at<float>(1, 2));
+    if (!found.allFinite()) return false;
     if (rho) *rho = r;
-    *t = {tx + residual.at<float>(0, 2), ty + residual.at<float>(1, 2)};
+    *t = found;
   } catch (const cv::Exception&) {
     return false;
   }
-  return t->allFinite();
+  return true;
+}
+
+}  // namespace
+
+bool RegisterTranslation(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
+                         Eigen::Vector2d* t, double* rho) {
+  const cv::Rect whole(0, 0, fixed.cols, fixed.rows);
+  const cv::Rect window = EccWindow(mask);
+  // A start too far for the window, or an ECC run that went too far in it: the whole images.
+  if (window != whole && std::max(std::abs(t->x()), std::abs(t->y())) <= 1.0 &&
+      RegisterInWindow(fixed, moving, mask, window, t, rho)) {
+    return true;
+  }
+  return RegisterInWindow(fixed, moving, mask, whole, t, rho);
 }
 
 cv::Mat FrameMask(const Appearance& a, const Eigen::Vector2d& position, const MaskContext& ctx) {
@@ -143,8 +189,13 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   if (cv::countNonZero(mask) < kMinMaskedFraction * size * size) return out;
   Eigen::Vector2d start = guess;
   if (search_px > 0) {
+    // Template pixels outside the mask weigh nothing in the masked correlation: the template,
+    // its mask and the window are cut to the mask's bounding box (same map, fewer pixels).
+    const cv::Rect box = cv::boundingRect(mask);
+    const cv::Rect window(search.x + box.x, search.y + box.y, box.width + 2 * search_px,
+                          box.height + 2 * search_px);
     cv::Mat res;
-    cv::matchTemplate(ToFloat(frame(search)), a.image, res, cv::TM_CCOEFF_NORMED, mask);
+    cv::matchTemplate(ToFloat(frame(window)), a.image(box), res, cv::TM_CCOEFF_NORMED, mask(box));
     cv::patchNaNs(res, -1.0);  // a flat window has no defined correlation
     double best = 0;
     cv::Point at;
@@ -163,7 +214,8 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   out.ok = search_px > 0;  // without the search, only a converged ECC counts
   if (!Inside(frame, patch)) return out;
   const cv::Mat frame_patch = ToFloat(frame(patch));
-  const cv::Mat refine_mask = FrameMask(a, start, ctx);
+  // Following (no search) refines from the guess itself, whose mask is already cut.
+  const cv::Mat refine_mask = start == guess ? mask : FrameMask(a, start, ctx);
   Eigen::Vector2d t(g2.x - start.x(), g2.y - start.y());
   double rho = 0;
   if (!RegisterTranslation(frame_patch, a.image, refine_mask, &t, &rho)) {
