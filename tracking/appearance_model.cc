@@ -1,6 +1,7 @@
 #include "tracking/appearance_model.h"
 
 #include "tracking/limb_fit.h"
+#include "tracking/median.h"
 
 #include <opencv2/imgproc.hpp>
 
@@ -36,12 +37,6 @@ constexpr double kHorizonMovesPerPx = 0.005;
 constexpr double kMinHeightSpanPx = 3.0;
 // Floor of the symmetry offset's uncertainty, px (ECC's own repeatability on a template).
 constexpr double kSymmetryErrFloorPx = 0.01;
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 // The patch of `image` (CV_32F) with `pos` at its centre pixel, bicubic; false if it leaves the
 // frame.
@@ -99,7 +94,7 @@ int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, doubl
     }
   }
   if (step.size() < 3) return -1;
-  return best_step > kHorizonMinRatio * Median(step) ? best : -1;
+  return best_step > kHorizonMinRatio * MedianOf(step) ? best : -1;
 }
 
 // Whether the horizon at template row `horizon` moves within the sphere with its height above
@@ -316,11 +311,11 @@ OffsetEstimate SilhouetteOffset(const LearntSphere& s, int axis) {
   std::vector<double> d;
   for (size_t i = 0; i < s.rough.size(); ++i) d.push_back(s.rough[i](axis) - s.registered[i](axis));
   if (d.empty()) return OffsetEstimate{};
-  e.value = Median(d);
+  e.value = MedianOf(d);
   std::vector<double> dev;
   for (double v : d) dev.push_back(std::abs(v - e.value));
   // Standard error of a median: 1.2533 sigma / sqrt(n), sigma = 1.4826 MAD.
-  e.err = 1.2533 * 1.4826 * Median(dev) / std::sqrt(double(d.size()));
+  e.err = 1.2533 * 1.4826 * MedianOf(dev) / std::sqrt(double(d.size()));
   e.n = d.size();
   return e;
 }

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <vector>
 
+#include "tracking/median.h"
+
 namespace dimer::tracking {
 namespace {
 
@@ -23,12 +25,6 @@ constexpr double kHoughStepPx = 0.5;
 constexpr double kRayStepPx = 0.25;
 constexpr int kOuterPasses = 3;
 constexpr int kGaussNewtonIterations = 12;
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 struct Gradient {
   cv::Mat gx, gy;   // CV_32F, grey levels per px
@@ -51,7 +47,7 @@ Gradient GradientOf(const Appearance& a) {
   }
   // Most known pixels are inside the sphere or on the backdrop, where the gradient is the
   // averaged noise plus slow shading: the MAD about zero is a conservative noise level.
-  g.sigma = std::max(1.4826 * Median(c), 1e-6);
+  g.sigma = c.empty() ? 1e-6 : std::max(1.4826 * MedianOf(c), 1e-6);
   return g;
 }
 
@@ -230,12 +226,13 @@ bool FitCircle(const std::vector<Edge>& e, const std::array<bool, 3>& free, Eige
 // median (and at least kLimbOutlierFloorPx); the others are a highlight or a reflection's
 // boundary caught in the band, not the outline.
 std::vector<Edge> Inliers(const std::vector<Edge>& edges, const Eigen::Vector2d& c, double r) {
+  if (edges.empty()) return {};
   std::vector<double> d;
   for (const Edge& e : edges) d.push_back((e.p - c).norm() - r);
-  const double mid = Median(d);
+  const double mid = MedianOf(d);
   std::vector<double> dev;
   for (double x : d) dev.push_back(std::abs(x - mid));
-  const double cut = std::max(kLimbOutlierFloorPx, kLimbOutlierSigmas * 1.4826 * Median(dev));
+  const double cut = std::max(kLimbOutlierFloorPx, kLimbOutlierSigmas * 1.4826 * MedianOf(dev));
   std::vector<Edge> kept;
   for (size_t i = 0; i < edges.size(); ++i) {
     if (std::abs(d[i] - mid) <= cut) kept.push_back(edges[i]);
