@@ -240,7 +240,7 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   // gives the row shift (no sphere sinks below plate - R, so the smallest (plate - R - row) over
   // both spheres); both appearances are then learnt again around the rough centres so shifted.
   // The final offsets are estimated on the whole track (appearance_model.h). The final
-  // appearances leave out the plate's reflection where there is one (kHorizonGuardPx).
+  // appearances leave out the plate's reflection where its horizon moves (kHorizonGuardPx).
   const double wide_radius = fit_radius ? kRecentreRadiusHigh * radius_px : radius_px;
   const int half = int(std::ceil((recentre ? wide_radius + kRecentreSearchPx : radius_px) +
                                  kTemplateMarginPx));
