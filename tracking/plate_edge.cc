@@ -95,7 +95,33 @@ std::vector<double> PsfTaps(double sigma) {
   return taps;
 }
 
-// Index i of the strongest step, between profile[i] and profile[i + 1] (-1 if flat), and its size.
+// A plate whose top is in view shows two edges of one sign, a few pixels apart: the backdrop to
+// the top (far edge) and the top to the front face (near edge), often of about the same size,
+// so the strongest flips between them from frame to frame with the noise (POV-Ray mirror_plate:
+// 7.7 and 6.3 grey levels, 7 px apart). The upper one is taken: the plate's edge as seen is its
+// top boundary, every frame the same (plate_contact.h then finds the contact line below it).
+// A step counts as a separate edge at least kSeparateEdgeRows above the strongest (closer, it
+// is the same blurred edge) and no further than kPlateBandHalfPx, of the same sign and at least
+// kUpperEdgeFraction of its size.
+constexpr int kSeparateEdgeRows = 5;
+constexpr double kUpperEdgeFraction = 0.5;
+
+// The uppermost separate edge above step `k` (the strongest, of signed size `step_k`), or k.
+int UpperComparableStep(const std::vector<double>& profile, int k, double step_k, double* size) {
+  for (int i = std::max(0, k - kPlateBandHalfPx); i <= k - kSeparateEdgeRows; ++i) {
+    const double step = profile[i + 1] - profile[i];
+    const bool peak = (i == 0 || std::abs(step) >= std::abs(profile[i] - profile[i - 1])) &&
+                      std::abs(step) >= std::abs(profile[i + 2] - profile[i + 1]);
+    if (step * step_k > 0 && std::abs(step) >= kUpperEdgeFraction * std::abs(step_k) && peak) {
+      *size = std::abs(step);
+      return i;
+    }
+  }
+  return k;
+}
+
+// Index i of the plate's step, between profile[i] and profile[i + 1] (-1 if flat), and its size:
+// the strongest, or the upper of two comparable edges (UpperComparableStep).
 int StrongestStep(const std::vector<double>& profile, double* size) {
   int k = -1;
   double best = 0;
@@ -107,7 +133,7 @@ int StrongestStep(const std::vector<double>& profile, double* size) {
     }
   }
   *size = best;
-  return k;
+  return k < 0 ? k : UpperComparableStep(profile, k, profile[k + 1] - profile[k], size);
 }
 
 constexpr double kFarSigmas = 8.0;
@@ -282,15 +308,8 @@ double FindPlateRowCoarse(const cv::Mat& frame) {
     hi = std::max(hi, profile[row]);
   }
   const double min_step = kPlateMinStepFraction * std::max(hi - lo, 0.05 * FullScale(frame));
-  int k = -1;
   double best = 0;
-  for (int i = 0; i + 1 < frame.rows; ++i) {
-    const double step = std::abs(profile[i + 1] - profile[i]);
-    if (step > best) {
-      best = step;
-      k = i;
-    }
-  }
+  const int k = StrongestStep(profile, &best);
   return (k < 0 || best < min_step) ? kNaN : k + 0.5;
 }
 

@@ -98,7 +98,10 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
     clean.push_back(c);
   }
   m.choice = ChooseMethod(probes, clean, requested);
-  if (m.choice.method != Method::kTemplate) return m;
+  if (m.choice.method != Method::kTemplate) {
+    m.plate_shift = EstimatePlateShift(samples, reference.radius_px);
+    return m;
+  }
   size_t seeded = 0;
   for (const LearningSample& s : samples) seeded += s.found[0] && s.found[1];
   if (seeded < kMinSeededFrames) {
@@ -112,6 +115,13 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
       m.choice.reason += "; rough centres of " + std::to_string(from_highlights) +
                          " learning frames from the highlights";
     }
+  }
+  // Before learning, which frames the templates on the plate contact: the learning frames'
+  // plate rows are moved to the contact line where the plate's top is in view (rough centres of
+  // highlights-only footage are seeded by now).
+  m.plate_shift = EstimatePlateShift(samples, reference.radius_px);
+  if (m.plate_shift.applied) {
+    for (LearningSample& s : samples) s.plate_row += m.plate_shift.value;
   }
   m.learnt = LearnAppearances(samples, reference.radius_px, !m.choice.silhouettes,
                               !m.choice.silhouettes && !radius_known, &m.radius_from_outline);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tracking/appearance_model.h"
+#include "tracking/plate_contact.h"
 #include "tracking/frame_source.h"
 #include "tracking/method_choice.h"
 #include "tracking/tracker.h"
@@ -22,6 +23,9 @@ struct SequenceMethod {
   std::shared_ptr<const std::array<Appearance, 2>> appearance;  // template only
   std::array<LearntSphere, 2> learnt;
   bool radius_from_outline = false;  // the appearances' radius_px was measured on the outline
+  // The found plate edge to the contact line (plate_contact.h), from the learning frames; when
+  // applied, added to every frame's plate row before the offsets are estimated.
+  PlateShift plate_shift;
 };
 
 // Measures the learning frames with the existing methods (a fresh acquisition each, with the

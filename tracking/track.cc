@@ -199,6 +199,10 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
   if (InterruptRequested()) result.complete = false;
   result.method = sequence_level ? prepared.choice.method : options.tracker.method;
   result.method_reason = prepared.choice.reason;
+  result.plate_shift = prepared.plate_shift;
+  if (prepared.plate_shift.applied) {
+    for (FrameTrack& f : result.frames) f.plate_row += prepared.plate_shift.value;
+  }
   if (chunk_opts.appearance) {
     result.appearance = *chunk_opts.appearance;
     result.offsets = EstimateOffsets(prepared, result.frames, ref.radius_px);
@@ -372,8 +376,11 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
   AttrList attrs = {{"source", args.input}, {"frames", args.frames.empty() ? "all" : args.frames},
                     {"method", ToString(r.method)}, {"method_requested", args.method},
                     {"method_reason", r.method_reason}, {"fps", args.fps},
-                    {"fps_source", rec.fps_from}};
-  AttrUnits units = {{"fps", "1/s"}, {"m_per_px", "m/px"}, {"row0", "px"}, {"diameter", "m"},
+                    {"fps_source", rec.fps_from},
+                    {"plate_shift", r.plate_shift.applied ? r.plate_shift.value : 0.0},
+                    {"plate_shift_err", r.plate_shift.applied ? r.plate_shift.err : 0.0},
+                    {"plate_shift_reason", r.plate_shift.reason}};
+  AttrUnits units = {{"fps", "1/s"}, {"plate_shift", "px"}, {"plate_shift_err", "px"}, {"m_per_px", "m/px"}, {"row0", "px"}, {"diameter", "m"},
                      {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
                      {"frames_tracked", "1"}, {"frames_skipped", "1"}};
   if (rec.info.known) {  // the .cine header's values, exactly as stored
@@ -519,6 +526,10 @@ void RunTrack(const TrackArgs& args) {
   if (!r.method_reason.empty() && !args.quiet) {
     std::fprintf(stderr, "dimerlab track: method %s -> %s (reason: %s)\n", args.method.c_str(),
                  ToString(r.method).c_str(), r.method_reason.c_str());
+  }
+  // The plate's top in view: its row is the contact line found from the mirror images.
+  if (r.plate_shift.applied && !args.quiet) {
+    std::fprintf(stderr, "dimerlab track: plate: %s\n", r.plate_shift.reason.c_str());
   }
   if (r.method == Method::kTemplate && !args.quiet) {
     for (int k = 0; k < 2; ++k) {

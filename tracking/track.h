@@ -50,6 +50,9 @@ struct SequenceResult {
   // Where the sphere radius in pixels came from: "scale" (contact_radius_px given), "outline"
   // (template on footage without silhouettes: limb_fit.h) or "silhouette" (the methods' measure).
   std::string radius_source = "silhouette";
+  // The plate's visible edge to its contact line with the spheres (plate_contact.h); applied
+  // already to every frame's plate_row when `plate_shift.applied`.
+  PlateShift plate_shift;
 };
 
 // Tracks every frame of `source`. `on_progress(done)` is called from the calling thread.

@@ -1,0 +1,180 @@
+#include "tracking/plate_contact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "tracking/median.h"
+
+namespace dimer::tracking {
+namespace {
+
+constexpr int kSubRows = 5;  // sub-rows per pixel row for the covered fraction down a pixel
+
+// The window's grey levels and each row's sums (fixed for every model tried).
+struct Window {
+  int r0 = 0, c0 = 0, rows = 0, cols = 0;
+  std::vector<double> p;             // rows x cols
+  std::vector<double> sy, syy;       // per row
+};
+
+struct Model {
+  double col, row;
+};
+
+struct Score {
+  double rss = std::numeric_limits<double>::infinity();
+  double explained_below = 0;  // variance the model explains in rows wholly below the line
+};
+
+// Covered fraction of pixel [x - 1/2, x + 1/2] by the interval [a, b].
+inline double Overlap(double a, double b, double x) {
+  return std::max(0.0, std::min(b, x + 0.5) - std::max(a, x - 0.5));
+}
+
+Score Evaluate(const Window& w, const Model& m, double radius, std::vector<double>* cover) {
+  cover->assign(size_t(w.rows) * size_t(w.cols), 0.0);
+  for (int i = 0; i < w.rows; ++i) {
+    const double y = w.r0 + i;
+    for (int s = 0; s < kSubRows; ++s) {
+      const double ys = y - 0.5 + (s + 0.5) / kSubRows;
+      // Above the line: the sphere resting on it, centre R above; below: its mirror image.
+      const double centre = ys < m.row ? m.row - radius : m.row + radius;
+      const double dy = ys - centre;
+      if (std::abs(dy) >= radius) continue;
+      const double half = std::sqrt(radius * radius - dy * dy);
+      const double a = m.col - half, b = m.col + half;
+      double* c = cover->data() + size_t(i) * size_t(w.cols);
+      for (int j = 0; j < w.cols; ++j) c[j] += Overlap(a, b, w.c0 + j) / kSubRows;
+    }
+  }
+  Score out;
+  out.rss = 0;
+  const double n = w.cols;
+  for (int i = 0; i < w.rows; ++i) {
+    const double* c = cover->data() + size_t(i) * size_t(w.cols);
+    const double* p = w.p.data() + size_t(i) * size_t(w.cols);
+    double sx = 0, sxx = 0, sxy = 0;
+    for (int j = 0; j < w.cols; ++j) {
+      sx += c[j];
+      sxx += c[j] * c[j];
+      sxy += c[j] * p[j];
+    }
+    const double var_y = w.syy[i] - w.sy[i] * w.sy[i] / n;
+    const double var_x = sxx - sx * sx / n;
+    const double cov = sxy - sx * w.sy[i] / n;
+    // Each row its own levels inside and outside (a straight line in the covered fraction).
+    const double explained = var_x > 1e-9 ? cov * cov / var_x : 0.0;
+    out.rss += var_y - explained;
+    if (w.r0 + i - 0.5 >= m.row) out.explained_below += explained;
+  }
+  return out;
+}
+
+}  // namespace
+
+MirroredContact FitMirroredContact(const cv::Mat& frame, double col_guess, double radius_px,
+                                   double plate_row) {
+  MirroredContact out;
+  if (!std::isfinite(col_guess) || !std::isfinite(plate_row) || !(radius_px > 2)) return out;
+  Window w;
+  const int half = int(std::ceil(std::min(20.0, 0.85 * radius_px)));
+  w.r0 = int(std::floor(plate_row)) - kContactAbovePx;
+  w.c0 = int(std::lround(col_guess)) - half;
+  w.rows = kContactAbovePx + kContactBelowPx + 1;
+  w.cols = 2 * half + 1;
+  if (w.r0 < 0 || w.c0 < 0 || w.r0 + w.rows > frame.rows || w.c0 + w.cols > frame.cols) return out;
+  w.p.resize(size_t(w.rows) * size_t(w.cols));
+  w.sy.assign(w.rows, 0.0);
+  w.syy.assign(w.rows, 0.0);
+  for (int i = 0; i < w.rows; ++i) {
+    for (int j = 0; j < w.cols; ++j) {
+      const double v = frame.depth() == CV_8U ? frame.at<uint8_t>(w.r0 + i, w.c0 + j)
+                                              : frame.at<uint16_t>(w.r0 + i, w.c0 + j);
+      w.p[size_t(i) * size_t(w.cols) + size_t(j)] = v;
+      w.sy[i] += v;
+      w.syy[i] += v * v;
+    }
+  }
+  std::vector<double> cover;
+  Model best{col_guess, plate_row};
+  Score best_score;
+  // A grid about the current best (deterministic; the residual has local minima where the
+  // plate's own edges cross the window, which a descent could settle in).
+  auto search = [&](double col0, double col1, double dcol, double row0, double row1, double drow) {
+    const Model centre = best;
+    for (double col = col0; col <= col1 + 1e-9; col += dcol) {
+      for (double row = row0; row <= row1 + 1e-9; row += drow) {
+        const Model m{centre.col + col, centre.row + row};
+        const Score s = Evaluate(w, m, radius_px, &cover);
+        if (s.rss < best_score.rss) best_score = s, best = m;
+      }
+    }
+  };
+  // Coarse over the whole range, then fine about the best.
+  search(-kContactColSearchPx, kContactColSearchPx, 0.5, -1.0, kContactSearchBelowPx, 0.25);
+  search(-0.5, 0.5, 0.125, -0.25, 0.25, 0.025);
+  // Between grid rows: the parabola through the residuals at the best row and a step each side.
+  const double step = 0.025;
+  const double lo = Evaluate(w, {best.col, best.row - step}, radius_px, &cover).rss;
+  const double hi = Evaluate(w, {best.col, best.row + step}, radius_px, &cover).rss;
+  const double curve = lo + hi - 2 * best_score.rss;
+  if (curve > 0) best.row += std::clamp(0.5 * step * (lo - hi) / curve, -step, step);
+  // Noise from the fit: each row spends two parameters on its levels, the model two.
+  const double dof = double(w.rows) * (w.cols - 2) - 2;
+  const double sigma2 = best_score.rss / dof;
+  if (!(sigma2 > 0)) return out;
+  out.row = best.row;
+  out.col = best.col;
+  out.reflection_chi2 = best_score.explained_below / sigma2;
+  // At the edge of the search: what was found is not a sphere resting near the edge.
+  out.ok = best.row < plate_row + kContactSearchBelowPx - 0.25 && best.row > plate_row - 0.75 &&
+           std::abs(best.col - col_guess) < kContactColSearchPx - 0.25;
+  return out;
+}
+
+PlateShift EstimatePlateShift(const std::vector<LearningSample>& samples, double radius_px) {
+  PlateShift out;
+  std::vector<double> d;
+  for (const LearningSample& s : samples) {
+    if (!std::isfinite(s.plate_row)) continue;
+    for (int k = 0; k < 2; ++k) {
+      if (!s.found[k]) continue;
+      const MirroredContact c = FitMirroredContact(s.image, s.centre[k].x(), radius_px, s.plate_row);
+      if (c.ok && c.reflection_chi2 >= kMinReflectionChi2) d.push_back(c.row - s.plate_row);
+    }
+  }
+  out.fits = d.size();
+  if (d.size() < kMinContactFits) {
+    out.reason = "the plate shows no mirror image of the spheres: its edge is the contact line";
+    return out;
+  }
+  out.value = MedianOf(d);
+  std::vector<double> dev;
+  for (double v : d) dev.push_back(std::abs(v - out.value));
+  // Standard error of a median: 1.2533 sigma / sqrt(n), sigma = 1.4826 MAD.
+  out.err = 1.2533 * 1.4826 * MedianOf(dev) / std::sqrt(double(d.size()));
+  // kMinPlateShiftPx: a fit on a plate that mirrors nothing can still find some contrast below
+  // the line (a shadow, the plate's own band): +0.10 and +0.15 px on the POV-Ray
+  // bright-background and backlit footage, where the edge is right to 0.04 px.
+  out.applied = std::abs(out.value) >= kMinPlateShiftPx &&
+                std::abs(out.value) >= kPlateShiftSigmas * out.err;
+  char text[320];
+  if (out.applied) {
+    std::snprintf(text, sizeof text,
+                  "the spheres' mirror images put the contact line %+.2f +- %.2f px from the "
+                  "plate's visible edge (%zu sphere-frames): the plate row is moved there (its "
+                  "top surface is in view)",
+                  out.value, out.err, d.size());
+  } else {
+    std::snprintf(text, sizeof text,
+                  "the sphere-and-image fits put the contact line %+.2f +- %.2f px from the "
+                  "plate's edge (%zu sphere-frames): the edge is kept (a shift under %.1f px or "
+                  "%.0f standard errors is not taken)",
+                  out.value, out.err, d.size(), kMinPlateShiftPx, kPlateShiftSigmas);
+  }
+  out.reason = text;
+  return out;
+}
+
+}  // namespace dimer::tracking
