@@ -31,6 +31,30 @@ TEST(PlateEdge, NoStepNoEdge) {
   EXPECT_TRUE(std::isnan(EdgeRowInProfile(p, 0, 5.0)));
 }
 
+// A plate whose top is in view: backdrop 2, top 12 from row 40.3, front face 25 from row 47.6;
+// the two steps are of one sign and about one size. The upper edge is the plate's, every frame,
+// whichever step the noise makes the stronger (POV-Ray mirror_plate flipped between them).
+TEST(PlateEdge, TheUpperOfTwoComparableEdgesIsThePlates) {
+  for (double front_step : {9.0, 10.0, 13.0, 16.0}) {  // the front edge weaker, alike, stronger
+    cv::Mat frame(96, 320, CV_8U);
+    for (int r = 0; r < frame.rows; ++r) {
+      const double top = std::clamp(r + 0.5 - 40.3, 0.0, 1.0);
+      const double front = std::clamp(r + 0.5 - 47.6, 0.0, 1.0);
+      frame.row(r).setTo(cv::Scalar(std::lround(2 + 10 * top + front_step * front)));
+    }
+    // The acquisition's whole-pixel row, which is the sub-pixel search's guess.
+    EXPECT_NEAR(FindPlateRowCoarse(frame), 40.5, 1e-9) << "front step " << front_step;
+    for (double guess : {40.5, 41.5, 43.0}) {
+      EXPECT_NEAR(RefinePlateRow(frame, guess, {}), 40.3, 0.1)
+          << "front step " << front_step << ", guess " << guess;
+    }
+  }
+  // A single edge in the band is found as before.
+  cv::Mat one(96, 320, CV_8U);
+  for (int r = 0; r < one.rows; ++r) one.row(r).setTo(cv::Scalar(r < 47 ? 2 : 25));
+  EXPECT_NEAR(RefinePlateRow(one, 44.0, {}), 46.5, 1e-9);
+}
+
 // The POV-Ray footage's blur (tests/tracking/clipped_edge_frame.h).
 cv::Mat ClippedBlurredEdge(double edge, double gain, uint64_t seed) {
   return dimer::tracking::ClippedBlurredEdge(edge, gain, 0.5, seed);
