@@ -11,6 +11,7 @@
 #include "common/error.h"
 #include "tracking/frame_source.h"
 #include "tracking/track.h"
+#include "tracking/precision_bound.h"
 
 namespace dimer::footage {
 namespace {
@@ -177,24 +178,33 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
     }
   }
   for (int k = 0; k < 2; ++k) a.sphere[k] = Summarise(errors[k], good[k]);
+  if (res.method == tracking::Method::kTemplate) {
+    const tracking::Frame first = source->Read(0);
+    const double noise = first.error.empty() ? tracking::FrameNoiseSigma(first.image) : kNaN;
+    for (int k = 0; k < 2; ++k) {
+      a.sphere[k].scatter_bound = tracking::TranslationBound(res.appearance[k], noise).norm();
+    }
+  }
   a.plate_bias = a.plate_found > 0 ? plate_sum / double(a.plate_found) : kNaN;
   if (a.plate_found == 0) a.plate_max_error = kNaN;
   return a;
 }
 
 std::string AccuracyHeader() {
-  return "| method | found L / R (%) | bias L / R (px) | scatter L / R (px) | swaps | "
-         "plate bias / max (px) | meets targets |\n"
-         "|---|---|---|---|---|---|---|\n";
+  return "| method | found L / R (%) | bias L / R (px) | scatter L / R (px) | scatter bound L / R "
+         "(px) | swaps | plate bias / max (px) | meets targets |\n"
+         "|---|---|---|---|---|---|---|---|\n";
 }
 
 std::string AccuracyRow(const TrackAccuracy& a) {
   char buf[400];
   std::snprintf(buf, sizeof buf,
-                "| %s | %.1f / %.1f | %.3f / %.3f | %.3f / %.3f | %zu | %+.3f / %.3f | %s |\n",
+                "| %s | %.1f / %.1f | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f | %zu | %+.3f / %.3f "
+                "| %s |\n",
                 a.method.c_str(), 100 * a.sphere[0].found_fraction,
                 100 * a.sphere[1].found_fraction, a.sphere[0].bias.norm(),
                 a.sphere[1].bias.norm(), a.sphere[0].scatter, a.sphere[1].scatter,
+                a.sphere[0].scatter_bound, a.sphere[1].scatter_bound,
                 a.identity_swaps, a.plate_bias, a.plate_max_error,
                 a.MeetsTargets() ? "yes" : "no");
   return buf;

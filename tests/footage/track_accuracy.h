@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,9 @@ struct SphereAccuracy {
   Eigen::Vector2d bias{0, 0};      // mean error (col, row), px
   double scatter = 0;              // RMS distance from the mean error, px
   double max_error = 0;            // largest |error - bias|, px
+  // Template method: the Cramér-Rao bound on the scatter, sqrt(sd_col^2 + sd_row^2) of
+  // tracking/precision_bound.h with the first frame's noise; NaN for the other methods.
+  double scatter_bound = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct TrackAccuracy {
@@ -67,7 +71,7 @@ inline constexpr double kPlateTargetPx = 0.3;
 TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string& method,
                                    int threads = 0, bool scale_given = true);
 
-// One table row: "| method | found L/R | bias L/R | scatter L/R | swaps | plate |".
+// One table row: "| method | found L/R | bias L/R | scatter L/R | bound L/R | swaps | plate |".
 std::string AccuracyRow(const TrackAccuracy& a);
 std::string AccuracyHeader();
 
