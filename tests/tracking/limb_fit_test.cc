@@ -105,6 +105,7 @@ TEST(LimbFit, MirroredPairsDoNotInheritTheCircleFitsPull) {
   Look l;
   l.centre = {0.34, 0.81};
   l.rim_band = 0.4;
+  l.noise = 0;  // the geometry alone: with the noise of a 20-frame mean the error is within 0.02 px
   l.plate_cut_below = -4;  // rows up to ~5 above the centre, as the learnt appearance keeps
   l.rod_right = true;
   l.rod_half = 11;
@@ -113,7 +114,8 @@ TEST(LimbFit, MirroredPairsDoNotInheritTheCircleFitsPull) {
   const LimbFit f = FitLimb(Make(l), o);
   ASSERT_TRUE(f.ok);
   ASSERT_GE(f.pairs, kLimbMinPairs);
-  EXPECT_NEAR(f.centre.x(), l.centre.x(), 0.02);
+  // Midpoints from the circle fit's centre, two passes: +0.086 px.
+  EXPECT_NEAR(f.centre.x(), l.centre.x(), 0.01);
 }
 
 TEST(LimbFit, FindsACentrePixelsAwayFromTheReference) {
