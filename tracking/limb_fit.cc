@@ -298,7 +298,11 @@ LimbFit FitLimb(const Appearance& a, const LimbFitOptions& o) {
   const double r_high = o.fit_radius ? kRadiusHigh * o.radius_px : o.radius_px + kKnownRadiusSlackPx;
   Eigen::Vector2d c = ref;
   double r = o.radius_px;
-  if (!HoughCentre(g, r_low, r_high, ref, o.max_shift_px, &c, &r)) return out;
+  // With the row known, the search is about the centre's row: the row is not part of the
+  // shift the reference may be off by (a bouncing sphere's template, framed on its lowest
+  // frames, can sit 4 px above its centre; the column is still within max_shift_px).
+  const Eigen::Vector2d start = row_fixed ? Eigen::Vector2d(ref.x(), ref.y() + o.row) : ref;
+  if (!HoughCentre(g, r_low, r_high, start, o.max_shift_px, &c, &r)) return out;
   if (!o.fit_radius) r = o.radius_px;
   if (row_fixed) c.y() = ref.y() + o.row;
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
@@ -318,7 +322,7 @@ LimbFit FitLimb(const Appearance& a, const LimbFitOptions& o) {
   for (const Edge& e : edges) (e.p.x() < c.x() ? left : right) += 1;
   const bool both_sides = left >= kLimbMinRays / 4 && right >= kLimbMinRays / 4;
   if (int(edges.size()) < kLimbMinRays || (!both_sides && !row_fixed) ||
-      (c - ref).norm() > o.max_shift_px) {
+      (row_fixed ? std::abs(c.x() - ref.x()) : (c - ref).norm()) > o.max_shift_px) {
     return out;
   }
   // The column from mirrored pairs of envelope rays, cast again from the centre moved to it.

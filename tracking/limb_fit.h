@@ -74,7 +74,8 @@ struct LimbFit {
 struct LimbFitOptions {
   double radius_px = 0;       // the known radius, or (fit_radius) a guess within ~30 %
   bool fit_radius = false;
-  double max_shift_px = 4;    // how far from the reference point the centre may be
+  double max_shift_px = 4;    // how far from the reference point the centre (its column, when
+                              // the row is given) may be
   // The centre row relative to the reference point when known (the plate contact): only the
   // column (and radius) are fitted, and an outline seen on one side only still gives it. NaN:
   // the row is fitted too.

@@ -22,8 +22,18 @@ constexpr int kEccMaxIter = 50;
 constexpr double kEccEpsilon = 1e-7;
 // ECC smooths both images with a Gaussian of this size first (OpenCV's default, 5): it cuts
 // the noise and the interpolation error of sharp highlights without biasing the shift (both
-// images are smoothed alike).
+// images are smoothed alike), and widens the basin the first run starts in.
 constexpr int kEccGaussSize = 5;
+// The second, residual run of a frame against a learnt appearance smooths less. The appearance
+// is a mean of many frames, nearly noise-free; the frame is noisy, and the estimate that uses
+// its noise best (least squares against the clean appearance, the Cramér-Rao bound of
+// tracking/precision_bound.h) smooths neither. Smoothing both at 5 blurred the highlights, the
+// sharpest detail and most of the information: POV-Ray steel (docs/BENCHMARKS.md) scattered at
+// 1.5-1.8x the bound; at 3 the scatter is within 1.0-1.4x of it (under-exposed 40-frame set:
+// 0.175 -> 0.135 px against a bound of 0.131). At 1 the soft-box footage lost its way (scatter
+// 0.15 px). Registering two appearances (TransferOffset, SymmetryAxis) keeps 5: neither is
+// noisy, and what two different spheres share is their coarse structure.
+constexpr int kEccFrameGaussSize = 3;
 // ECC's answer is kept only if it stays this close to the correlation peak's, px (the quadratic
 // peak is within ~0.3 px; further means ECC slid to a neighbouring optimum).
 constexpr double kEccMaxMovePx = 1.0;
@@ -87,7 +97,8 @@ cv::Rect EccWindow(const cv::Mat& mask) {
 // shift is the same as on the whole images, since both are cut alike. False: ECC did not
 // converge, or went further than the window allows (*t untouched then).
 bool RegisterInWindow(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
-                      const cv::Rect& window, Eigen::Vector2d* t, double* rho) {
+                      const cv::Rect& window, Eigen::Vector2d* t, double* rho,
+                      int residual_gauss) {
   const cv::TermCriteria stop(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, kEccMaxIter,
                               kEccEpsilon);
   const bool whole = window == cv::Rect(0, 0, fixed.cols, fixed.rows);
@@ -113,7 +124,7 @@ bool RegisterInWindow(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat
                    cv::INTER_NEAREST | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT, cv::Scalar(0));
     cv::Mat residual = cv::Mat::eye(2, 3, CV_32F);
     const double r = cv::findTransformECC(fixed_w, shifted, residual, cv::MOTION_TRANSLATION,
-                                          stop, shifted_mask, kEccGaussSize);
+                                          stop, shifted_mask, residual_gauss);
     const Eigen::Vector2d found(tx + residual.at<float>(0, 2), ty + residual.at<float>(1, 2));
     if (!found.allFinite()) return false;
     if (rho) *rho = r;
@@ -127,15 +138,15 @@ bool RegisterInWindow(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat
 }  // namespace
 
 bool RegisterTranslation(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
-                         Eigen::Vector2d* t, double* rho) {
+                         Eigen::Vector2d* t, double* rho, int residual_gauss) {
   const cv::Rect whole(0, 0, fixed.cols, fixed.rows);
   const cv::Rect window = EccWindow(mask);
   // A start too far for the window, or an ECC run that went too far in it: the whole images.
   if (window != whole && std::max(std::abs(t->x()), std::abs(t->y())) <= 1.0 &&
-      RegisterInWindow(fixed, moving, mask, window, t, rho)) {
+      RegisterInWindow(fixed, moving, mask, window, t, rho, residual_gauss)) {
     return true;
   }
-  return RegisterInWindow(fixed, moving, mask, whole, t, rho);
+  return RegisterInWindow(fixed, moving, mask, whole, t, rho, residual_gauss);
 }
 
 cv::Mat FrameMask(const Appearance& a, const Eigen::Vector2d& position, const MaskContext& ctx) {
@@ -218,7 +229,7 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   const cv::Mat refine_mask = start == guess ? mask : FrameMask(a, start, ctx);
   Eigen::Vector2d t(g2.x - start.x(), g2.y - start.y());
   double rho = 0;
-  if (!RegisterTranslation(frame_patch, a.image, refine_mask, &t, &rho)) {
+  if (!RegisterTranslation(frame_patch, a.image, refine_mask, &t, &rho, kEccFrameGaussSize)) {
     return out;  // ECC did not converge: the correlation peak stands
   }
   const Eigen::Vector2d refined(g2.x - t.x(), g2.y - t.y());

@@ -57,9 +57,10 @@ struct Located {
 
 // Translation t with moving(x + t) ~ fixed(x) over `mask` (moving's pixels, CV_8U), starting
 // from *t: cv::findTransformECC, then once more on `moving` pre-shifted by Lanczos
-// interpolation. False when ECC does not converge. Both images CV_32F, same size.
+// interpolation, that run smoothing with a Gaussian of `residual_gauss` (ECC's gaussFiltSize;
+// the first run always 5). False when ECC does not converge. Both images CV_32F, same size.
 bool RegisterTranslation(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
-                         Eigen::Vector2d* t, double* rho = nullptr);
+                         Eigen::Vector2d* t, double* rho = nullptr, int residual_gauss = 5);
 
 // Searches +-search_px (whole pixels) around `guess`, then refines. search_px = 0: no search,
 // ECC from the guess (a tracker's prediction), ok only if it converges within a pixel of it,

@@ -129,6 +129,23 @@ TEST(LimbFit, FindsACentrePixelsAwayFromTheReference) {
   EXPECT_FALSE(FitLimb(Make(l), Opts(l.radius, false, 8.0)).ok);
 }
 
+// A bouncing sphere's template, framed on its lowest frames, sits above its centre (POV-Ray:
+// +4.0 to +4.4 px), the row then carried over from the other sphere: the column is still within
+// max_shift_px of the reference, and the known row does not count against it.
+TEST(LimbFit, AKnownRowFarBelowTheReferenceDoesNotUseUpTheColumnsSearch) {
+  Look l;
+  l.centre = {0.52, 5.3};
+  LimbFitOptions o = Opts(l.radius, false, 4.0);
+  o.row = l.centre.y();
+  const LimbFit f = FitLimb(Make(l), o);
+  ASSERT_TRUE(f.ok) << "a centre 5.3 px below the reference, 0.52 px beside it";
+  EXPECT_NEAR(f.centre.x(), l.centre.x(), 0.03);
+  // The column alone is held to the limit.
+  l.centre = {4.6, 5.3};
+  o.row = l.centre.y();
+  EXPECT_FALSE(FitLimb(Make(l), o).ok);
+}
+
 TEST(LimbFit, MeasuresAnUnknownRadius) {
   const Look l;
   const LimbFit f = FitLimb(Make(l), Opts(0.82 * l.radius, true, 6.0));  // a silhouette radius 18 % short
