@@ -135,13 +135,16 @@ MirroredContact FitMirroredContact(const cv::Mat& frame, double col_guess, doubl
 
 PlateShift EstimatePlateShift(const std::vector<LearningSample>& samples, double radius_px) {
   PlateShift out;
-  std::vector<double> d;
+  std::vector<double> d, edges;
   for (const LearningSample& s : samples) {
     if (!std::isfinite(s.plate_row)) continue;
     for (int k = 0; k < 2; ++k) {
       if (!s.found[k]) continue;
       const MirroredContact c = FitMirroredContact(s.image, s.centre[k].x(), radius_px, s.plate_row);
-      if (c.ok && c.reflection_chi2 >= kMinReflectionChi2) d.push_back(c.row - s.plate_row);
+      if (c.ok && c.reflection_chi2 >= kMinReflectionChi2) {
+        d.push_back(c.row - s.plate_row);
+        edges.push_back(s.plate_row);
+      }
     }
   }
   out.fits = d.size();
@@ -150,6 +153,7 @@ PlateShift EstimatePlateShift(const std::vector<LearningSample>& samples, double
     return out;
   }
   out.value = MedianOf(d);
+  out.edge_ref = MedianOf(edges);
   std::vector<double> dev;
   for (double v : d) dev.push_back(std::abs(v - out.value));
   // Standard error of a median: 1.2533 sigma / sqrt(n), sigma = 1.4826 MAD.
@@ -175,6 +179,86 @@ PlateShift EstimatePlateShift(const std::vector<LearningSample>& samples, double
   }
   out.reason = text;
   return out;
+}
+
+namespace {
+
+struct Line {
+  double a = 0, b = 1;  // row = a + b edge
+  double b_err = std::numeric_limits<double>::quiet_NaN();
+  double edge_sd = 0;
+  size_t n = 0;
+};
+
+// Least squares row = a + b edge over `use`.
+Line FitLine(const std::vector<double>& edge, const std::vector<double>& row,
+             const std::vector<uint8_t>& use) {
+  Line l;
+  double se = 0, sr = 0;
+  for (size_t i = 0; i < edge.size(); ++i) {
+    if (use[i]) se += edge[i], sr += row[i], ++l.n;
+  }
+  if (l.n < 3) return l;
+  const double me = se / double(l.n), mr = sr / double(l.n);
+  double see = 0, ser = 0;
+  for (size_t i = 0; i < edge.size(); ++i) {
+    if (!use[i]) continue;
+    see += (edge[i] - me) * (edge[i] - me);
+    ser += (edge[i] - me) * (row[i] - mr);
+  }
+  if (!(see > 0)) return l;
+  l.b = ser / see;
+  l.a = mr - l.b * me;
+  double rss = 0;
+  for (size_t i = 0; i < edge.size(); ++i) {
+    if (use[i]) rss += std::pow(row[i] - l.a - l.b * edge[i], 2);
+  }
+  l.b_err = std::sqrt(rss / double(l.n - 2) / see);
+  l.edge_sd = std::sqrt(see / double(l.n));
+  return l;
+}
+
+}  // namespace
+
+PlateMotionScale FitPlateMotionScale(const std::vector<double>& edge,
+                                     const std::array<std::vector<double>, 2>& rows) {
+  PlateMotionScale best;
+  for (int k = 0; k < 2; ++k) {
+    const std::vector<double>& row = rows[k];
+    if (row.size() != edge.size()) continue;
+    // Lower envelope first: edge - row is smallest where the sphere rests (row largest).
+    std::vector<double> gap;
+    for (size_t i = 0; i < edge.size(); ++i) {
+      if (std::isfinite(edge[i]) && std::isfinite(row[i])) gap.push_back(edge[i] - row[i]);
+    }
+    if (gap.size() < kMinScaleFrames) continue;
+    std::sort(gap.begin(), gap.end());
+    // Within a band of the lowest that allows the scale's own spread over the edge's range.
+    const double low = gap[gap.size() / 20];
+    std::vector<uint8_t> use(edge.size(), 0);
+    for (size_t i = 0; i < edge.size(); ++i) {
+      use[i] = std::isfinite(edge[i]) && std::isfinite(row[i]) &&
+               edge[i] - row[i] <= low + kRestBandPx + 0.3;
+    }
+    Line l = FitLine(edge, row, use);
+    // Then the frames near the line (twice: the first line may lean on a few flight frames).
+    for (int pass = 0; pass < 2 && l.n >= 3; ++pass) {
+      for (size_t i = 0; i < edge.size(); ++i) {
+        use[i] = std::isfinite(edge[i]) && std::isfinite(row[i]) &&
+                 row[i] >= l.a + l.b * edge[i] - kRestBandPx;
+      }
+      l = FitLine(edge, row, use);
+    }
+    if (l.n < kMinScaleFrames || l.edge_sd < kMinScaleSpreadPx || !std::isfinite(l.b_err)) continue;
+    if (l.n > best.frames) {
+      best.fitted = true;
+      best.scale = l.b;
+      best.err = l.b_err;
+      best.frames = l.n;
+      best.sphere = k;
+    }
+  }
+  return best;
 }
 
 }  // namespace dimer::tracking

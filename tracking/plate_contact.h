@@ -25,6 +25,7 @@
 // fit is then kept out (kMinReflectionChi2), and the found edge is the plate row, as before.
 #include <opencv2/core.hpp>
 
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -64,11 +65,43 @@ MirroredContact FitMirroredContact(const cv::Mat& frame, double col_guess, doubl
 
 struct PlateShift {
   bool applied = false;
-  double value = 0;   // px, added to every frame's found plate row
+  double value = 0;   // px, contact line - found edge, at the edge row `edge_ref`
   double err = std::numeric_limits<double>::quiet_NaN();
+  double edge_ref = std::numeric_limits<double>::quiet_NaN();  // median edge row of the fits
   size_t fits = 0;    // sphere-frames with a mirror image it rests on
   std::string reason; // why applied or not, for stderr and the track file
 };
+
+// The far edge is further from the camera than the contact line, so it moves less with the
+// plate: by D_contact / D_far (7/8 on the POV-Ray mirror plate, whose amplitude read off the
+// edge was 12 % low). A sphere resting on the plate moves with the contact line itself, so the
+// slope of its tracked row against the edge row, over the frames where it rests, is the scale
+// from edge motion to contact-line motion. Resting frames: the lower envelope of edge - row
+// (a sphere in flight is higher), kept by a straight-line fit and refitted. The sphere with more
+// resting frames is used; fitted only with at least kMinScaleFrames of them and the edge
+// spreading over kMinScaleSpreadPx (standard deviation), else scale 1.
+inline constexpr size_t kMinScaleFrames = 10;
+inline constexpr double kMinScaleSpreadPx = 0.2;
+// A frame rests when its row is within this of the line (the tracker's scatter is ~0.03 px; a
+// sphere that lifts by more than this is in flight).
+inline constexpr double kRestBandPx = 0.15;
+
+struct PlateMotionScale {
+  bool fitted = false;
+  double scale = 1;   // contact-line motion per px of edge motion
+  double err = std::numeric_limits<double>::quiet_NaN();
+  size_t frames = 0;  // resting frames it rests on
+  int sphere = -1;    // 0 left, 1 right
+};
+
+// `edge` the found edge row per frame, `rows[k]` sphere k's tracked row per frame (NaN: none).
+PlateMotionScale FitPlateMotionScale(const std::vector<double>& edge,
+                                     const std::array<std::vector<double>, 2>& rows);
+
+// The contact line's row for a found edge row.
+inline double ContactRow(const PlateShift& p, const PlateMotionScale& m, double edge) {
+  return edge + p.value + (m.scale - 1.0) * (edge - p.edge_ref);
+}
 
 // From the learning samples (their plate rows and rough centres): the median of
 // contact line - found edge over the fits with a mirror image.

@@ -201,7 +201,18 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
   result.method_reason = prepared.choice.reason;
   result.plate_shift = prepared.plate_shift;
   if (prepared.plate_shift.applied) {
-    for (FrameTrack& f : result.frames) f.plate_row += prepared.plate_shift.value;
+    // The edge to the contact line: a constant at the learning frames' edge row, and the edge's
+    // motion scaled to the contact line's by a resting sphere (plate_contact.h).
+    std::vector<double> edge;
+    std::array<std::vector<double>, 2> rows;
+    for (const FrameTrack& f : result.frames) {
+      edge.push_back(f.plate_row);
+      for (int k = 0; k < 2; ++k) rows[k].push_back(f.found[k] ? f.centre[k].y() : std::nan(""));
+    }
+    result.plate_scale = FitPlateMotionScale(edge, rows);
+    for (FrameTrack& f : result.frames) {
+      f.plate_row = ContactRow(prepared.plate_shift, result.plate_scale, f.plate_row);
+    }
   }
   if (chunk_opts.appearance) {
     result.appearance = *chunk_opts.appearance;
@@ -379,8 +390,13 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                     {"fps_source", rec.fps_from},
                     {"plate_shift", r.plate_shift.applied ? r.plate_shift.value : 0.0},
                     {"plate_shift_err", r.plate_shift.applied ? r.plate_shift.err : 0.0},
-                    {"plate_shift_reason", r.plate_shift.reason}};
-  AttrUnits units = {{"fps", "1/s"}, {"plate_shift", "px"}, {"plate_shift_err", "px"}, {"m_per_px", "m/px"}, {"row0", "px"}, {"diameter", "m"},
+                    {"plate_shift_reason", r.plate_shift.reason},
+                    {"plate_shift_edge_ref", r.plate_shift.applied ? r.plate_shift.edge_ref : 0.0},
+                    {"plate_motion_scale", r.plate_scale.scale},
+                    {"plate_motion_scale_err", r.plate_scale.fitted ? r.plate_scale.err : 0.0}};
+  AttrUnits units = {{"fps", "1/s"}, {"plate_shift", "px"}, {"plate_shift_err", "px"},
+                     {"plate_shift_edge_ref", "px"}, {"plate_motion_scale", "1"},
+                     {"plate_motion_scale_err", "1"}, {"m_per_px", "m/px"}, {"row0", "px"}, {"diameter", "m"},
                      {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
                      {"frames_tracked", "1"}, {"frames_skipped", "1"}};
   if (rec.info.known) {  // the .cine header's values, exactly as stored
@@ -530,6 +546,19 @@ void RunTrack(const TrackArgs& args) {
   // The plate's top in view: its row is the contact line found from the mirror images.
   if (r.plate_shift.applied && !args.quiet) {
     std::fprintf(stderr, "dimerlab track: plate: %s\n", r.plate_shift.reason.c_str());
+    if (r.plate_scale.fitted) {
+      std::fprintf(stderr,
+                   "dimerlab track: plate: the contact line moves %.3f +- %.3f px per px of the "
+                   "visible edge (the %s sphere resting, %zu frames)\n",
+                   r.plate_scale.scale, r.plate_scale.err, r.plate_scale.sphere == 0 ? "left" : "right",
+                   r.plate_scale.frames);
+    } else {
+      std::fprintf(stderr,
+                   "dimerlab track: plate: warning: the edge's motion is taken as the contact "
+                   "line's (fewer than %zu resting frames, or the plate moved under %.1f px in "
+                   "them); the far edge of a deep plate moves less than the contact line\n",
+                   kMinScaleFrames, kMinScaleSpreadPx);
+    }
   }
   if (r.method == Method::kTemplate && !args.quiet) {
     for (int k = 0; k < 2; ++k) {

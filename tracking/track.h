@@ -53,6 +53,7 @@ struct SequenceResult {
   // The plate's visible edge to its contact line with the spheres (plate_contact.h); applied
   // already to every frame's plate_row when `plate_shift.applied`.
   PlateShift plate_shift;
+  PlateMotionScale plate_scale;  // the edge's motion to the contact line's (with plate_shift)
 };
 
 // Tracks every frame of `source`. `on_progress(done)` is called from the calling thread.

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "tracking/disc_coverage.h"
 
@@ -131,6 +132,30 @@ TEST(PlateShift, KeepsAnEdgeThatIsTheContactLine) {
   s.mirror = false;
   const PlateShift matte = EstimatePlateShift(Samples(s, kFarEdgeRow - 0.5, 6), kRadius);
   EXPECT_FALSE(matte.applied) << matte.reason;
+}
+
+// The far edge moves 7/8 as much as the contact line (800 against 700 mm from the camera): the
+// left sphere rests and follows the contact line, the right one hops.
+TEST(PlateMotionScale, ARestingSphereGivesTheContactLinesMotionPerPxOfEdge) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.03);  // the tracker's scatter
+  std::vector<double> edge;
+  std::array<std::vector<double>, 2> rows;
+  for (int i = 0; i < 80; ++i) {
+    const double contact = 248.8 + 1.25 * std::sin(2 * 3.14159265 * i / 80.0);
+    edge.push_back(245.9 + (contact - 248.8) / 1.14 + noise(rng));
+    rows[0].push_back(contact - kRadius + noise(rng));
+    const double lift = std::max(0.0, 12.0 * std::sin(2 * 3.14159265 * i / 40.0));
+    rows[1].push_back(contact - kRadius - lift + noise(rng));
+  }
+  const PlateMotionScale m = FitPlateMotionScale(edge, rows);
+  ASSERT_TRUE(m.fitted);
+  EXPECT_EQ(m.sphere, 0);
+  EXPECT_NEAR(m.scale, 1.14, 3 * m.err);
+  EXPECT_LT(m.err, 0.02);
+  // A plate that hardly moves over the frames says nothing about the scale.
+  for (double& e : edge) e = 245.9 + 0.05 * (e - 245.9);
+  EXPECT_FALSE(FitPlateMotionScale(edge, rows).fitted);
 }
 
 }  // namespace
