@@ -14,6 +14,7 @@
 // its scenes are unchanged (the folder's scene hash): 20 frames per case, 2 exposure slices.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <ostream>
@@ -21,6 +22,8 @@
 
 #include "tests/footage/povray_footage.h"
 #include "tests/footage/track_accuracy.h"
+#include "tracking/frame_source.h"
+#include "tracking/track.h"
 
 #ifndef DIMERLAB_POVRAY_TEST_METHOD
 #define DIMERLAB_POVRAY_TEST_METHOD "centroid"
@@ -95,6 +98,37 @@ TEST_P(PovrayFootage, PlateRowWithinTheTargetInEveryFrame) {
   ASSERT_EQ(a.frames, kFrames);
   EXPECT_EQ(a.plate_found, a.frames) << "frames with a plate row";
   EXPECT_LE(a.plate_max_error, kPlateTargetPx) << "plate row, mean error " << a.plate_bias;
+}
+
+// Bit-identical for 1 and 2 threads, where the sequence-level steps run: the template learnt,
+// the plate's contact line measured from the spheres' mirror images and its motion scaled by
+// the resting sphere (mirror_plate), tracked in chunks of 6 frames (4 chunks, each acquiring
+// afresh).
+TEST(PovrayFootageThreads, MirrorPlateIdenticalForOneAndTwoThreads) {
+  const std::string dir = Footage(Case{"mirror_plate", Lighting::kMirrorPlate, 3.9});
+  double radius = 0;
+  ReadTruthCsv(dir + "/truth.csv", &radius);
+  std::array<tracking::SequenceResult, 2> r;
+  for (int threads : {1, 2}) {
+    tracking::SequenceOptions o;
+    o.threads = threads;
+    o.chunk_frames = 6;
+    o.tracker.method = tracking::Method::kAuto;  // what `track` runs by default
+    o.contact_radius_px = radius;
+    auto source = tracking::FrameSource::Open(dir);
+    r[threads - 1] = tracking::TrackSequence(*source, o);
+  }
+  ASSERT_EQ(r[0].frames.size(), kFrames);
+  ASSERT_EQ(r[1].frames.size(), kFrames);
+  EXPECT_TRUE(r[0].plate_shift.applied);
+  EXPECT_EQ(r[0].plate_shift.value, r[1].plate_shift.value);
+  EXPECT_EQ(r[0].plate_scale.scale, r[1].plate_scale.scale);
+  for (size_t i = 0; i < kFrames; ++i) {
+    EXPECT_EQ(r[0].frames[i].plate_row, r[1].frames[i].plate_row) << "frame " << i;
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_EQ(r[0].frames[i].centre[k], r[1].frames[i].centre[k]) << "frame " << i;
+    }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(
