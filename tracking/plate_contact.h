@@ -50,6 +50,11 @@ inline constexpr double kMinReflectionChi2 = 25.0;
 inline constexpr double kMinPlateShiftPx = 0.5;
 inline constexpr double kPlateShiftSigmas = 5.0;
 inline constexpr size_t kMinContactFits = 3;
+// The learning samples are probed first (about kProbeSamples of them, spread out); the rest are
+// fitted only if the probe has kMinContactFits fits with a mirror image whose median is at least
+// kProbeShiftFraction of kMinPlateShiftPx.
+inline constexpr size_t kProbeSamples = 8;
+inline constexpr double kProbeShiftFraction = 0.5;
 
 struct MirroredContact {
   bool ok = false;

@@ -133,6 +133,16 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
                        "centroid instead";
     return m;
   }
+  // The contact fit's discs have the sphere's radius: without the scale, the one used above was
+  // the silhouette methods' (pixels short on steel), and the line came out 0.5 px low on the
+  // POV-Ray mirror plate. Measured again with the outline's radius; the templates framed on the
+  // first estimate keep their framing (the offsets are estimated later, on the final rows).
+  if (m.radius_from_outline && m.plate_shift.fits >= kMinContactFits) {
+    if (m.plate_shift.applied) {
+      for (LearningSample& s : samples) s.plate_row -= m.plate_shift.value;
+    }
+    m.plate_shift = EstimatePlateShift(samples, m.learnt[0].appearance.radius_px);
+  }
   m.appearance = std::make_shared<const std::array<Appearance, 2>>(
       std::array<Appearance, 2>{m.learnt[0].appearance, m.learnt[1].appearance});
   return m;

@@ -126,8 +126,11 @@ TEST(PlateShift, KeepsAnEdgeThatIsTheContactLine) {
   // and put the line where the edge is.
   Scene s;
   s.contact = 43.37;
-  const PlateShift shift = EstimatePlateShift(Samples(s, s.contact, 6), kRadius);
+  const PlateShift shift = EstimatePlateShift(Samples(s, s.contact, 24), kRadius);
   EXPECT_FALSE(shift.applied) << shift.reason;
+  // Only the probe was fitted (every third of the 24 samples, two spheres each).
+  EXPECT_LE(shift.fits, 2 * kProbeSamples);
+  EXPECT_NE(shift.reason.find("probe"), std::string::npos) << shift.reason;
   // And on a matte plate there is nothing to go by.
   s.mirror = false;
   const PlateShift matte = EstimatePlateShift(Samples(s, kFarEdgeRow - 0.5, 6), kRadius);
