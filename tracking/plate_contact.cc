@@ -159,7 +159,8 @@ PlateShift EstimatePlateShift(const std::vector<LearningSample>& samples, double
     if (!std::isfinite(s.plate_row)) continue;
     for (int k = 0; k < 2; ++k) {
       if (!s.found[k]) continue;
-      const MirroredContact c = FitMirroredContact(s.image, s.centre[k].x(), radius_px, s.plate_row);
+      const MirroredContact c =
+          FitMirroredContact(s.image, s.centre[k].x(), radius_px, s.plate_row);
       if (c.ok && c.reflection_chi2 >= kMinReflectionChi2) {
         d.push_back(c.row - s.plate_row);
         edges.push_back(s.plate_row);
@@ -269,7 +270,9 @@ PlateMotionScale FitPlateMotionScale(const std::vector<double>& edge,
       }
       l = FitLine(edge, row, use);
     }
-    if (l.n < kMinScaleFrames || l.edge_sd < kMinScaleSpreadPx || !std::isfinite(l.b_err)) continue;
+    if (l.n < kMinScaleFrames || l.edge_sd < kMinScaleSpreadPx || !std::isfinite(l.b_err)) {
+      continue;
+    }
     if (l.n > best.frames) {
       best.fitted = true;
       best.scale = l.b;

@@ -396,7 +396,8 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                     {"plate_motion_scale_err", r.plate_scale.fitted ? r.plate_scale.err : 0.0}};
   AttrUnits units = {{"fps", "1/s"}, {"plate_shift", "px"}, {"plate_shift_err", "px"},
                      {"plate_shift_edge_ref", "px"}, {"plate_motion_scale", "1"},
-                     {"plate_motion_scale_err", "1"}, {"m_per_px", "m/px"}, {"row0", "px"}, {"diameter", "m"},
+                     {"plate_motion_scale_err", "1"}, {"m_per_px", "m/px"}, {"row0", "px"},
+                     {"diameter", "m"},
                      {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
                      {"frames_tracked", "1"}, {"frames_skipped", "1"}};
   if (rec.info.known) {  // the .cine header's values, exactly as stored
@@ -550,8 +551,8 @@ void RunTrack(const TrackArgs& args) {
       std::fprintf(stderr,
                    "dimerlab track: plate: the contact line moves %.3f +- %.3f px per px of the "
                    "visible edge (the %s sphere resting, %zu frames)\n",
-                   r.plate_scale.scale, r.plate_scale.err, r.plate_scale.sphere == 0 ? "left" : "right",
-                   r.plate_scale.frames);
+                   r.plate_scale.scale, r.plate_scale.err,
+                   r.plate_scale.sphere == 0 ? "left" : "right", r.plate_scale.frames);
     } else {
       std::fprintf(stderr,
                    "dimerlab track: plate: warning: the edge's motion is taken as the contact "
