@@ -204,6 +204,10 @@ PlateShift EstimatePlateShift(const std::vector<LearningSample>& samples, double
 
 namespace {
 
+// The first band's allowance for the scale itself: (scale - 1) x the edge's range, 0.15 x 2 px
+// on the POV-Ray mirror plate.
+constexpr double kScaleSpreadAllowancePx = 0.3;
+
 struct Line {
   double a = 0, b = 1;  // row = a + b edge
   double b_err = std::numeric_limits<double>::quiet_NaN();
@@ -247,26 +251,25 @@ PlateMotionScale FitPlateMotionScale(const std::vector<double>& edge,
   for (int k = 0; k < 2; ++k) {
     const std::vector<double>& row = rows[k];
     if (row.size() != edge.size()) continue;
-    // Lower envelope first: edge - row is smallest where the sphere rests (row largest).
-    std::vector<double> gap;
+    std::vector<uint8_t> valid(edge.size(), 0), use(edge.size(), 0);
+    std::vector<double> gap;  // edge - row: smallest where the sphere rests (its row largest)
     for (size_t i = 0; i < edge.size(); ++i) {
-      if (std::isfinite(edge[i]) && std::isfinite(row[i])) gap.push_back(edge[i] - row[i]);
+      valid[i] = std::isfinite(edge[i]) && std::isfinite(row[i]);
+      if (valid[i]) gap.push_back(edge[i] - row[i]);
     }
     if (gap.size() < kMinScaleFrames) continue;
+    // Lower envelope first: within a band of its 5th percentile (not its minimum: one noisy
+    // frame) wide enough for the scale's own spread over the edge's range.
     std::sort(gap.begin(), gap.end());
-    // Within a band of the lowest that allows the scale's own spread over the edge's range.
     const double low = gap[gap.size() / 20];
-    std::vector<uint8_t> use(edge.size(), 0);
     for (size_t i = 0; i < edge.size(); ++i) {
-      use[i] = std::isfinite(edge[i]) && std::isfinite(row[i]) &&
-               edge[i] - row[i] <= low + kRestBandPx + 0.3;
+      use[i] = valid[i] && edge[i] - row[i] <= low + kRestBandPx + kScaleSpreadAllowancePx;
     }
     Line l = FitLine(edge, row, use);
     // Then the frames near the line (twice: the first line may lean on a few flight frames).
     for (int pass = 0; pass < 2 && l.n >= 3; ++pass) {
       for (size_t i = 0; i < edge.size(); ++i) {
-        use[i] = std::isfinite(edge[i]) && std::isfinite(row[i]) &&
-                 row[i] >= l.a + l.b * edge[i] - kRestBandPx;
+        use[i] = valid[i] && row[i] >= l.a + l.b * edge[i] - kRestBandPx;
       }
       l = FitLine(edge, row, use);
     }
