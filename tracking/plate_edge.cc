@@ -11,8 +11,7 @@ namespace dimer::tracking {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-// Rows read on each side of the strongest step (see the header for why three).
-constexpr int kBracketRows = 3;
+constexpr int kBracketRows = kPlateBracketRows;
 // Column stride for the coarse median profile: 1/4 of the columns is plenty for a median.
 constexpr int kCoarseColumnStride = 4;
 
@@ -50,9 +49,9 @@ double BandNoise(const cv::Mat& frame, int r0, int r1, const std::vector<uint8_t
 
 // Pixel noise sigma for a clipped edge's fit (RefinePlateRow): as BandNoise, over the `use`
 // columns of the rows near the step k whose mean is clear of 0 and of the clip (elsewhere the
-// clip cuts the noise); `fallback` if there is none.
+// clip cuts the noise); NaN if there is none.
 double LitRowNoise(const cv::Mat& frame, int first_row, const std::vector<double>& profile, int k,
-                   const std::vector<uint8_t>& use, double fallback) {
+                   const std::vector<uint8_t>& use) {
   const double clip = FullScale(frame);
   thread_local std::vector<double> d;
   d.clear();
@@ -65,7 +64,7 @@ double LitRowNoise(const cv::Mat& frame, int first_row, const std::vector<double
       }
     }
   }
-  if (d.empty()) return fallback;
+  if (d.empty()) return kNaN;
   std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
   return std::max(1.4826 * d[d.size() / 2] / std::sqrt(2.0), 1.0 / std::sqrt(12.0));
 }
@@ -76,23 +75,6 @@ double LitRowNoise(const cv::Mat& frame, int first_row, const std::vector<double
 double MinStep(double sigma, int n, const cv::Mat& frame) {
   return std::max(kPlateStepSigmas * sigma * std::sqrt(2.0 / n),
                   kPlateMinStepGreyLevels * FullScale(frame) / 255.0);
-}
-
-// Standard normal density.
-double Density(double t) { return 0.3989422804014327 * std::exp(-0.5 * t * t); }
-
-// The camera's blur across rows: a Gaussian of `sigma` px sampled on the pixel grid to 3 sigma
-// (as cv::GaussianBlur applies it; sigma 0: none), normalised.
-std::vector<double> PsfTaps(double sigma) {
-  if (!(sigma > 0)) return {1.0};
-  const int half = int(std::ceil(3 * sigma));
-  std::vector<double> taps(2 * half + 1);
-  double sum = 0;
-  for (int t = -half; t <= half; ++t) {
-    sum += taps[t + half] = std::exp(-0.5 * t * t / (sigma * sigma));
-  }
-  for (double& w : taps) w /= sum;
-  return taps;
 }
 
 // A plate whose top is in view shows two edges of one sign, a few pixels apart: the backdrop to
@@ -136,148 +118,10 @@ int StrongestStep(const std::vector<double>& profile, double* size) {
   return k < 0 ? k : UpperComparableStep(profile, k, profile[k + 1] - profile[k], size);
 }
 
-constexpr double kFarSigmas = 8.0;
-
-// Expected value of a pixel whose true level is `mu`, read with Gaussian noise `sigma` and then
-// clipped to [0, clip]: the noise pushes the mean of a dark pixel up, and of a clipped one down.
-double ClippedMean(double mu, double sigma, double clip) {
-  const double a = -mu / sigma, b = (clip - mu) / sigma;
-  // Beyond 8 sigma of an end the clip's effect is below 1e-15 of sigma: no erf needed.
-  if (b < -kFarSigmas) return clip;
-  if (a > kFarSigmas) return 0.0;
-  if (a < -kFarSigmas && b > kFarSigmas) return mu;
-  const double pa = 0.5 * std::erfc(-a / std::sqrt(2.0));
-  const double pb = 0.5 * std::erfc(-b / std::sqrt(2.0));
-  return mu * (pb - pa) + sigma * (Density(a) - Density(b)) + clip * (1.0 - pb);
-}
-
-// d ClippedMean / d mu: the chance that the pixel is clipped at neither end.
-double ClippedSlope(double mu, double sigma, double clip) {
-  const double a = -mu / sigma, b = (clip - mu) / sigma;
-  if (b < -kFarSigmas || a > kFarSigmas) return 0.0;
-  if (a < -kFarSigmas && b > kFarSigmas) return 1.0;
-  return 0.5 * (std::erf((clip - mu) / (sigma * std::sqrt(2.0))) +
-                std::erf(mu / (sigma * std::sqrt(2.0))));
-}
-
-// The clipped edge's model (ClippedEdgeRowInProfile) at one trial row `y`: the step of true
-// level that fits the profile best, and the fit's chi-square.
-struct ClippedFit {
-  double chi2 = std::numeric_limits<double>::infinity();
-  double level = 0;
-};
-
-class ClippedEdgeModel {
- public:
-  ClippedEdgeModel(const std::vector<double>& profile, int first_row, int k, double clip,
-                   double pixel_sigma, double profile_sigma, double psf_sigma_px)
-      : profile_(profile), first_row_(first_row), j0_(k - kBracketRows), j1_(k + kBracketRows),
-        below_(profile[k + kBracketRows] > profile[k - kBracketRows]), clip_(clip),
-        sigma_(pixel_sigma), profile_sigma_(profile_sigma), taps_(PsfTaps(psf_sigma_px)) {
-    // The dark side's true level: its row's mean, unbent from the clip at 0 (bisection).
-    const double m = below_ ? profile[j0_] : profile[j1_];
-    double lo = -6 * sigma_, hi = clip_;
-    for (int i = 0; i < 60; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (ClippedMean(mid, sigma_, clip_) < m ? lo : hi) = mid;
-    }
-    dark_ = 0.5 * (lo + hi);
-  }
-
-  ClippedFit At(double y) const {
-    double share[2 * kBracketRows + 1];
-    double smax = 0;
-    for (int j = j0_; j <= j1_; ++j) smax = std::max(smax, share[j - j0_] = Share(j, y));
-    if (smax <= 0) return {};
-    // Start: the least step that brings the most lit row to its mean (or to the clip).
-    double m_top = 0;
-    for (int j = j0_; j <= j1_; ++j) {
-      if (share[j - j0_] == smax) m_top = profile_[j];
-    }
-    double level = std::max(0.0, (std::min(m_top, clip_) - dark_) / smax);
-    // Gauss-Newton on the step: the clipped rows pull it up only until they reach the clip.
-    for (int it = 0; it < kPlateClipFitIterations; ++it) {
-      double num = 0, den = 0;
-      for (int j = j0_; j <= j1_; ++j) {
-        const double mu = dark_ + level * share[j - j0_];
-        const double g = ClippedSlope(mu, sigma_, clip_) * share[j - j0_];
-        num += g * (profile_[j] - ClippedMean(mu, sigma_, clip_));
-        den += g * g;
-      }
-      if (den <= 0) break;
-      const double next = std::max(0.0, level + num / den);
-      const bool done = std::abs(next - level) < 1e-6 * (1.0 + level);
-      level = next;
-      if (done) break;
-    }
-    ClippedFit fit;
-    fit.level = level;
-    fit.chi2 = 0;
-    for (int j = j0_; j <= j1_; ++j) {
-      const double mu = dark_ + level * share[j - j0_];
-      const double r = (profile_[j] - ClippedMean(mu, sigma_, clip_)) / profile_sigma_;
-      fit.chi2 += r * r;
-    }
-    return fit;
-  }
-
- private:
-  // The clipped side's share of profile row j after the blur, for an edge at row y.
-  double Share(int j, double y) const {
-    const int half = int(taps_.size() / 2);
-    double below = 0;  // pixel r spans [r - 1/2, r + 1/2]
-    for (int t = -half; t <= half; ++t) {
-      below += taps_[t + half] * std::clamp(first_row_ + j - t + 0.5 - y, 0.0, 1.0);
-    }
-    return below_ ? below : 1.0 - below;
-  }
-
-  const std::vector<double>& profile_;
-  int first_row_, j0_, j1_;
-  bool below_;
-  double clip_, sigma_, profile_sigma_, dark_ = 0;
-  std::vector<double> taps_;
-};
-
 }  // namespace
 
-double ClippedEdgeRowInProfile(const std::vector<double>& profile, int first_row, double clip,
-                               double pixel_sigma, double profile_sigma, double psf_sigma_px) {
-  double size = 0;
-  const int k = StrongestStep(profile, &size);
-  if (k - kBracketRows < 0 || k + kBracketRows >= int(profile.size())) return kNaN;
-  const ClippedEdgeModel model(profile, first_row, k, clip, pixel_sigma, profile_sigma,
-                               psf_sigma_px);
-  // The most probable edge row with a scale-invariant prior on the unknown clipped level
-  // (density 1 / level): minimise chi-square + 2 ln(level). Where two rows are lit the
-  // chi-square decides and the prior hardly moves the row; where one is, the chi-square is flat
-  // towards more light and the prior picks the least light that still reaches the clip; an
-  // edge a pixel further on, lit in the row only by the blur's far tail with a level hundreds
-  // of times the clip, pays 2 ln of that factor.
-  const auto cost = [&](double y) {
-    const ClippedFit fit = model.At(y);
-    return fit.level > 0 ? fit.chi2 + 2.0 * std::log(fit.level)
-                         : std::numeric_limits<double>::infinity();
-  };
-  // Trial rows over the pixels next to the step (the edge may sit up to a pixel and a half
-  // from it, on the clipped side): every kPlateClipCoarsePx, then every kPlateClipGridPx about
-  // the best.
-  const auto search = [&](double from, double step, int n) {
-    double best = std::numeric_limits<double>::infinity(), at = kNaN;
-    for (int i = 0; i <= n; ++i) {
-      const double c = cost(from + i * step);
-      if (c < best) {
-        best = c;
-        at = from + i * step;
-      }
-    }
-    return at;
-  };
-  const double coarse =
-      search(first_row + k - 1.5, kPlateClipCoarsePx, int(std::lround(4.0 / kPlateClipCoarsePx)));
-  if (!std::isfinite(coarse)) return kNaN;
-  return search(coarse - kPlateClipCoarsePx, kPlateClipGridPx,
-                int(std::lround(2 * kPlateClipCoarsePx / kPlateClipGridPx)));
+int PlateStepIndex(const std::vector<double>& profile, double* size) {
+  return StrongestStep(profile, size);
 }
 
 double EdgeRowInProfile(const std::vector<double>& profile, int first_row, double min_step) {
@@ -314,7 +158,9 @@ double FindPlateRowCoarse(const cv::Mat& frame) {
 }
 
 double RefinePlateRow(const cv::Mat& frame, double row_guess,
-                      const std::vector<std::pair<double, double>>& excluded, double psf_sigma_px) {
+                      const std::vector<std::pair<double, double>>& excluded, double psf_sigma_px,
+                      ClippedEdgeProfile* clipped) {
+  if (clipped) *clipped = ClippedEdgeProfile{};
   if (!std::isfinite(row_guess)) return kNaN;
   const int r0 = std::max(0, int(std::lround(row_guess)) - kPlateBandHalfPx);
   const int r1 = std::min(frame.rows - 1, int(std::lround(row_guess)) + kPlateBandHalfPx);
@@ -411,10 +257,20 @@ double RefinePlateRow(const cv::Mat& frame, double row_guess,
     at_clip += inlier_cols[col] && PixelAt(frame, bright_row, col) >= clip;
   }
   if (2 * at_clip < n_cols) return row;
-  const double pixel_sigma = LitRowNoise(frame, r0, profile, k, inlier_cols, sigma);
-  const double fitted = ClippedEdgeRowInProfile(
-      profile, r0, clip, pixel_sigma, pixel_sigma / std::sqrt(double(n_cols)), psf_sigma_px);
-  return std::isfinite(fitted) ? fitted : row;
+  // No row clear of the clip and of black: the band's noise, which the clip has cut (a frame's
+  // own fit is then too sure of itself; the sequence uses the others' noise, clipped_edge.h).
+  const double lit_sigma = LitRowNoise(frame, r0, profile, k, inlier_cols);
+  const double pixel_sigma = std::isfinite(lit_sigma) ? lit_sigma : sigma;
+  double chi2 = 0;
+  const double fitted = ClippedEdgeRowInProfile(profile, r0, clip, pixel_sigma,
+                                                pixel_sigma / std::sqrt(double(n_cols)),
+                                                psf_sigma_px, &chi2);
+  if (!std::isfinite(fitted)) return row;
+  if (clipped) {
+    *clipped = ClippedEdgeProfile{profile, r0,  clip, pixel_sigma, n_cols,
+                                  std::isfinite(lit_sigma), chi2};
+  }
+  return fitted;
 }
 
 }  // namespace dimer::tracking

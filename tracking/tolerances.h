@@ -60,11 +60,12 @@ inline constexpr double kPlateMinStepGreyLevels = 2.0;
 // Clipped plate edge (ClippedEdgeRowInProfile). The camera's blur assumed by the tracker: a
 // Gaussian of kPlatePsfSigmaPx sampled on the pixel grid (the POV-Ray footage's PSF, a focused
 // lens's order of magnitude; only a clipped edge depends on it, the coverage sum does not).
-// The edge row is searched every kPlateClipCoarsePx, then every kPlateClipGridPx about the
-// choice; the clipped side's level by at most kPlateClipFitIterations Gauss-Newton steps.
+// The edge row is searched every kPlateClipCoarsePx, then by golden section about the choice to
+// kPlateClipTolerancePx; the clipped side's level by at most kPlateClipFitIterations
+// Gauss-Newton steps.
 inline constexpr double kPlatePsfSigmaPx = 0.5;
 inline constexpr double kPlateClipCoarsePx = 0.05;
-inline constexpr double kPlateClipGridPx = 0.002;
+inline constexpr double kPlateClipTolerancePx = 1e-4;
 inline constexpr int kPlateClipFitIterations = 8;
 // A profile row whose mean lies within this fraction of the clip from 0 or from the clip is
 // left out of the pixel noise measured for the clipped fit (its noise is cut by the clip).

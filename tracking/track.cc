@@ -100,6 +100,28 @@ void Stitch(const std::vector<FrameTrack>& done, std::vector<FrameTrack>* chunk)
   }
 }
 
+// An over-exposed plate: the clipped side's level shared by the frames, then every clipped
+// frame's row fitted again at it (clipped_edge.h). The profiles are dropped afterwards.
+PlateClip RefitClippedPlate(double psf_sigma_px, std::vector<FrameTrack>* frames) {
+  PlateClip out;
+  std::vector<const ClippedEdgeProfile*> profiles;
+  std::vector<double> rows;
+  for (const FrameTrack& f : *frames) {
+    profiles.push_back(f.clipped_plate.get());
+    rows.push_back(f.plate_row);
+    out.frames += f.clipped_plate != nullptr;
+  }
+  if (out.frames > 0) {
+    out.level = SharedClippedLevel(profiles, psf_sigma_px);
+    out.refitted = RefitClippedRows(profiles, out.level, psf_sigma_px, &rows);
+  }
+  for (size_t i = 0; i < frames->size(); ++i) {
+    (*frames)[i].plate_row = rows[i];
+    (*frames)[i].clipped_plate.reset();
+  }
+  return out;
+}
+
 }  // namespace
 
 void SequenceOptions::Check() const {
@@ -199,6 +221,7 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
   if (InterruptRequested()) result.complete = false;
   result.method = sequence_level ? prepared.choice.method : options.tracker.method;
   result.method_reason = prepared.choice.reason;
+  result.plate_clip = RefitClippedPlate(options.tracker.psf_sigma_px, &result.frames);
   result.plate_shift = prepared.plate_shift;
   if (prepared.plate_shift.applied) {
     // The edge to the contact line: a constant at the learning frames' edge row, and the edge's
@@ -384,6 +407,7 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
     skipped_names.push_back(s.name);
     skipped_reasons.push_back(s.reason);
   }
+  const bool clip_found = r.plate_clip.level.found();
   AttrList attrs = {{"source", args.input}, {"frames", args.frames.empty() ? "all" : args.frames},
                     {"method", ToString(r.method)}, {"method_requested", args.method},
                     {"method_reason", r.method_reason}, {"fps", args.fps},
@@ -393,10 +417,16 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                     {"plate_shift_reason", r.plate_shift.reason},
                     {"plate_shift_edge_ref", r.plate_shift.applied ? r.plate_shift.edge_ref : 0.0},
                     {"plate_motion_scale", r.plate_scale.scale},
-                    {"plate_motion_scale_err", r.plate_scale.fitted ? r.plate_scale.err : 0.0}};
+                    {"plate_motion_scale_err", r.plate_scale.fitted ? r.plate_scale.err : 0.0},
+                    {"plate_clipped_frames", int64_t(r.plate_clip.frames)},
+                    {"plate_clip_level", clip_found ? r.plate_clip.level.value : 0.0},
+                    {"plate_clip_level_err", clip_found ? r.plate_clip.level.err : 0.0},
+                    {"plate_clip_refitted", int64_t(r.plate_clip.refitted)}};
   AttrUnits units = {{"fps", "1/s"}, {"plate_shift", "px"}, {"plate_shift_err", "px"},
                      {"plate_shift_edge_ref", "px"}, {"plate_motion_scale", "1"},
-                     {"plate_motion_scale_err", "1"}, {"m_per_px", "m/px"}, {"row0", "px"},
+                     {"plate_motion_scale_err", "1"}, {"plate_clipped_frames", "1"},
+                     {"plate_clip_level", "grey levels"}, {"plate_clip_level_err", "grey levels"},
+                     {"plate_clip_refitted", "1"}, {"m_per_px", "m/px"}, {"row0", "px"},
                      {"diameter", "m"},
                      {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
                      {"frames_tracked", "1"}, {"frames_skipped", "1"}};
@@ -543,6 +573,23 @@ void RunTrack(const TrackArgs& args) {
   if (!r.method_reason.empty() && !args.quiet) {
     std::fprintf(stderr, "dimerlab track: method %s -> %s (reason: %s)\n", args.method.c_str(),
                  ToString(r.method).c_str(), r.method_reason.c_str());
+  }
+  // An over-exposed plate: how its rows were found.
+  if (r.plate_clip.frames > 0 && !args.quiet) {
+    const PlateClip& c = r.plate_clip;
+    if (c.level.found()) {
+      std::fprintf(stderr,
+                   "dimerlab track: plate: over-exposed in %zu frames; its level %.1f +- %.1f grey "
+                   "levels above the backdrop (from %zu frames with two partly lit rows), %zu "
+                   "rows fitted at it\n",
+                   c.frames, c.level.value, c.level.err, c.level.used, c.refitted);
+    } else {
+      std::fprintf(stderr,
+                   "dimerlab track: plate: warning: over-exposed in %zu frames, and %zu show two "
+                   "partly lit rows (%zu needed to measure its level): a row may be up to the "
+                   "covered part of a pixel toward the dark side\n",
+                   c.frames, c.level.informative, kClippedLevelMinFrames);
+    }
   }
   // The plate's top in view: its row is the contact line found from the mirror images.
   if (r.plate_shift.applied && !args.quiet) {

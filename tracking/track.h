@@ -36,6 +36,14 @@ struct SkippedFrame {
   std::string name, reason;
 };
 
+// Where the plate's bright side clips (over-exposure): how many frames, the level they share
+// (clipped_edge.h) and how many rows were fitted again at it.
+struct PlateClip {
+  size_t frames = 0;
+  ClippedLevel level;
+  size_t refitted = 0;
+};
+
 struct SequenceResult {
   std::vector<FrameTrack> frames;       // readable frames, in order
   std::vector<std::string> names;       // file name of each row of `frames`
@@ -54,6 +62,7 @@ struct SequenceResult {
   // already to every frame's plate_row when `plate_shift.applied`.
   PlateShift plate_shift;
   PlateMotionScale plate_scale;  // the edge's motion to the contact line's (with plate_shift)
+  PlateClip plate_clip;          // an over-exposed plate's level and the rows fitted at it
 };
 
 // Tracks every frame of `source`. `on_progress(done)` is called from the calling thread.

@@ -91,18 +91,23 @@ SphereMeasurement SequenceTracker::FollowTemplate(const cv::Mat& frame, int k,
 }
 
 double SequenceTracker::PlateRow(const cv::Mat& frame, double guess,
-                                 const std::array<Eigen::Vector2d, 2>& centres, int n) const {
+                                 const std::array<Eigen::Vector2d, 2>& centres, int n,
+                                 std::shared_ptr<const ClippedEdgeProfile>* clipped) const {
   std::vector<std::pair<double, double>> excluded;
   const double r = (std::isnan(radius_px_) ? 0.0 : radius_px_) + kPlateSphereClearPx;
   for (int k = 0; k < n; ++k) excluded.emplace_back(centres[k].x() - r, centres[k].x() + r);
-  return RefinePlateRow(frame, guess, excluded, options_.psf_sigma_px);
+  ClippedEdgeProfile profile;
+  const double row = RefinePlateRow(frame, guess, excluded, options_.psf_sigma_px, &profile);
+  clipped->reset();
+  if (profile.valid()) *clipped = std::make_shared<const ClippedEdgeProfile>(std::move(profile));
+  return row;
 }
 
 bool SequenceTracker::Follow(const cv::Mat& frame, FrameTrack* out) {
   if (!locked_[0] || !locked_[1] || !std::isfinite(plate_row_)) return false;
   const std::array<Eigen::Vector2d, 2> predicted{last_[0] + velocity_[0],
                                                  last_[1] + velocity_[1]};
-  out->plate_row = PlateRow(frame, plate_row_, predicted, 2);
+  out->plate_row = PlateRow(frame, plate_row_, predicted, 2, &out->clipped_plate);
   if (!std::isfinite(out->plate_row)) return false;
   for (int k = 0; k < 2; ++k) {
     RefineContext ctx = Context(polarity_, out->plate_row, predicted[k], &predicted[1 - k]);
@@ -120,7 +125,9 @@ bool SequenceTracker::Follow(const cv::Mat& frame, FrameTrack* out) {
 }
 
 void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
-  *out = FrameTrack{out->index};
+  const size_t index = out->index;
+  *out = FrameTrack{};
+  out->index = index;
   out->acquired = true;
   Detection det = DetectSpheres(frame, polarity_);
   if (uses_template()) {
@@ -162,7 +169,7 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
     }
     radius_px_ = rims > 0 ? rim_sum / rims : std::max(dt_r, area_r);
   }
-  out->plate_row = PlateRow(frame, det.plate_row, coarse, n);
+  out->plate_row = PlateRow(frame, det.plate_row, coarse, n, &out->clipped_plate);
   std::vector<SphereMeasurement> found;
   for (int k = 0; k < n; ++k) {
     const RefineContext ctx =

@@ -17,6 +17,7 @@
 #include <limits>
 #include <memory>
 
+#include "tracking/clipped_edge.h"
 #include "tracking/refiner.h"
 #include "tracking/template_locator.h"
 #include "tracking/tolerances.h"
@@ -43,6 +44,9 @@ struct FrameTrack {
   std::array<Eigen::Vector2d, 2> centre{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};  // px
   std::array<double, 2> radius_px{0, 0};           // measured radius (for calibration), px
   double plate_row = std::numeric_limits<double>::quiet_NaN();  // plate top surface, px
+  // Where the plate's bright side clips: its profile, fitted again once the sequence knows the
+  // clipped level (clipped_edge.h); null otherwise, and after that fit.
+  std::shared_ptr<const ClippedEdgeProfile> clipped_plate;
   bool acquired = false;                           // whole-frame detection was needed
 };
 
@@ -63,7 +67,8 @@ class SequenceTracker {
                                    const std::array<Eigen::Vector2d, 2>& predicted,
                                    double plate_row) const;
   double PlateRow(const cv::Mat& frame, double guess,
-                  const std::array<Eigen::Vector2d, 2>& centres, int n) const;
+                  const std::array<Eigen::Vector2d, 2>& centres, int n,
+                  std::shared_ptr<const ClippedEdgeProfile>* clipped) const;
   void Commit(const FrameTrack& t);
 
   TrackerOptions options_;

@@ -100,12 +100,10 @@ TEST_P(PovrayFootage, PlateRowWithinTheTargetInEveryFrame) {
   EXPECT_LE(a.plate_max_error, kPlateTargetPx) << "plate row, mean error " << a.plate_bias;
 }
 
-// Bit-identical for 1 and 2 threads, where the sequence-level steps run: the template learnt,
-// the plate's contact line measured from the spheres' mirror images and its motion scaled by
-// the resting sphere (mirror_plate), tracked in chunks of 6 frames (4 chunks, each acquiring
-// afresh).
-TEST(PovrayFootageThreads, MirrorPlateIdenticalForOneAndTwoThreads) {
-  const std::string dir = Footage(Case{"mirror_plate", Lighting::kMirrorPlate, 3.9});
+// The footage of `c` tracked with 1 and with 2 threads, in chunks of 6 frames (4 chunks, each
+// acquiring afresh), the method `track` runs by default.
+std::array<tracking::SequenceResult, 2> TrackWithOneAndTwoThreads(const Case& c) {
+  const std::string dir = Footage(c);
   double radius = 0;
   ReadTruthCsv(dir + "/truth.csv", &radius);
   std::array<tracking::SequenceResult, 2> r;
@@ -113,22 +111,46 @@ TEST(PovrayFootageThreads, MirrorPlateIdenticalForOneAndTwoThreads) {
     tracking::SequenceOptions o;
     o.threads = threads;
     o.chunk_frames = 6;
-    o.tracker.method = tracking::Method::kAuto;  // what `track` runs by default
+    o.tracker.method = tracking::Method::kAuto;
     o.contact_radius_px = radius;
     auto source = tracking::FrameSource::Open(dir);
     r[threads - 1] = tracking::TrackSequence(*source, o);
   }
+  return r;
+}
+
+void ExpectIdentical(const std::array<tracking::SequenceResult, 2>& r) {
   ASSERT_EQ(r[0].frames.size(), kFrames);
   ASSERT_EQ(r[1].frames.size(), kFrames);
-  EXPECT_TRUE(r[0].plate_shift.applied);
-  EXPECT_EQ(r[0].plate_shift.value, r[1].plate_shift.value);
-  EXPECT_EQ(r[0].plate_scale.scale, r[1].plate_scale.scale);
   for (size_t i = 0; i < kFrames; ++i) {
     EXPECT_EQ(r[0].frames[i].plate_row, r[1].frames[i].plate_row) << "frame " << i;
     for (int k = 0; k < 2; ++k) {
       EXPECT_EQ(r[0].frames[i].centre[k], r[1].frames[i].centre[k]) << "frame " << i;
     }
   }
+}
+
+// Bit-identical for 1 and 2 threads, where the sequence-level steps run: the template learnt,
+// the plate's contact line measured from the spheres' mirror images and its motion scaled by
+// the resting sphere (mirror_plate).
+TEST(PovrayFootageThreads, MirrorPlateIdenticalForOneAndTwoThreads) {
+  const auto r = TrackWithOneAndTwoThreads(Case{"mirror_plate", Lighting::kMirrorPlate, 3.9});
+  EXPECT_TRUE(r[0].plate_shift.applied);
+  EXPECT_EQ(r[0].plate_shift.value, r[1].plate_shift.value);
+  EXPECT_EQ(r[0].plate_scale.scale, r[1].plate_scale.scale);
+  ExpectIdentical(r);
+}
+
+// And where the over-exposed plate's level is shared by the frames and every clipped row is
+// fitted again at it (tracking/clipped_edge.h): every frame's plate clips here.
+TEST(PovrayFootageThreads, OverexposedPlateIdenticalForOneAndTwoThreads) {
+  const auto r = TrackWithOneAndTwoThreads(Case{"overexposed", Lighting::kOverexposed, 3.9});
+  EXPECT_EQ(r[0].plate_clip.frames, kFrames);
+  EXPECT_TRUE(r[0].plate_clip.level.found());
+  EXPECT_EQ(r[0].plate_clip.level.value, r[1].plate_clip.level.value);
+  EXPECT_EQ(r[0].plate_clip.refitted, r[1].plate_clip.refitted);
+  EXPECT_GE(r[0].plate_clip.refitted, kFrames - 1);
+  ExpectIdentical(r);
 }
 
 INSTANTIATE_TEST_SUITE_P(
