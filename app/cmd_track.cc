@@ -21,9 +21,10 @@ void AddTrackOptions(CLI::App* sub, tracking::TrackArgs* a) {
   sub->add_option("--method", a->method, "auto | centroid | discfit | template")->capture_default_str();
   sub->add_option("--polarity", a->polarity, "auto | bright | dark")->capture_default_str();
   sub->add_option("--radius-px", a->sequence.tracker.radius_px, "sphere radius, px [measured]");
+  // Given, the blur is the user's; not given, an over-exposed plate's frames fit it.
   sub->add_option("--psf-sigma", a->sequence.tracker.psf_sigma_px,
-                  "camera blur, Gaussian sigma px (places a clipped plate edge)")
-      ->capture_default_str();
+                  "camera blur, Gaussian sigma px (places a clipped plate edge) [fitted]")
+      ->each([a](const std::string&) { a->sequence.tracker.fit_psf_sigma = false; });
   sub->add_option("--threads", a->sequence.threads, "worker threads (0: all cores)");
   sub->add_option("--chunk-frames", a->sequence.chunk_frames, "frames per parallel chunk")
       ->capture_default_str();

@@ -4,6 +4,7 @@
 //   bench_plate_edge DIR...
 //   bench_plate_edge --time [calls]   (cost of one RefinePlateRow call on a rendered frame)
 //   bench_plate_edge --psf-sensitivity (a clipped edge's error when the camera's blur differs)
+//   bench_plate_edge --clipped-sequence (an over-exposed plate over a sequence: the shared level)
 // Per folder: the error of the acquisition's coarse row (FindPlateRowCoarse), of the sub-pixel
 // row refined from it with the spheres' true columns left out (RefinePlateRow, as the tracker
 // calls it), and of the tracker's own plate row (SequenceTracker, spheres found by itself):
@@ -143,7 +144,78 @@ int PsfSensitivity() {
   return 0;
 }
 
+// An over-exposed plate over a sequence (tracking/clipped_edge.h): the plate moving across two
+// pixels (edge at 59.02 + 0.04 i, 50 frames, made as PsfSensitivity's), each frame's row alone
+// and then at the level the frames share, for plates at 1.2 to 5 x the clip and a camera blur of
+// 0.4 to 0.8 px, the blur assumed (0.5) or fitted with the level; then what the number of frames the level is fitted on
+// trades, on 400 frames across eight pixels. Times: the level and the refit, per sequence.
+int ClippedSequence() {
+  const auto sweep = [](double gain, double psf, int frames, double step, uint64_t seed0) {
+    std::vector<ClippedEdgeProfile> p(frames);
+    std::vector<double> rows(frames), truth(frames);
+    for (int i = 0; i < frames; ++i) {
+      truth[i] = 59.02 + step * i;
+      rows[i] = RefinePlateRow(dimer::tracking::ClippedBlurredEdge(truth[i], gain, psf, seed0 + i),
+                               60.5 + std::floor(step * i), {}, kPlatePsfSigmaPx, &p[i]);
+    }
+    return std::tuple{p, rows, truth};
+  };
+  const auto worst = [](const std::vector<double>& a, const std::vector<double>& b) {
+    double w = 0;
+    for (size_t i = 0; i < a.size(); ++i) w = std::max(w, std::abs(a[i] - b[i]));
+    return w;
+  };
+  const auto pointers = [](const std::vector<ClippedEdgeProfile>& p) {
+    std::vector<const ClippedEdgeProfile*> out;
+    for (const auto& x : p) out.push_back(&x);
+    return out;
+  };
+  std::printf("| true sigma (px) | plate level (x clip) | frames with two lit rows | worst row "
+              "alone (px) | blur 0.5 assumed: level error (%%) | worst row (px) | blur fitted "
+              "(px) | level error (%%) | worst row (px) | fit + refit (ms) |\n"
+              "|---|---|---|---|---|---|---|---|---|---|\n");
+  for (double psf : {0.4, 0.5, 0.6, 0.8}) {
+    for (double gain : {2.4, 4.0, 10.0}) {
+      auto [p, rows, truth] = sweep(gain, psf, 50, 0.04, 100);
+      std::printf("| %.1f | %.1f | ", psf, gain * 128 / 255);
+      const double alone = worst(rows, truth);
+      for (bool fit : {false, true}) {
+        std::vector<double> r = rows;
+        const auto t0 = std::chrono::steady_clock::now();
+        const ClippedLevel level =
+            SharedClippedLevel(pointers(p), kPlatePsfSigmaPx, kClippedLevelMaxFrames, fit);
+        RefitClippedRows(pointers(p), level, &r);
+        const double ms = std::chrono::duration<double, std::milli>(
+                              std::chrono::steady_clock::now() - t0).count();
+        if (!fit) std::printf("%zu | %.3f | ", level.informative, alone);
+        if (fit) std::printf("%.2f | ", level.psf_sigma);
+        std::printf("%+.1f | %.3f | ", 100 * (level.value / (128 * gain) - 1), worst(r, truth));
+        if (fit) std::printf("%.0f |\n", ms);
+      }
+    }
+  }
+  std::printf("\nLevel fitted on at most N of the informative frames (400 frames, plate at 2 x "
+              "clip, sigma 0.5):\n\n| N | frames used | level error (%%) | worst row (px) | "
+              "RMS row (px) | level (ms) |\n|---|---|---|---|---|---|\n");
+  auto [p, rows0, truth] = sweep(4.0, 0.5, 400, 0.02, 1000);
+  for (size_t n : {3, 8, 16, 32, 64, 128}) {
+    std::vector<double> rows = rows0;
+    const auto t0 = std::chrono::steady_clock::now();
+    const ClippedLevel level = SharedClippedLevel(pointers(p), kPlatePsfSigmaPx, n);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    RefitClippedRows(pointers(p), level, &rows);
+    double ss = 0;
+    for (size_t i = 0; i < rows.size(); ++i) ss += (rows[i] - truth[i]) * (rows[i] - truth[i]);
+    std::printf("| %zu | %zu | %+.2f | %.3f | %.3f | %.1f |\n", n, level.used,
+                100 * (level.value / 512.0 - 1), worst(rows, truth),
+                std::sqrt(ss / double(rows.size())), ms);
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
+  if (argc >= 2 && std::string(argv[1]) == "--clipped-sequence") return ClippedSequence();
   if (argc >= 2 && std::string(argv[1]) == "--psf-sensitivity") return PsfSensitivity();
   if (argc >= 2 && std::string(argv[1]) == "--time") {
     return TimeRefine(argc >= 3 ? std::atoi(argv[2]) : 20000);

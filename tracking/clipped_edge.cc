@@ -247,8 +247,7 @@ constexpr double kLevelRowCoarsePx = 0.1, kLevelRowTolerancePx = 1e-4;
 }  // namespace
 
 double ClippedEdgeRowInProfile(const std::vector<double>& profile, int first_row, double clip,
-                               double pixel_sigma, double profile_sigma, double psf_sigma_px,
-                               double* chi2) {
+                               double pixel_sigma, double profile_sigma, double psf_sigma_px) {
   const int k = BracketedStep(profile);
   if (k < 0) return kNaN;
   const ClippedEdgeModel model(profile, first_row, k, clip, pixel_sigma, profile_sigma,
@@ -263,10 +262,7 @@ double ClippedEdgeRowInProfile(const std::vector<double>& profile, int first_row
     const ClippedFit fit = model.At(y);
     return fit.level > 0 ? fit.chi2 + 2.0 * std::log(fit.level) : kInf;
   };
-  const double row =
-      MinimiseOverRow(cost, first_row, k, kPlateClipCoarsePx, kPlateClipTolerancePx);
-  if (chi2 && std::isfinite(row)) *chi2 = model.At(row).chi2;
-  return row;
+  return MinimiseOverRow(cost, first_row, k, kPlateClipCoarsePx, kPlateClipTolerancePx);
 }
 
 double ClippedEdgeRowAtLevel(const ClippedEdgeProfile& p, double level, double psf_sigma_px,
@@ -279,107 +275,172 @@ double ClippedEdgeRowAtLevel(const ClippedEdgeProfile& p, double level, double p
                          kLevelRowCoarsePx, kPlateClipTolerancePx, chi2);
 }
 
-ClippedLevel SharedClippedLevel(const std::vector<const ClippedEdgeProfile*>& frames,
-                                double psf_sigma_px) {
-  ClippedLevel out;
-  struct Informative {
+namespace {
+
+// Golden-section minimum of f on [a, b] after `steps` reductions; returns the bracket's middle.
+template <typename F>
+double GoldenMinimum(const F& f, double a, double b, int steps) {
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double c = b - g * (b - a), d = a + g * (b - a);
+  double fc = f(c), fd = f(d);
+  for (int it = 0; it < steps; ++it) {
+    if (fc < fd) {
+      b = d;
+      d = c;
+      fd = fc;
+      c = b - g * (b - a);
+      fc = f(c);
+    } else {
+      a = c;
+      c = d;
+      fc = fd;
+      d = a + g * (b - a);
+      fd = f(d);
+    }
+  }
+  return 0.5 * (a + b);
+}
+
+// The minimum of f over a grid x0 + i step (i = 0 .. n - 1), then golden section between the
+// best point's neighbours.
+template <typename F>
+double GridThenGolden(const F& f, double x0, double step, int n, int golden_steps) {
+  int best_i = 0;
+  double best = kInf;
+  for (int i = 0; i < n; ++i) {
+    const double v = f(x0 + i * step);
+    if (v < best) {
+      best = v;
+      best_i = i;
+    }
+  }
+  return GoldenMinimum(f, x0 + std::max(0, best_i - 1) * step,
+                       x0 + std::min(n - 1, best_i + 1) * step, golden_steps);
+}
+
+// The informative frames' models at one blur, and the summed chi-square at a level (each frame
+// at its own best row).
+struct LevelProblem {
+  struct Frame {
     ClippedEdgeModel model;
     int first_row, k;
   };
-  out.pixel_sigma = SharedNoise(frames);
-  std::vector<size_t> which;
-  for (size_t i = 0; i < frames.size(); ++i) {
-    if (!frames[i] || !frames[i]->valid()) continue;
-    const int k = BracketedStep(frames[i]->profile);
-    if (k >= 0 && ModelOf(*frames[i], k, psf_sigma_px, out.pixel_sigma).PartlyLitRows() >= 2) {
-      which.push_back(i);
+  std::vector<Frame> frames;
+  double least = 0;  // the least level any of them allows
+
+  LevelProblem(const std::vector<const ClippedEdgeProfile*>& profiles, double psf_sigma_px,
+               double shared_sigma) {
+    for (const ClippedEdgeProfile* p : profiles) {
+      const int k = BracketedStep(p->profile);
+      frames.push_back({ModelOf(*p, k, psf_sigma_px, shared_sigma), p->first_row, k});
+      least = std::max(least, frames.back().model.LeastLevel());
     }
   }
-  out.informative = which.size();
-  if (which.size() < kClippedLevelMinFrames) return out;
-  // At most kClippedLevelMaxFrames, evenly spread (the cost is per frame and level).
-  std::vector<Informative> used;
-  const size_t n = std::min(which.size(), kClippedLevelMaxFrames);
-  double least = 0;
-  for (size_t u = 0; u < n; ++u) {
-    const ClippedEdgeProfile& p = *frames[which[u * which.size() / n]];
-    const int k = BracketedStep(p.profile);
-    used.push_back({ModelOf(p, k, psf_sigma_px, out.pixel_sigma), p.first_row, k});
-    least = std::max(least, used.back().model.LeastLevel());
-  }
-  out.used = used.size();
-  // Sum over the frames of each one's least chi-square over its row, at `level`.
-  const auto total = [&](double level) {
+
+  double Total(double level) const {
     double sum = 0;
-    for (const Informative& f : used) {
+    for (const Frame& f : frames) {
       double best = kInf;
       MinimiseOverRow([&](double y) { return f.model.Chi2(y, level); }, f.first_row, f.k,
                       kLevelRowCoarsePx, kLevelRowTolerancePx, &best);
       sum += best;
     }
     return sum;
-  };
-  const double lo = std::log(kLevelGridLow * least), hi = std::log(kLevelGridHigh * least);
-  const double step = (hi - lo) / (kLevelGridPoints - 1);
-  int best_i = 0;
-  double best = kInf;
-  for (int i = 0; i < kLevelGridPoints; ++i) {
-    const double t = total(std::exp(lo + i * step));
-    if (t < best) {
-      best = t;
-      best_i = i;
+  }
+
+  // The best level, in ln(level) over kLevelGridLow..kLevelGridHigh x the least level.
+  double BestLevel(int grid_points, int golden_steps) const {
+    const double lo = std::log(kLevelGridLow * least), hi = std::log(kLevelGridHigh * least);
+    const auto f = [&](double x) { return Total(std::exp(x)); };
+    return std::exp(GridThenGolden(f, lo, (hi - lo) / (grid_points - 1), grid_points,
+                                   golden_steps));
+  }
+};
+
+// Blur search: sigma over kBlurLowPx .. kBlurLowPx + (kBlurGridPoints - 1) kBlurStepPx, on at
+// most kBlurFitFrames frames with a coarser level search per trial blur.
+constexpr double kBlurLowPx = 0.2, kBlurStepPx = 0.1;
+constexpr int kBlurGridPoints = 13, kBlurGoldenSteps = 12;
+constexpr size_t kBlurFitFrames = 16;
+constexpr int kBlurLevelGridPoints = 25, kBlurLevelGoldenSteps = 15;
+
+// At most n of `profiles`, evenly spread.
+std::vector<const ClippedEdgeProfile*> Spread(const std::vector<const ClippedEdgeProfile*>& p,
+                                              size_t n) {
+  n = std::min(n, p.size());
+  std::vector<const ClippedEdgeProfile*> out;
+  for (size_t u = 0; u < n; ++u) out.push_back(p[u * p.size() / n]);
+  return out;
+}
+
+}  // namespace
+
+ClippedLevel SharedClippedLevel(const std::vector<const ClippedEdgeProfile*>& frames,
+                                double psf_sigma_px, size_t max_frames, bool fit_blur) {
+  ClippedLevel out;
+  out.psf_sigma = psf_sigma_px;
+  out.pixel_sigma = SharedNoise(frames);
+  std::vector<const ClippedEdgeProfile*> informative;
+  for (const ClippedEdgeProfile* p : frames) {
+    if (!p || !p->valid()) continue;
+    const int k = BracketedStep(p->profile);
+    if (k >= 0 && ModelOf(*p, k, psf_sigma_px, out.pixel_sigma).PartlyLitRows() >= 2) {
+      informative.push_back(p);
     }
   }
-  // Golden section on ln(level) between the best grid point's neighbours.
-  double a = lo + std::max(0, best_i - 1) * step;
-  double b = lo + std::min(kLevelGridPoints - 1, best_i + 1) * step;
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double c = b - g * (b - a), d = a + g * (b - a);
-  double fc = total(std::exp(c)), fd = total(std::exp(d));
-  for (int it = 0; it < kLevelGoldenSteps; ++it) {
-    if (fc < fd) {
-      b = d;
-      d = c;
-      fd = fc;
-      c = b - g * (b - a);
-      fc = total(std::exp(c));
-    } else {
-      a = c;
-      c = d;
-      fc = fd;
-      d = a + g * (b - a);
-      fd = total(std::exp(d));
-    }
+  out.informative = informative.size();
+  if (informative.size() < kClippedLevelMinFrames) return out;
+  // The blur: each trial blur's best level, its summed chi-square minimised over the blur.
+  if (fit_blur && informative.size() >= kBlurFitMinFrames) {
+    const auto few = Spread(informative, kBlurFitFrames);
+    const auto at_blur = [&](double sigma) {
+      const LevelProblem problem(few, sigma, out.pixel_sigma);
+      return problem.Total(problem.BestLevel(kBlurLevelGridPoints, kBlurLevelGoldenSteps));
+    };
+    out.psf_sigma =
+        GridThenGolden(at_blur, kBlurLowPx, kBlurStepPx, kBlurGridPoints, kBlurGoldenSteps);
+    out.psf_fitted = true;
   }
-  const double x = 0.5 * (a + b), fx = total(std::exp(x));
+  // The level, on at most max_frames frames (the cost is per frame and trial level).
+  const LevelProblem problem(Spread(informative, std::max(max_frames, kClippedLevelMinFrames)),
+                             out.psf_sigma, out.pixel_sigma);
+  out.used = problem.frames.size();
+  const double x = std::log(problem.BestLevel(kLevelGridPoints, kLevelGoldenSteps));
+  const auto f = [&](double t) { return problem.Total(std::exp(t)); };
+  const double fx = f(x);
   out.value = std::exp(x);
   // Uncertainty: where the summed chi-square rises by 1 (by the reduced chi-square when the
   // model fits worse than the noise says), from its curvature in ln(level).
   const double h = 0.01;
-  const double curvature = (total(std::exp(x + h)) - 2 * fx + total(std::exp(x - h))) / (h * h);
-  const double dof = double(used.size()) * (2 * kBracketRows + 1) - double(used.size()) - 1;
+  const double curvature = (f(x + h) - 2 * fx + f(x - h)) / (h * h);
+  const double n = double(problem.frames.size());
+  const double dof = n * (2 * kBracketRows + 1) - n - 1;
   const double scale = std::max(1.0, fx / std::max(1.0, dof));
   out.err = curvature > 0 ? out.value * std::sqrt(2.0 * scale / curvature) : kInf;
   return out;
 }
 
 size_t RefitClippedRows(const std::vector<const ClippedEdgeProfile*>& frames,
-                        const ClippedLevel& level, double psf_sigma_px, std::vector<double>* rows) {
+                        const ClippedLevel& level, std::vector<double>* rows) {
   if (!level.found()) return 0;
   size_t replaced = 0;
   for (size_t i = 0; i < frames.size() && i < rows->size(); ++i) {
     if (!frames[i] || !frames[i]->valid()) continue;
     const ClippedEdgeProfile& p = *frames[i];
     double shared = kInf;
-    const double row = ClippedEdgeRowAtLevel(p, level.value, psf_sigma_px, &shared,
+    const double row = ClippedEdgeRowAtLevel(p, level.value, level.psf_sigma, &shared,
                                              level.pixel_sigma);
-    // The frame's own fit, its chi-square put on the shared noise's scale where it had to use
-    // the band's.
-    const double sigma = p.noise_measured || !std::isfinite(level.pixel_sigma)
-                             ? p.pixel_sigma
-                             : level.pixel_sigma;
-    const double own = p.own_chi2 * (p.pixel_sigma / sigma) * (p.pixel_sigma / sigma);
-    if (!std::isfinite(row) || shared > own + kSharedLevelMaxExtraChi2) continue;
+    if (!std::isfinite(row)) continue;
+    // Only a frame with two partly lit rows can show that its level is not the shared one (one
+    // lit row fits any level at some row): its own fit, level free, with the same blur and noise.
+    const int k = BracketedStep(p.profile);
+    const ClippedEdgeModel model = ModelOf(p, k, level.psf_sigma, level.pixel_sigma);
+    if (model.PartlyLitRows() >= 2) {
+      double own = kInf;
+      MinimiseOverRow([&](double y) { return model.At(y).chi2; }, p.first_row, k,
+                      kPlateClipCoarsePx, kPlateClipTolerancePx, &own);
+      if (shared > own + kSharedLevelMaxExtraChi2) continue;
+    }
     (*rows)[i] = row;
     ++replaced;
   }

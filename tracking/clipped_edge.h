@@ -22,6 +22,11 @@
 // in every frame (one lighting, one exposure), while its edge crosses the pixels as the plate
 // moves. The frames where two rows are partly lit fix the level; with it known, the one lit row
 // of every other frame fixes that frame's row (its level is a known fraction of the plate's).
+// Each such frame brings its own row as a further unknown, so the level comes out a little low
+// with noise (-0.6 % at 2 x the clip, -1.9 % at 1.2 x; rows within 0.035 px). The same frames,
+// sampled at different sub-pixel phases, also fix the camera's blur, which the one-row frames
+// depend on (a blur of 0.6 px read as 0.5: rows up to 0.64 px off; fitted: 0.014 px;
+// bench/bench_plate_edge.cc --clipped-sequence).
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -39,16 +44,13 @@ struct ClippedEdgeProfile {
   // pixel_sigma was measured on rows clear of the clip and of black; else it is the band's,
   // which the clip has cut, and the sequence's median noise is used instead.
   bool noise_measured = false;
-  double own_chi2 = 0;       // chi-square of the frame's own fit (its level free)
   bool valid() const { return !profile.empty(); }
 };
 
 // Sub-pixel row of the plate's step in `profile` when its bright side clips at `clip` (NaN if the
 // step is within three rows of the profile's ends), the level unknown (see above).
-// `chi2` (if given): the chi-square of the fit at that row (its prior term left out).
 double ClippedEdgeRowInProfile(const std::vector<double>& profile, int first_row, double clip,
-                               double pixel_sigma, double profile_sigma, double psf_sigma_px,
-                               double* chi2 = nullptr);
+                               double pixel_sigma, double profile_sigma, double psf_sigma_px);
 
 // The row of `p`'s edge whose model, with the clipped side's true level `level` (above the dark
 // side), fits best (least chi-square); NaN as above. `chi2` (if given): that fit's chi-square.
@@ -65,9 +67,16 @@ struct ClippedLevel {
   size_t used = 0;         // of those, the ones fitted (at most kClippedLevelMaxFrames)
   // The pixel noise for frames that could not measure theirs: the median of those that did.
   double pixel_sigma = std::numeric_limits<double>::quiet_NaN();
+  // The camera's blur the level was fitted with (Gaussian sigma, px): fitted with it when
+  // psf_fitted, else the one assumed.
+  double psf_sigma = std::numeric_limits<double>::quiet_NaN();
+  bool psf_fitted = false;
   bool found() const { return value == value; }
 };
 
+// The blur is fitted only from at least this many frames with two partly lit rows (with fewer,
+// a wrong blur and level can fit them: bench/bench_plate_edge.cc --clipped-sequence, 4 frames).
+inline constexpr size_t kBlurFitMinFrames = 8;
 // Frames with two partly lit rows used at most (evenly spread over the sequence), and at least.
 inline constexpr size_t kClippedLevelMaxFrames = 64;
 inline constexpr size_t kClippedLevelMinFrames = 3;
@@ -81,14 +90,20 @@ inline constexpr double kSharedLevelMaxExtraChi2 = 25.0;
 
 // The level maximising the likelihood of the informative frames, each at its own best row
 // (profile likelihood: the sum over frames of min_y chi-square(y, level), minimised over the
-// level). Not found when fewer than kClippedLevelMinFrames frames are informative.
+// level). Not found when fewer than kClippedLevelMinFrames frames are informative. At most
+// `max_frames` of them are fitted (bench/bench_plate_edge.cc --clipped-sequence measures what
+// that trades).
+// With `fit_blur` the camera's blur is fitted too (the same profile likelihood, over the blur as
+// well), `psf_sigma_px` then only choosing the informative frames' models.
 ClippedLevel SharedClippedLevel(const std::vector<const ClippedEdgeProfile*>& frames,
-                                double psf_sigma_px);
+                                double psf_sigma_px, size_t max_frames = kClippedLevelMaxFrames,
+                                bool fit_blur = false);
 
-// Every frame's clipped edge fitted again at the shared level: rows[i] is replaced by the row of
-// *frames[i] at `level` (frames[i] null or invalid: left as it is), unless the shared level fits
-// that frame worse than its own by kSharedLevelMaxExtraChi2. Returns how many rows were replaced.
+// Every frame's clipped edge fitted again at the shared level (and its blur): rows[i] is
+// replaced by the row of *frames[i] at `level` (frames[i] null or invalid: left as it is),
+// unless the frame has two partly lit rows and the shared level fits it worse than its own by
+// kSharedLevelMaxExtraChi2. Returns how many rows were replaced.
 size_t RefitClippedRows(const std::vector<const ClippedEdgeProfile*>& frames,
-                        const ClippedLevel& level, double psf_sigma_px, std::vector<double>* rows);
+                        const ClippedLevel& level, std::vector<double>* rows);
 
 }  // namespace dimer::tracking

@@ -261,14 +261,12 @@ double RefinePlateRow(const cv::Mat& frame, double row_guess,
   // own fit is then too sure of itself; the sequence uses the others' noise, clipped_edge.h).
   const double lit_sigma = LitRowNoise(frame, r0, profile, k, inlier_cols);
   const double pixel_sigma = std::isfinite(lit_sigma) ? lit_sigma : sigma;
-  double chi2 = 0;
-  const double fitted = ClippedEdgeRowInProfile(profile, r0, clip, pixel_sigma,
-                                                pixel_sigma / std::sqrt(double(n_cols)),
-                                                psf_sigma_px, &chi2);
+  const double fitted = ClippedEdgeRowInProfile(
+      profile, r0, clip, pixel_sigma, pixel_sigma / std::sqrt(double(n_cols)), psf_sigma_px);
   if (!std::isfinite(fitted)) return row;
   if (clipped) {
-    *clipped = ClippedEdgeProfile{profile, r0,  clip, pixel_sigma, n_cols,
-                                  std::isfinite(lit_sigma), chi2};
+    *clipped =
+        ClippedEdgeProfile{profile, r0, clip, pixel_sigma, n_cols, std::isfinite(lit_sigma)};
   }
   return fitted;
 }

@@ -102,7 +102,7 @@ void Stitch(const std::vector<FrameTrack>& done, std::vector<FrameTrack>* chunk)
 
 // An over-exposed plate: the clipped side's level shared by the frames, then every clipped
 // frame's row fitted again at it (clipped_edge.h). The profiles are dropped afterwards.
-PlateClip RefitClippedPlate(double psf_sigma_px, std::vector<FrameTrack>* frames) {
+PlateClip RefitClippedPlate(double psf_sigma_px, bool fit_blur, std::vector<FrameTrack>* frames) {
   PlateClip out;
   std::vector<const ClippedEdgeProfile*> profiles;
   std::vector<double> rows;
@@ -112,8 +112,8 @@ PlateClip RefitClippedPlate(double psf_sigma_px, std::vector<FrameTrack>* frames
     out.frames += f.clipped_plate != nullptr;
   }
   if (out.frames > 0) {
-    out.level = SharedClippedLevel(profiles, psf_sigma_px);
-    out.refitted = RefitClippedRows(profiles, out.level, psf_sigma_px, &rows);
+    out.level = SharedClippedLevel(profiles, psf_sigma_px, kClippedLevelMaxFrames, fit_blur);
+    out.refitted = RefitClippedRows(profiles, out.level, &rows);
   }
   for (size_t i = 0; i < frames->size(); ++i) {
     (*frames)[i].plate_row = rows[i];
@@ -221,7 +221,8 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
   if (InterruptRequested()) result.complete = false;
   result.method = sequence_level ? prepared.choice.method : options.tracker.method;
   result.method_reason = prepared.choice.reason;
-  result.plate_clip = RefitClippedPlate(options.tracker.psf_sigma_px, &result.frames);
+  result.plate_clip = RefitClippedPlate(options.tracker.psf_sigma_px,
+                                        options.tracker.fit_psf_sigma, &result.frames);
   result.plate_shift = prepared.plate_shift;
   if (prepared.plate_shift.applied) {
     // The edge to the contact line: a constant at the learning frames' edge row, and the edge's
@@ -283,6 +284,12 @@ double Median(std::vector<double> v) {
   if (v.empty()) return kNaN;
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
   return v[v.size() / 2];
+}
+
+// Where the blur that placed a clipped plate edge came from.
+std::string PsfSource(const TrackArgs& args, const PlateClip& clip) {
+  if (clip.level.psf_fitted) return "fitted";
+  return args.sequence.tracker.fit_psf_sigma ? "default" : "--psf-sigma";
 }
 
 struct Calibration {
@@ -421,12 +428,15 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                     {"plate_clipped_frames", int64_t(r.plate_clip.frames)},
                     {"plate_clip_level", clip_found ? r.plate_clip.level.value : 0.0},
                     {"plate_clip_level_err", clip_found ? r.plate_clip.level.err : 0.0},
-                    {"plate_clip_refitted", int64_t(r.plate_clip.refitted)}};
+                    {"plate_clip_refitted", int64_t(r.plate_clip.refitted)},
+                    {"plate_psf_sigma", clip_found ? r.plate_clip.level.psf_sigma
+                                                   : args.sequence.tracker.psf_sigma_px},
+                    {"plate_psf_sigma_source", PsfSource(args, r.plate_clip)}};
   AttrUnits units = {{"fps", "1/s"}, {"plate_shift", "px"}, {"plate_shift_err", "px"},
                      {"plate_shift_edge_ref", "px"}, {"plate_motion_scale", "1"},
                      {"plate_motion_scale_err", "1"}, {"plate_clipped_frames", "1"},
                      {"plate_clip_level", "grey levels"}, {"plate_clip_level_err", "grey levels"},
-                     {"plate_clip_refitted", "1"}, {"m_per_px", "m/px"}, {"row0", "px"},
+                     {"plate_clip_refitted", "1"}, {"plate_psf_sigma", "px"}, {"m_per_px", "m/px"}, {"row0", "px"},
                      {"diameter", "m"},
                      {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
                      {"frames_tracked", "1"}, {"frames_skipped", "1"}};
@@ -580,9 +590,10 @@ void RunTrack(const TrackArgs& args) {
     if (c.level.found()) {
       std::fprintf(stderr,
                    "dimerlab track: plate: over-exposed in %zu frames; its level %.1f +- %.1f grey "
-                   "levels above the backdrop (from %zu frames with two partly lit rows), %zu "
-                   "rows fitted at it\n",
-                   c.frames, c.level.value, c.level.err, c.level.used, c.refitted);
+                   "levels above the backdrop and the camera's blur %.2f px (%s), from %zu "
+                   "frames with two partly lit rows; %zu rows fitted at them\n",
+                   c.frames, c.level.value, c.level.err, c.level.psf_sigma,
+                   PsfSource(args, c).c_str(), c.level.used, c.refitted);
     } else {
       std::fprintf(stderr,
                    "dimerlab track: plate: warning: over-exposed in %zu frames, and %zu show two "

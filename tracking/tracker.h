@@ -31,6 +31,9 @@ struct TrackerOptions {
   // The camera's blur, a Gaussian sigma in px: only a clipped plate edge's row depends on it
   // (ClippedEdgeRowInProfile); measure it on an unclipped edge of the same camera and lens.
   double psf_sigma_px = kPlatePsfSigmaPx;
+  // Fit the blur with an over-exposed plate's level over the sequence (clipped_edge.h), with
+  // psf_sigma_px only for each frame's first fit; false when the user gave the blur.
+  bool fit_psf_sigma = true;
   // Method::kTemplate: the learnt appearances (left, right), shared by every chunk's tracker.
   std::shared_ptr<const std::array<Appearance, 2>> appearance;
 

@@ -22,9 +22,10 @@ struct Measured {
   ClippedEdgeProfile profile;
 };
 
-Measured Measure(double edge, double gain, uint64_t seed) {
+Measured Measure(double edge, double gain, uint64_t seed, double true_psf = 0.5) {
   Measured m;
-  m.row = RefinePlateRow(ClippedBlurredEdge(edge, gain, 0.5, seed), 60.5, {}, 0.5, &m.profile);
+  m.row = RefinePlateRow(ClippedBlurredEdge(edge, gain, true_psf, seed), 60.5, {}, 0.5,
+                         &m.profile);
   return m;
 }
 
@@ -75,7 +76,7 @@ TEST(ClippedEdgeSequence, TheSharedLevelIsThePlatesAndEveryRowIsPlaced) {
     EXPECT_LT(level.err, 0.02 * level.value);
     std::vector<double> rows;
     for (const Measured& m : frames) rows.push_back(m.row);
-    EXPECT_EQ(RefitClippedRows(Pointers(frames), level, 0.5, &rows), frames.size());
+    EXPECT_EQ(RefitClippedRows(Pointers(frames), level, &rows), frames.size());
     double worst = 0;
     for (size_t i = 0; i < rows.size(); ++i) {
       EXPECT_NEAR(rows[i], Edges()[i], 0.05) << "gain " << gain << ", edge at " << Edges()[i];
@@ -89,6 +90,53 @@ TEST(ClippedEdgeSequence, TheSharedLevelIsThePlatesAndEveryRowIsPlaced) {
   }
 }
 
+TEST(ClippedEdgeSequence, TheCamerasBlurIsFittedWithTheLevel) {
+  // The camera blurs more than the 0.5 px assumed: with that blur the rows are off by up to
+  // most of a pixel; fitted with the level, the blur is the camera's and the rows are placed.
+  for (double true_psf : {0.6, 0.8}) {
+    std::vector<Measured> frames;
+    uint64_t seed = 900;
+    for (double y : Edges()) frames.push_back(Measure(y, 4.0, seed++, true_psf));
+    const ClippedLevel assumed = SharedClippedLevel(Pointers(frames), 0.5);
+    std::vector<double> rows_assumed;
+    for (const Measured& m : frames) rows_assumed.push_back(m.row);
+    RefitClippedRows(Pointers(frames), assumed, &rows_assumed);
+    const ClippedLevel fitted =
+        SharedClippedLevel(Pointers(frames), 0.5, kClippedLevelMaxFrames, true);
+    ASSERT_TRUE(fitted.found());
+    EXPECT_TRUE(fitted.psf_fitted);
+    EXPECT_FALSE(assumed.psf_fitted);
+    EXPECT_NEAR(fitted.psf_sigma, true_psf, 0.05);
+    EXPECT_NEAR(fitted.value, 512.0, 0.03 * 512.0) << "blur " << true_psf;
+    std::vector<double> rows;
+    for (const Measured& m : frames) rows.push_back(m.row);
+    RefitClippedRows(Pointers(frames), fitted, &rows);
+    double worst = 0, worst_assumed = 0;
+    for (size_t i = 0; i < rows.size(); ++i) {
+      EXPECT_NEAR(rows[i], Edges()[i], 0.05) << "blur " << true_psf << ", edge " << Edges()[i];
+      worst = std::max(worst, std::abs(rows[i] - Edges()[i]));
+      worst_assumed = std::max(worst_assumed, std::abs(rows_assumed[i] - Edges()[i]));
+    }
+    EXPECT_GT(worst_assumed, 0.2) << "blur " << true_psf;
+    std::printf("[ stats    ] camera blur %.1f: fitted %.3f, level %.1f; worst row %.4f px (blur "
+                "0.5 assumed: %.4f)\n", true_psf, fitted.psf_sigma, fitted.value, worst,
+                worst_assumed);
+  }
+}
+
+TEST(ClippedEdgeSequence, TheBlurIsNotFittedFromTooFewFrames) {
+  std::vector<Measured> frames;
+  for (int i = 0; i < int(kBlurFitMinFrames) - 1; ++i) {
+    frames.push_back(Measure(60.1 + 0.02 * i, 4.0, 950 + i));  // two rows lit in each
+  }
+  const ClippedLevel level =
+      SharedClippedLevel(Pointers(frames), 0.5, kClippedLevelMaxFrames, true);
+  ASSERT_TRUE(level.found());
+  EXPECT_EQ(level.informative, frames.size());
+  EXPECT_FALSE(level.psf_fitted);
+  EXPECT_EQ(level.psf_sigma, 0.5);
+}
+
 TEST(ClippedEdgeSequence, NoLevelWithoutFramesOfTwoLitRows) {
   // A plate at rest with its edge in the upper half of a pixel: one lit row in every frame.
   std::vector<Measured> frames;
@@ -97,7 +145,7 @@ TEST(ClippedEdgeSequence, NoLevelWithoutFramesOfTwoLitRows) {
   EXPECT_FALSE(level.found());
   EXPECT_EQ(level.informative, 0u);
   std::vector<double> rows(frames.size(), 1.0);
-  EXPECT_EQ(RefitClippedRows(Pointers(frames), level, 0.5, &rows), 0u);
+  EXPECT_EQ(RefitClippedRows(Pointers(frames), level, &rows), 0u);
   for (double r : rows) EXPECT_EQ(r, 1.0);
 }
 
@@ -113,7 +161,7 @@ TEST(ClippedEdgeSequence, AFrameTheSharedLevelDoesNotFitKeepsItsOwnRow) {
   const Measured bright = Measure(y, 6.0, 7);
   ASSERT_TRUE(bright.profile.valid());
   std::vector<double> rows{bright.row};
-  EXPECT_EQ(RefitClippedRows({&bright.profile}, level, 0.5, &rows), 0u);
+  EXPECT_EQ(RefitClippedRows({&bright.profile}, level, &rows), 0u);
   EXPECT_EQ(rows[0], bright.row);
   EXPECT_NEAR(rows[0], y, 0.05);
 }
@@ -126,7 +174,7 @@ TEST(ClippedEdgeSequence, FramesWithoutAClippedEdgeAreLeftAsTheyAre) {
   std::vector<const ClippedEdgeProfile*> p = Pointers(frames);
   p[3] = nullptr;  // a frame whose edge did not clip
   std::vector<double> rows(p.size(), -1.0);
-  EXPECT_EQ(RefitClippedRows(p, level, 0.5, &rows), p.size() - 1);
+  EXPECT_EQ(RefitClippedRows(p, level, &rows), p.size() - 1);
   EXPECT_EQ(rows[3], -1.0);
 }
 
