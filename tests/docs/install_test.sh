@@ -15,3 +15,16 @@ test -s installed.h5
 # The image commands are handed to dimerlab-full, installed in PREFIX/libexec/dimerlab.
 test -x "$PREFIX/libexec/dimerlab/dimerlab-full"
 PATH="$PREFIX/bin:$PATH" dimerlab render --help >/dev/null
+# OpenCV's image and video codecs are not linked into dimerlab-full (its start would load ~190
+# more libraries); they come from PREFIX/lib/dimerlab/libdimer_codecs.so on first use
+# (tracking/image_codecs.h), which this exercises: PNG frames written, then read back.
+test -f "$PREFIX/lib/dimerlab/libdimer_codecs.so"
+if ldd "$PREFIX/libexec/dimerlab/dimerlab-full" | grep -E 'libopencv_(imgcodecs|videoio)'; then
+  echo "dimerlab-full links OpenCV's codecs directly" >&2
+  exit 1
+fi
+PATH="$PREFIX/bin:$PATH" dimerlab render installed.h5 -o frames --frames 3 --width 160 \
+  --height 96 --m-per-px 5e-4 -q
+test -s frames/frame_000002.png
+PATH="$PREFIX/bin:$PATH" dimerlab track frames -o track.h5 -q --method centroid
+test -s track.h5
