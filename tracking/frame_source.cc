@@ -142,7 +142,9 @@ void AddEntries(const fs::path& file, std::vector<Entry>* out) {
     out->push_back({file.string(), name, -1});
     return;
   }
-  for (int p = 0; p < pages; ++p) out->push_back({file.string(), name + "#" + std::to_string(p), p});
+  for (int p = 0; p < pages; ++p) {
+    out->push_back({file.string(), name + "#" + std::to_string(p), p});
+  }
 }
 
 std::unique_ptr<FrameSource> OpenFolder(const std::string& path) {
@@ -263,7 +265,8 @@ std::unique_ptr<FrameSource> FrameSource::Open(const std::string& path) {
     AddEntries(fs::path(path), &entries);
     return std::make_unique<ListSource>(std::move(entries));
   }
-  throw InputError(path + ": not a folder of frames, an image, a .cine or a video (.avi .mp4 .mov .mkv)");
+  throw InputError(path +
+                   ": not a folder of frames, an image, a .cine or a video (.avi .mp4 .mov .mkv)");
 }
 
 }  // namespace dimer::tracking

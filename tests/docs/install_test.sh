@@ -28,3 +28,11 @@ PATH="$PREFIX/bin:$PATH" dimerlab render installed.h5 -o frames --frames 3 --wid
 test -s frames/frame_000002.png
 PATH="$PREFIX/bin:$PATH" dimerlab track frames -o track.h5 -q --method centroid
 test -s track.h5
+# ... and from there, not from the build tree: without it the PNG folder is one line naming it.
+mv "$PREFIX/lib/dimerlab/libdimer_codecs.so" "$PREFIX/moved.so"
+if PATH="$PREFIX/bin:$PATH" dimerlab track frames -o track2.h5 -q 2>err.txt; then
+  echo "track read PNG frames without PREFIX/lib/dimerlab/libdimer_codecs.so" >&2
+  exit 1
+fi
+grep -qx "dimerlab: error: cannot load $PREFIX/lib/dimerlab/libdimer_codecs.so, .*" err.txt
+test "$(wc -l <err.txt)" -eq 1
