@@ -1,9 +1,7 @@
 #include "compare/overlay.h"
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include <algorithm>
 #include <array>
@@ -18,6 +16,7 @@
 #include "common/progress.h"
 #include "compare/report_parts.h"
 #include "tracking/frame_source.h"
+#include "tracking/image_codecs.h"
 
 namespace dimer::compare {
 namespace {
@@ -223,11 +222,11 @@ void WriteOverlay(const std::string& dir, const Analysis& track, const Compariso
     if (!load(still_frames[k], &img)) continue;
     Draw(track, comparison, still_frames[k], Format("  phase %d/%d", int(k), o.stills), &img);
     const std::string path = (fs::path(dir) / "stills" / Format("still_%zu.png", k)).string();
-    if (!cv::imwrite(path, img)) throw InputError(path + ": cannot write the still");
+    if (!tracking::codecs::Write(path, img)) throw InputError(path + ": cannot write the still");
   }
   if (!still_frames.empty() && reader.sequential()) reader = FrameReader(o.frames_dir);
 
-  cv::VideoWriter video;
+  tracking::codecs::VideoWriter video;
   cv::Size size;
   const std::string video_path = (fs::path(dir) / "overlay.avi").string();
   ProgressMeter progress("overlay", "frames", double(i1 - i0), !o.quiet);
@@ -236,18 +235,18 @@ void WriteOverlay(const std::string& dir, const Analysis& track, const Compariso
     progress.Update(double(i - i0));
     cv::Mat img;
     if (!load(i, &img)) continue;
-    if (!video.isOpened()) {
+    if (!video.IsOpened()) {
       size = img.size();
-      if (!video.open(video_path, cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), o.video_fps, size))
+      if (!video.Open(video_path, "MJPG", o.video_fps, size))
         throw InputError(video_path + ": cannot open an MJPG video writer");
     }
     if (img.size() != size) cv::resize(img, img, size);
     Draw(track, comparison, i, "", &img);
-    video.write(img);
+    video.Write(img);
     ++written;
   }
   progress.Finish(double(i1 - i0));
-  video.release();
+  video.Release();
   if (missing.count > 0) {
     std::fprintf(stderr, "dimerlab: warning: overlay: %d frames missing or unreadable, skipped "
                  "(first: %s)\n", missing.count, missing.first.c_str());

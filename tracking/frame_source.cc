@@ -1,9 +1,7 @@
 #include "tracking/frame_source.h"
 
 #include <opencv2/core/utils/logger.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -14,6 +12,7 @@
 #include "common/error.h"
 #include "tracking/bmp_decode.h"
 #include "tracking/cine_source.h"
+#include "tracking/image_codecs.h"
 #include "tracking/png_check.h"
 #include "tracking/tiff_decode.h"
 
@@ -77,7 +76,7 @@ class ListSource : public FrameSource {
     f.name = e.name;
     std::vector<cv::Mat> pages;
     try {
-      cv::imreadmulti(e.path, pages, e.page, 1, kDecodeFlags);
+      codecs::ReadPages(e.path, &pages, e.page, 1, kDecodeFlags);
     } catch (const cv::Exception&) {
       pages.clear();
     }
@@ -99,8 +98,8 @@ class ListSource : public FrameSource {
 class VideoSource : public FrameSource {
  public:
   explicit VideoSource(const std::string& path) : path_(path), name_(fs::path(path).filename()) {
-    if (!cap_.open(path)) throw InputError(path + ": cannot open as a video (no decoder for it)");
-    const double n = cap_.get(cv::CAP_PROP_FRAME_COUNT);
+    if (!cap_.Open(path)) throw InputError(path + ": cannot open as a video (no decoder for it)");
+    const double n = cap_.FrameCount();
     size_ = n > 0 ? size_t(n) : 0;
   }
   size_t size() const override { return size_; }
@@ -110,7 +109,7 @@ class VideoSource : public FrameSource {
   }
   bool Next(Frame* frame) override {
     cv::Mat img;
-    if (!cap_.read(img)) return false;
+    if (!cap_.Read(&img)) return false;
     frame->index = next_;
     frame->name = name_ + "#" + std::to_string(next_);
     ++next_;
@@ -121,7 +120,7 @@ class VideoSource : public FrameSource {
 
  private:
   std::string path_, name_;
-  cv::VideoCapture cap_;
+  codecs::VideoReader cap_;
   size_t size_ = 0, next_ = 0;
 };
 
@@ -129,7 +128,7 @@ class VideoSource : public FrameSource {
 int TiffPages(const std::string& path) {
   if (TiffHasOnePage(path)) return 1;  // the common case, without opening libtiff
   try {
-    const size_t n = cv::imcount(path, kDecodeFlags);
+    const size_t n = codecs::CountPages(path, kDecodeFlags);
     return n > 1 ? int(n) : 1;
   } catch (const cv::Exception&) {
     return 1;
@@ -143,7 +142,9 @@ void AddEntries(const fs::path& file, std::vector<Entry>* out) {
     out->push_back({file.string(), name, -1});
     return;
   }
-  for (int p = 0; p < pages; ++p) out->push_back({file.string(), name + "#" + std::to_string(p), p});
+  for (int p = 0; p < pages; ++p) {
+    out->push_back({file.string(), name + "#" + std::to_string(p), p});
+  }
 }
 
 std::unique_ptr<FrameSource> OpenFolder(const std::string& path) {
@@ -228,7 +229,7 @@ Frame DecodeImageFile(const std::string& path, size_t index, const std::string& 
   if (DecodeGreyBmp(bytes.data(), bytes.size(), &f.image)) return f;
   if (DecodePlainTiff(bytes.data(), bytes.size(), &f.image)) return f;
   try {
-    f.image = cv::imdecode(bytes, kDecodeFlags);
+    f.image = codecs::Decode(bytes, kDecodeFlags);
   } catch (const cv::Exception&) {
     f.image = cv::Mat();
   }
@@ -264,7 +265,8 @@ std::unique_ptr<FrameSource> FrameSource::Open(const std::string& path) {
     AddEntries(fs::path(path), &entries);
     return std::make_unique<ListSource>(std::move(entries));
   }
-  throw InputError(path + ": not a folder of frames, an image, a .cine or a video (.avi .mp4 .mov .mkv)");
+  throw InputError(path +
+                   ": not a folder of frames, an image, a .cine or a video (.avi .mp4 .mov .mkv)");
 }
 
 }  // namespace dimer::tracking

@@ -73,7 +73,8 @@ class MemorySource : public FrameSource {
 };
 
 // Decodes one image file as a single-channel 8- or 16-bit frame (colour is converted to grey).
-// Never throws: a bad file gives a Frame with `error` set.
+// A bad file gives a Frame with `error` set; it throws only when a file needs OpenCV's codecs and
+// they cannot be loaded (image_codecs.h: CodecsUnavailable).
 Frame DecodeImageFile(const std::string& path, size_t index, const std::string& name);
 
 }  // namespace dimer::tracking

@@ -1,7 +1,5 @@
 #include "tracking/render.h"
 
-#include <opencv2/imgcodecs.hpp>
-
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +17,7 @@
 #include "common/provenance.h"
 #include "common/trajectory_io.h"
 #include "tracking/cine_writer.h"
+#include "tracking/image_codecs.h"
 #include "tracking/track.h"
 
 namespace dimer::tracking {
@@ -215,6 +214,10 @@ void RunRender(const RenderArgs& args) {
     cine_writer = std::make_unique<CineWriter>(out.temp_path() + "/" + kCineFile,
                                                args.image.width, args.image.height, n,
                                                CineOptions(args, traj, n));
+  } else {
+    // PNG/TIFF frames are written by the workers, whose threads cannot carry the loader's
+    // exception out: load OpenCV's codecs (image_codecs.h) here, before any of them starts.
+    codecs::Require();
   }
   std::mutex pending_mutex;
   std::map<size_t, cv::Mat> pending;
@@ -246,7 +249,7 @@ void RunRender(const RenderArgs& args) {
       const std::string path = out.temp_path() + "/" + FrameName(i, args.format);
       bool ok = false;
       try {
-        ok = cv::imwrite(path, img);
+        ok = codecs::Write(path, img);
       } catch (const cv::Exception&) {
       }
       if (!ok) {
