@@ -163,6 +163,31 @@ class ClippedEdgeModel {
 };
 
 
+// Golden-section minimum of f on [a, b], to a bracket narrower than `tolerance`; returns the
+// bracket's middle.
+template <typename F>
+double GoldenMinimum(const F& f, double a, double b, double tolerance) {
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double c = b - g * (b - a), d = a + g * (b - a);
+  double fc = f(c), fd = f(d);
+  while (b - a > tolerance) {
+    if (fc < fd) {
+      b = d;
+      d = c;
+      fd = fc;
+      c = b - g * (b - a);
+      fc = f(c);
+    } else {
+      a = c;
+      c = d;
+      fc = fd;
+      d = a + g * (b - a);
+      fd = f(d);
+    }
+  }
+  return 0.5 * (a + b);
+}
+
 // The trial row minimising `cost` over the pixels next to the step k (the edge may sit up to a
 // pixel and a half from it, on the clipped side): every `coarse` px, then golden-section search
 // about the best to `tolerance` px. A grid alone is not enough: with the level known, a profile
@@ -182,27 +207,9 @@ double MinimiseOverRow(const Cost& cost, int first_row, int k, double coarse, do
     }
   }
   if (!std::isfinite(rough)) return kNaN;
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double a = rough - coarse, b = rough + coarse;
-  double c = b - g * (b - a), d = a + g * (b - a);
-  double fc = cost(c), fd = cost(d);
-  while (b - a > tolerance) {
-    if (fc < fd) {
-      b = d;
-      d = c;
-      fd = fc;
-      c = b - g * (b - a);
-      fc = cost(c);
-    } else {
-      a = c;
-      c = d;
-      fc = fd;
-      d = a + g * (b - a);
-      fd = cost(d);
-    }
-  }
+  const double mid = GoldenMinimum(cost, rough - coarse, rough + coarse, tolerance);
   // The grid point itself when the bracket's ends are no better (a kink at the clip).
-  const double mid = 0.5 * (a + b), fmid = cost(mid);
+  const double fmid = cost(mid);
   const bool grid = lowest < fmid;
   if (best) *best = grid ? lowest : fmid;
   return grid ? rough : mid;
@@ -241,7 +248,7 @@ double SharedNoise(const std::vector<const ClippedEdgeProfile*>& frames) {
 // chi-square is flat about the row's minimum).
 constexpr double kLevelGridLow = 0.8, kLevelGridHigh = 64.0;  // x the least level
 constexpr int kLevelGridPoints = 49;
-constexpr int kLevelGoldenSteps = 30;
+constexpr double kLevelTolerance = 1e-7;  // in ln(level)
 constexpr double kLevelRowCoarsePx = 0.1, kLevelRowTolerancePx = 1e-4;
 
 }  // namespace
@@ -277,34 +284,10 @@ double ClippedEdgeRowAtLevel(const ClippedEdgeProfile& p, double level, double p
 
 namespace {
 
-// Golden-section minimum of f on [a, b] after `steps` reductions; returns the bracket's middle.
-template <typename F>
-double GoldenMinimum(const F& f, double a, double b, int steps) {
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double c = b - g * (b - a), d = a + g * (b - a);
-  double fc = f(c), fd = f(d);
-  for (int it = 0; it < steps; ++it) {
-    if (fc < fd) {
-      b = d;
-      d = c;
-      fd = fc;
-      c = b - g * (b - a);
-      fc = f(c);
-    } else {
-      a = c;
-      c = d;
-      fc = fd;
-      d = a + g * (b - a);
-      fd = f(d);
-    }
-  }
-  return 0.5 * (a + b);
-}
-
 // The minimum of f over a grid x0 + i step (i = 0 .. n - 1), then golden section between the
 // best point's neighbours.
 template <typename F>
-double GridThenGolden(const F& f, double x0, double step, int n, int golden_steps) {
+double GridThenGolden(const F& f, double x0, double step, int n, double tolerance) {
   int best_i = 0;
   double best = kInf;
   for (int i = 0; i < n; ++i) {
@@ -315,7 +298,7 @@ double GridThenGolden(const F& f, double x0, double step, int n, int golden_step
     }
   }
   return GoldenMinimum(f, x0 + std::max(0, best_i - 1) * step,
-                       x0 + std::min(n - 1, best_i + 1) * step, golden_steps);
+                       x0 + std::min(n - 1, best_i + 1) * step, tolerance);
 }
 
 // The informative frames' models at one blur, and the summed chi-square at a level (each frame
@@ -349,20 +332,21 @@ struct LevelProblem {
   }
 
   // The best level, in ln(level) over kLevelGridLow..kLevelGridHigh x the least level.
-  double BestLevel(int grid_points, int golden_steps) const {
+  double BestLevel(int grid_points, double tolerance) const {
     const double lo = std::log(kLevelGridLow * least), hi = std::log(kLevelGridHigh * least);
     const auto f = [&](double x) { return Total(std::exp(x)); };
-    return std::exp(GridThenGolden(f, lo, (hi - lo) / (grid_points - 1), grid_points,
-                                   golden_steps));
+    return std::exp(GridThenGolden(f, lo, (hi - lo) / (grid_points - 1), grid_points, tolerance));
   }
 };
 
 // Blur search: sigma over kBlurLowPx .. kBlurLowPx + (kBlurGridPoints - 1) kBlurStepPx, on at
 // most kBlurFitFrames frames with a coarser level search per trial blur.
 constexpr double kBlurLowPx = 0.2, kBlurStepPx = 0.1;
-constexpr int kBlurGridPoints = 13, kBlurGoldenSteps = 12;
+constexpr int kBlurGridPoints = 13;
+constexpr double kBlurTolerancePx = 1e-3;
 constexpr size_t kBlurFitFrames = 16;
-constexpr int kBlurLevelGridPoints = 25, kBlurLevelGoldenSteps = 15;
+constexpr int kBlurLevelGridPoints = 25;
+constexpr double kBlurLevelTolerance = 3e-4;  // in ln(level)
 
 // At most n of `profiles`, evenly spread.
 std::vector<const ClippedEdgeProfile*> Spread(const std::vector<const ClippedEdgeProfile*>& p,
@@ -395,17 +379,17 @@ ClippedLevel SharedClippedLevel(const std::vector<const ClippedEdgeProfile*>& fr
     const auto few = Spread(informative, kBlurFitFrames);
     const auto at_blur = [&](double sigma) {
       const LevelProblem problem(few, sigma, out.pixel_sigma);
-      return problem.Total(problem.BestLevel(kBlurLevelGridPoints, kBlurLevelGoldenSteps));
+      return problem.Total(problem.BestLevel(kBlurLevelGridPoints, kBlurLevelTolerance));
     };
     out.psf_sigma =
-        GridThenGolden(at_blur, kBlurLowPx, kBlurStepPx, kBlurGridPoints, kBlurGoldenSteps);
+        GridThenGolden(at_blur, kBlurLowPx, kBlurStepPx, kBlurGridPoints, kBlurTolerancePx);
     out.psf_fitted = true;
   }
   // The level, on at most max_frames frames (the cost is per frame and trial level).
   const LevelProblem problem(Spread(informative, std::max(max_frames, kClippedLevelMinFrames)),
                              out.psf_sigma, out.pixel_sigma);
   out.used = problem.frames.size();
-  const double x = std::log(problem.BestLevel(kLevelGridPoints, kLevelGoldenSteps));
+  const double x = std::log(problem.BestLevel(kLevelGridPoints, kLevelTolerance));
   const auto f = [&](double t) { return problem.Total(std::exp(t)); };
   const double fx = f(x);
   out.value = std::exp(x);
