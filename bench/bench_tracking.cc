@@ -182,7 +182,8 @@ double SelfCpuSeconds() {
          1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
-SequenceAccuracy MeasureSequence(Method method, const Sequence& q, int cores) {
+SequenceAccuracy MeasureSequence(Method method, const Sequence& q, int cores,
+                                 const EccStop& ecc = TrackerOptions{}.ecc) {
   SequenceAccuracy a;
   for (int threads : {1, cores}) {
     double best = 0;
@@ -193,6 +194,7 @@ SequenceAccuracy MeasureSequence(Method method, const Sequence& q, int cores) {
       opts.tracker.method = method;
       opts.threads = threads;
       opts.contact_radius_px = kRadius;  // the scale is known
+      opts.tracker.ecc = ecc;
       const auto t0 = Clock::now();
       const double c0 = SelfCpuSeconds();
       r = TrackSequence(src, opts);
@@ -271,6 +273,23 @@ int main(int argc, char** argv) {
       std::printf("| %s | %s | %s | %.4f | %.4f | %.1f %% | %.0f | %.0f | %.0f | %.0f |\n",
                   ToString(l).c_str(), ToString(m).c_str(), a.method.c_str(), a.worst_bias,
                   a.worst_scatter, 100 * a.found, a.rate1, a.rate2, a.cpu_us1, a.cpu_us2);
+    }
+  }
+  // ECC's stopping rule for the template's every frame (tracking/template_locator.h, EccStop):
+  // what it trades, on the reflect sequence.
+  std::printf("\nECC's stopping rule, template on the reflect sequence (%d frames; the "
+              "tracker's default: %d iterations, epsilon %.0e):\n\n"
+              "| max iterations | epsilon | worst |bias| (px) | worst scatter (px) | found | "
+              "µs CPU/frame 1 thread |\n|---|---|---|---|---|---|\n", std::min(n, 800),
+              TrackerOptions{}.ecc.max_iterations, TrackerOptions{}.ecc.epsilon);
+  {
+    const Sequence q = HopSequence(std::min(n, 800), Lighting::kReflect);
+    for (const EccStop& rule : std::vector<EccStop>{
+             {50, 1e-7}, {50, 1e-5}, {50, 1e-4}, {50, 1e-3}, {20, 1e-7}, {10, 1e-7}, {5, 1e-7}}) {
+      const SequenceAccuracy a = MeasureSequence(Method::kTemplate, q, 1, rule);
+      std::printf("| %d | %.0e | %.4f | %.4f | %.1f %% | %.0f |\n", rule.max_iterations,
+                  rule.epsilon, a.worst_bias, a.worst_scatter, 100 * a.found, a.cpu_us1);
+      std::fflush(stdout);
     }
   }
   // End to end from PNG files against decode only, both on all cores.

@@ -3,12 +3,19 @@
 // issue's targets (tests/footage/track_accuracy.h). docs/BENCHMARKS.md, "Tracker on POV-Ray
 // footage".
 //   bench_tracking_footage [frames] [subframes] [cache_dir] [methods]
+//   bench_tracking_footage --ecc [frames] [subframes] [cache_dir]
+// (--ecc: what ECC's stopping rule trades, tracking/template_locator.h EccStop: every case
+// tracked by `auto` with each rule; the accuracy, how far the answers move from the default
+// rule's, and the CPU time per frame.)
 // Defaults: 40 frames of the hop motion, 6 exposure slices (300 us at 2000 frames/s), cache
 // folder bench_footage_cache (footage is reused while its scenes are unchanged), methods
 // "auto,centroid,template" (comma-separated `--method` names of tracking/refiner.h; auto is the
 // default a user gets). The tracker is given the scale, as with `--m-per-px`.
 // Prints the POV-Ray CPU time per frame of each footage (every slice, antialiased), then one
 // row per footage and method, and the machine (cores, load average).
+#include <algorithm>
+#include <cmath>
+#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -58,14 +65,7 @@ double LoadAverage() {
   return load;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const size_t frames = argc > 1 ? size_t(std::atol(argv[1])) : 40;
-  const int slices = argc > 2 ? std::atoi(argv[2]) : 6;
-  const std::string cache = argc > 3 ? argv[3] : "bench_footage_cache";
-  const std::vector<std::string> methods =
-      SplitList(argc > 4 ? argv[4] : "auto,centroid,template");
+std::vector<Case> AllCases() {
   std::vector<Case> cases;
   for (Lighting l : AllLightings()) cases.push_back({ToString(l), l, 3.9});
   for (double ar : {2.0, 2.1, 2.3}) {
@@ -73,6 +73,84 @@ int main(int argc, char** argv) {
     std::snprintf(name, sizeof name, "front_point A_r %.1f", ar);
     cases.push_back({name, Lighting::kFrontPoint, ar});
   }
+  return cases;
+}
+
+// The footage of `c` in `cache` (rendered when missing or changed); its folder.
+std::string Footage(const Case& c, size_t frames, int slices, const std::string& cache,
+                    double* povray_cpu) {
+  FootageOptions o = FootageOptions::For(c.lighting);
+  o.shape.aspect_ratio = c.aspect_ratio;
+  o.subframes = slices;
+  o.reuse = true;
+  std::string dir = cache + "/" + c.name;
+  for (char& ch : dir) {
+    if (ch == ' ') ch = '_';
+  }
+  const FootageResult r = WriteFootage(HopMotion(o.shape, frames, o.fps), o, dir);
+  if (povray_cpu) *povray_cpu = r.reused ? RecordedCpuPerFrame(dir) : r.povray_cpu_seconds_per_frame;
+  return dir;
+}
+
+// --ecc: every case tracked by `auto` with each ECC stopping rule, on one thread (so the CPU
+// time is the tracking's alone). Per rule: cases meeting every target, the mean scatter and the
+// worst |bias| over the spheres of all cases, how far the spheres' mean positions moved from
+// the first rule's (ECC run to convergence: median and largest), and the CPU time per frame.
+int EccTrade(size_t frames, int slices, const std::string& cache) {
+  const std::vector<Case> cases = AllCases();
+  std::vector<std::string> dirs;
+  for (const Case& c : cases) dirs.push_back(Footage(c, frames, slices, cache, nullptr));
+  std::printf("ECC stopping rule against accuracy: %zu POV-Ray cases x %zu frames, `auto`, 1 "
+              "thread, load average %.1f at start\n\n| max iterations | epsilon | cases "
+              "meeting the targets | mean scatter (px) | worst \\|bias\\| (px) | moved from "
+              "the first rule's, median / largest (px) | CPU per frame (us) |\n"
+              "|---|---|---|---|---|---|---|\n", cases.size(), frames, LoadAverage());
+  const std::vector<dimer::tracking::EccStop> rules = {
+      {50, 1e-7}, {50, 1e-6}, {50, 1e-5}, {50, 1e-4}, {50, 1e-3}, {20, 1e-7}, {10, 1e-7}};
+  std::vector<Eigen::Vector2d> reference;  // the first rule's bias per case and sphere
+  for (const auto& rule : rules) {
+    int met = 0;
+    double scatter = 0, worst_bias = 0, cpu = 0;
+    size_t tracked = 0;
+    std::vector<Eigen::Vector2d> bias;
+    for (const std::string& dir : dirs) {
+      const std::clock_t t0 = std::clock();
+      const TrackAccuracy a = MeasureTrackAccuracy(dir, "auto", 1, true, &rule);
+      cpu += double(std::clock() - t0) / CLOCKS_PER_SEC;
+      tracked += a.frames;
+      met += a.MeetsTargets();
+      for (const SphereAccuracy& s : a.sphere) {
+        scatter += s.scatter / double(2 * dirs.size());
+        worst_bias = std::max(worst_bias, s.bias.norm());
+        bias.push_back(s.bias);
+      }
+    }
+    if (reference.empty()) reference = bias;
+    std::vector<double> moved;
+    for (size_t i = 0; i < bias.size(); ++i) moved.push_back((bias[i] - reference[i]).norm());
+    std::sort(moved.begin(), moved.end());
+    std::printf("| %d | %.0e | %d of %zu | %.4f | %.3f | %.4f / %.4f | %.0f |\n",
+                rule.max_iterations, rule.epsilon, met, dirs.size(), scatter, worst_bias,
+                moved[moved.size() / 2], moved.back(), 1e6 * cpu / double(tracked));
+    std::fflush(stdout);
+  }
+  std::printf("\nload average at the end %.1f\n", LoadAverage());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "--ecc") {
+    return EccTrade(argc > 2 ? size_t(std::atol(argv[2])) : 40, argc > 3 ? std::atoi(argv[3]) : 6,
+                    argc > 4 ? argv[4] : "bench_footage_cache");
+  }
+  const size_t frames = argc > 1 ? size_t(std::atol(argv[1])) : 40;
+  const int slices = argc > 2 ? std::atoi(argv[2]) : 6;
+  const std::string cache = argc > 3 ? argv[3] : "bench_footage_cache";
+  const std::vector<std::string> methods =
+      SplitList(argc > 4 ? argv[4] : "auto,centroid,template");
+  const std::vector<Case> cases = AllCases();
   std::filesystem::create_directories(cache);
   std::printf("POV-Ray footage: %zu frames per case, 640x320, 0.2 mm/px, 300 us exposure in %d "
               "slices, PSF 0.5 px, noise 2 grey levels, 8 bit; %u cores, load average %.1f at "
@@ -84,17 +162,9 @@ int main(int argc, char** argv) {
   std::printf("| footage | POV-Ray CPU s/frame %s|---|---%s", header.substr(0, line2).c_str(),
               header.substr(line2).c_str());
   for (const Case& c : cases) {
-    FootageOptions o = FootageOptions::For(c.lighting);
-    o.shape.aspect_ratio = c.aspect_ratio;
-    o.subframes = slices;
-    o.reuse = true;
-    std::string dir = cache + "/" + c.name;
-    for (char& ch : dir) {
-      if (ch == ' ') ch = '_';
-    }
     try {
-      const FootageResult r = WriteFootage(HopMotion(o.shape, frames, o.fps), o, dir);
-      const double cpu = r.reused ? RecordedCpuPerFrame(dir) : r.povray_cpu_seconds_per_frame;
+      double cpu = 0;
+      const std::string dir = Footage(c, frames, slices, cache, &cpu);
       for (const std::string& m : methods) {
         const TrackAccuracy a = MeasureTrackAccuracy(dir, m);
         std::printf("| %s | %.2f %s", c.name.c_str(), cpu, AccuracyRow(a).c_str());

@@ -16,10 +16,6 @@ namespace {
 constexpr double kTemplatePlateGuardPx = 1.5;
 // At least this fraction of the template must remain after the cuts, else nothing is located.
 constexpr double kMinMaskedFraction = 0.25;
-// ECC: Gauss-Newton iterations and the correlation increment that ends them. The shift stops
-// changing (< 1e-4 px) well before; the cap only bounds a diverging case.
-constexpr int kEccMaxIter = 50;
-constexpr double kEccEpsilon = 1e-7;
 // ECC smooths both images with a Gaussian of this size first (OpenCV's default, 5): it cuts
 // the noise and the interpolation error of sharp highlights without biasing the shift (both
 // images are smoothed alike), and widens the basin the first run starts in.
@@ -98,9 +94,9 @@ cv::Rect EccWindow(const cv::Mat& mask) {
 // converge, or went further than the window allows (*t untouched then).
 bool RegisterInWindow(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
                       const cv::Rect& window, Eigen::Vector2d* t, double* rho,
-                      int residual_gauss) {
-  const cv::TermCriteria stop(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, kEccMaxIter,
-                              kEccEpsilon);
+                      int residual_gauss, const EccStop& ecc) {
+  const cv::TermCriteria stop(cv::TermCriteria::COUNT + cv::TermCriteria::EPS,
+                              ecc.max_iterations, ecc.epsilon);
   const bool whole = window == cv::Rect(0, 0, fixed.cols, fixed.rows);
   const cv::Mat fixed_w = fixed(window), moving_w = moving(window), mask_w = mask(window);
   cv::Mat warp = (cv::Mat_<float>(2, 3) << 1, 0, float(t->x()), 0, 1, float(t->y()));
@@ -138,15 +134,16 @@ bool RegisterInWindow(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat
 }  // namespace
 
 bool RegisterTranslation(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
-                         Eigen::Vector2d* t, double* rho, int residual_gauss) {
+                         Eigen::Vector2d* t, double* rho, int residual_gauss,
+                         const EccStop& stop) {
   const cv::Rect whole(0, 0, fixed.cols, fixed.rows);
   const cv::Rect window = EccWindow(mask);
   // A start too far for the window, or an ECC run that went too far in it: the whole images.
   if (window != whole && std::max(std::abs(t->x()), std::abs(t->y())) <= 1.0 &&
-      RegisterInWindow(fixed, moving, mask, window, t, rho, residual_gauss)) {
+      RegisterInWindow(fixed, moving, mask, window, t, rho, residual_gauss, stop)) {
     return true;
   }
-  return RegisterInWindow(fixed, moving, mask, whole, t, rho, residual_gauss);
+  return RegisterInWindow(fixed, moving, mask, whole, t, rho, residual_gauss, stop);
 }
 
 cv::Mat FrameMask(const Appearance& a, const Eigen::Vector2d& position, const MaskContext& ctx) {
@@ -186,7 +183,7 @@ cv::Mat FrameMask(const Appearance& a, const Eigen::Vector2d& position, const Ma
 }
 
 Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
-                         int search_px, const MaskContext& ctx) {
+                         int search_px, const MaskContext& ctx, const EccStop& stop) {
   Located out;
   const int size = 2 * a.half + 1;
   const cv::Point g(int(std::lround(guess.x())), int(std::lround(guess.y())));
@@ -229,7 +226,8 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   const cv::Mat refine_mask = start == guess ? mask : FrameMask(a, start, ctx);
   Eigen::Vector2d t(g2.x - start.x(), g2.y - start.y());
   double rho = 0;
-  if (!RegisterTranslation(frame_patch, a.image, refine_mask, &t, &rho, kEccFrameGaussSize)) {
+  if (!RegisterTranslation(frame_patch, a.image, refine_mask, &t, &rho, kEccFrameGaussSize,
+                           stop)) {
     return out;  // ECC did not converge: the correlation peak stands
   }
   const Eigen::Vector2d refined(g2.x - t.x(), g2.y - t.y());

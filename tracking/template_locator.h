@@ -55,19 +55,28 @@ struct Located {
   double score = 0;             // correlation coefficient at the peak (-1..1)
 };
 
+// ECC's stopping rule (cv::findTransformECC's criteria, for each of its two runs): Gauss-Newton
+// iterations at most, and the increase of the correlation coefficient that ends them. It trades
+// time for accuracy: bench/bench_tracking_footage.cc --ecc measures by how much.
+struct EccStop {
+  int max_iterations = 50;
+  double epsilon = 1e-7;
+};
+
 // Translation t with moving(x + t) ~ fixed(x) over `mask` (moving's pixels, CV_8U), starting
 // from *t: cv::findTransformECC, then once more on `moving` pre-shifted by Lanczos
 // interpolation, that run smoothing with a Gaussian of `residual_gauss` (ECC's gaussFiltSize;
 // the first run always 5). False when ECC does not converge. Both images CV_32F, same size.
 bool RegisterTranslation(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
-                         Eigen::Vector2d* t, double* rho = nullptr, int residual_gauss = 5);
+                         Eigen::Vector2d* t, double* rho = nullptr, int residual_gauss = 5,
+                         const EccStop& stop = {});
 
 // Searches +-search_px (whole pixels) around `guess`, then refines. search_px = 0: no search,
 // ECC from the guess (a tracker's prediction), ok only if it converges within a pixel of it,
 // score = ECC's correlation coefficient. `frame` is CV_8U or CV_16U
 // (or CV_32F), single channel.
 Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
-                         int search_px, const MaskContext& ctx);
+                         int search_px, const MaskContext& ctx, const EccStop& stop = {});
 
 // Whole-frame search (acquisition): the best match above `plate_row` (NaN: anywhere), and the
 // best one at least `min_separation_px` from it (if any scores above `min_score`).

@@ -69,7 +69,8 @@ SphereMeasurement SequenceTracker::Locate(const cv::Mat& frame, int sphere,
     ctx.rod_dir = (*other - guess).normalized();
     ctx.other = *other - guess;
   }
-  const Located l = LocateAppearance(frame, (*options_.appearance)[sphere], guess, search_px, ctx);
+  const Located l =
+      LocateAppearance(frame, (*options_.appearance)[sphere], guess, search_px, ctx, options_.ecc);
   SphereMeasurement m;
   m.status = l.clipped ? SphereMeasurement::Status::kClipped
                        : (l.ok && l.score >= kMinTemplateScore ? SphereMeasurement::Status::kFound

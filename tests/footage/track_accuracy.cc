@@ -124,7 +124,8 @@ bool TrackAccuracy::MeetsTargets(std::string* why) const {
 }
 
 TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string& method,
-                                   int threads, bool scale_given) {
+                                   int threads, bool scale_given,
+                                   const tracking::EccStop* ecc) {
   double radius = kNaN;
   const std::vector<TruthRow> truth = ReadTruthCsv(folder + "/truth.csv", &radius);
   std::map<std::string, const TruthRow*> by_file;
@@ -133,6 +134,7 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
   tracking::SequenceOptions opt;
   opt.tracker.method = tracking::ParseMethod(method);
   opt.threads = threads;
+  if (ecc) opt.tracker.ecc = *ecc;
   if (scale_given) opt.contact_radius_px = radius;
   auto source = tracking::FrameSource::Open(folder);
   const auto start = std::chrono::steady_clock::now();

@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include "tracking/template_locator.h"
+
 namespace dimer::footage {
 
 struct TruthRow {
@@ -68,8 +70,11 @@ inline constexpr double kPlateTargetPx = 0.3;
 // told the scale, as `dimerlab track --m-per-px` is by a user with a calibrated camera (the
 // sphere radius in pixels, from truth.csv's header); without it the tracker measures the radius
 // from the spheres' look, which is what a front-lit steel sphere does not show.
+// `ecc`: the template method's ECC stopping rule (tracking/template_locator.h); null: the
+// tracker's default.
 TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string& method,
-                                   int threads = 0, bool scale_given = true);
+                                   int threads = 0, bool scale_given = true,
+                                   const tracking::EccStop* ecc = nullptr);
 
 // One table row: "| method | found L/R | bias L/R | scatter L/R | bound L/R | swaps | plate |".
 std::string AccuracyRow(const TrackAccuracy& a);
