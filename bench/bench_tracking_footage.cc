@@ -88,7 +88,9 @@ std::string Footage(const Case& c, size_t frames, int slices, const std::string&
     if (ch == ' ') ch = '_';
   }
   const FootageResult r = WriteFootage(HopMotion(o.shape, frames, o.fps), o, dir);
-  if (povray_cpu) *povray_cpu = r.reused ? RecordedCpuPerFrame(dir) : r.povray_cpu_seconds_per_frame;
+  if (povray_cpu) {
+    *povray_cpu = r.reused ? RecordedCpuPerFrame(dir) : r.povray_cpu_seconds_per_frame;
+  }
   return dir;
 }
 
@@ -106,7 +108,7 @@ int EccTrade(size_t frames, int slices, const std::string& cache) {
               "the first rule's, median / largest (px) | CPU per frame (us) |\n"
               "|---|---|---|---|---|---|---|\n", cases.size(), frames, LoadAverage());
   const std::vector<dimer::tracking::EccStop> rules = {
-      {50, 1e-7}, {50, 1e-6}, {50, 1e-5}, {50, 1e-4}, {50, 1e-3}, {20, 1e-7}, {10, 1e-7}};
+      {50, 1e-7}, {50, 1e-6}, {50, 1e-5}, {50, 1e-4}, {20, 1e-7}, {10, 1e-7}, {5, 1e-7}};
   std::vector<Eigen::Vector2d> reference;  // the first rule's bias per case and sphere
   for (const auto& rule : rules) {
     int met = 0;
