@@ -31,7 +31,6 @@ std::vector<double> PsfTaps(double sigma) {
   return taps;
 }
 
-
 constexpr double kFarSigmas = 8.0;
 
 // Expected value of a pixel whose true level is `mu`, read with Gaussian noise `sigma` and then
@@ -55,7 +54,6 @@ double ClippedSlope(double mu, double sigma, double clip) {
   return 0.5 * (std::erf((clip - mu) / (sigma * std::sqrt(2.0))) +
                 std::erf(mu / (sigma * std::sqrt(2.0))));
 }
-
 
 // The clipped edge's model (ClippedEdgeRowInProfile) at one trial row `y`: the step of true
 // level that fits the profile best, and the fit's chi-square.
@@ -161,7 +159,6 @@ class ClippedEdgeModel {
   double clip_, sigma_, profile_sigma_, dark_ = 0;
   std::vector<double> taps_;
 };
-
 
 // Golden-section minimum of f on [a, b], to a bracket narrower than `tolerance`; returns the
 // bracket's middle.
