@@ -436,7 +436,8 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                      {"plate_shift_edge_ref", "px"}, {"plate_motion_scale", "1"},
                      {"plate_motion_scale_err", "1"}, {"plate_clipped_frames", "1"},
                      {"plate_clip_level", "grey levels"}, {"plate_clip_level_err", "grey levels"},
-                     {"plate_clip_refitted", "1"}, {"plate_psf_sigma", "px"}, {"m_per_px", "m/px"}, {"row0", "px"},
+                     {"plate_clip_refitted", "1"}, {"plate_psf_sigma", "px"},
+                     {"m_per_px", "m/px"}, {"row0", "px"},
                      {"diameter", "m"},
                      {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
                      {"frames_tracked", "1"}, {"frames_skipped", "1"}};
