@@ -147,8 +147,9 @@ int PsfSensitivity() {
 // An over-exposed plate over a sequence (tracking/clipped_edge.h): the plate moving across two
 // pixels (edge at 59.02 + 0.04 i, 50 frames, made as PsfSensitivity's), each frame's row alone
 // and then at the level the frames share, for plates at 1.2 to 5 x the clip and a camera blur of
-// 0.4 to 0.8 px, the blur assumed (0.5) or fitted with the level; then what the number of frames the level is fitted on
-// trades, on 400 frames across eight pixels. Times: the level and the refit, per sequence.
+// 0.4 to 0.8 px, the blur assumed (0.5) or fitted with the level; then what the number of
+// frames the level is fitted on trades, on 400 frames across eight pixels. Times: the fits and
+// the refit, per sequence.
 int ClippedSequence() {
   const auto sweep = [](double gain, double psf, int frames, double step, uint64_t seed0) {
     std::vector<ClippedEdgeProfile> p(frames);
