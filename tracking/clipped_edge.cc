@@ -241,8 +241,9 @@ double SharedNoise(const std::vector<const ClippedEdgeProfile*>& frames) {
 }
 
 // The level search: a coarse grid in ln(level), then golden-section about its best point.
-// Per frame the row is searched more coarsely than for the final answer (the level's
-// chi-square is flat about the row's minimum).
+// With the level given, a frame's chi-square has one minimum over the rows, so the row's grid
+// can be coarser than the free-level fit's (kPlateClipCoarsePx); within the level search the
+// row needs less precision than for the final answer (the chi-square is flat about it).
 constexpr double kLevelGridLow = 0.8, kLevelGridHigh = 64.0;  // x the least level
 constexpr int kLevelGridPoints = 49;
 constexpr double kLevelTolerance = 1e-7;  // in ln(level)
@@ -269,14 +270,22 @@ double ClippedEdgeRowInProfile(const std::vector<double>& profile, int first_row
   return MinimiseOverRow(cost, first_row, k, kPlateClipCoarsePx, kPlateClipTolerancePx);
 }
 
+namespace {
+
+// The row of an edge whose model is `model` (step k of a profile from first_row) at `level`.
+double RowAtLevel(const ClippedEdgeModel& model, int first_row, int k, double level,
+                  double* chi2) {
+  return MinimiseOverRow([&](double y) { return model.Chi2(y, level); }, first_row, k,
+                         kLevelRowCoarsePx, kPlateClipTolerancePx, chi2);
+}
+
+}  // namespace
+
 double ClippedEdgeRowAtLevel(const ClippedEdgeProfile& p, double level, double psf_sigma_px,
                              double* chi2, double shared_sigma) {
   const int k = p.valid() ? BracketedStep(p.profile) : -1;
   if (k < 0 || !(level > 0)) return kNaN;
-  const ClippedEdgeModel model = ModelOf(p, k, psf_sigma_px, shared_sigma);
-  // With the level known the chi-square has one minimum over the rows: a coarser grid will do.
-  return MinimiseOverRow([&](double y) { return model.Chi2(y, level); }, p.first_row, k,
-                         kLevelRowCoarsePx, kPlateClipTolerancePx, chi2);
+  return RowAtLevel(ModelOf(p, k, psf_sigma_px, shared_sigma), p.first_row, k, level, chi2);
 }
 
 namespace {
@@ -408,14 +417,14 @@ size_t RefitClippedRows(const std::vector<const ClippedEdgeProfile*>& frames,
   for (size_t i = 0; i < frames.size() && i < rows->size(); ++i) {
     if (!frames[i] || !frames[i]->valid()) continue;
     const ClippedEdgeProfile& p = *frames[i];
+    const int k = BracketedStep(p.profile);
+    if (k < 0) continue;
+    const ClippedEdgeModel model = ModelOf(p, k, level.psf_sigma, level.pixel_sigma);
     double shared = kInf;
-    const double row = ClippedEdgeRowAtLevel(p, level.value, level.psf_sigma, &shared,
-                                             level.pixel_sigma);
+    const double row = RowAtLevel(model, p.first_row, k, level.value, &shared);
     if (!std::isfinite(row)) continue;
     // Only a frame with two partly lit rows can show that its level is not the shared one (one
     // lit row fits any level at some row): its own fit, level free, with the same blur and noise.
-    const int k = BracketedStep(p.profile);
-    const ClippedEdgeModel model = ModelOf(p, k, level.psf_sigma, level.pixel_sigma);
     if (model.PartlyLitRows() >= 2) {
       double own = kInf;
       MinimiseOverRow([&](double y) { return model.At(y).chi2; }, p.first_row, k,

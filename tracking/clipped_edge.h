@@ -27,6 +27,7 @@
 // sampled at different sub-pixel phases, also fix the camera's blur, which the one-row frames
 // depend on (a blur of 0.6 px read as 0.5: rows up to 0.64 px off; fitted: 0.014 px;
 // bench/bench_plate_edge.cc --clipped-sequence).
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -71,7 +72,7 @@ struct ClippedLevel {
   // psf_fitted, else the one assumed.
   double psf_sigma = std::numeric_limits<double>::quiet_NaN();
   bool psf_fitted = false;
-  bool found() const { return value == value; }
+  bool found() const { return !std::isnan(value); }
 };
 
 // The blur is fitted only from at least this many frames with two partly lit rows (with fewer,
