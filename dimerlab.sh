@@ -15,7 +15,7 @@ JOBS=$(nproc)
 
 PACKAGES=(build-essential cmake ninja-build pkg-config libopencv-dev libeigen3-dev libhdf5-dev
           hdf5-tools libcli11-dev libgtest-dev googletest libnlopt-dev gnuplot-nox
-          slurm-wlm munge povray)
+          slurm-wlm munge povray ffmpeg)
 
 setup() {
   local missing=()
