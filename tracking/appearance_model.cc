@@ -284,6 +284,16 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
     LearnOne(images, samples, used, k, final_half, radius_px, -1, start[k], &out[k]);
     if (!out[k].appearance.valid()) return {};
   }
+  for (int k = 0; k < 2; ++k) {
+    LimbFitOptions lo;
+    lo.radius_px = radius_px;
+    lo.max_shift_px = kLimbOffsetMaxPx;
+    const LimbFit whole = FitLimb(out[k].appearance, lo);
+    if (whole.ok) {
+      out[k].whole_outline_col = OffsetEstimate{whole.centre.x(), whole.centre_err.x(),
+                                                size_t(whole.rays), "whole_outline"};
+    }
+  }
   // The plate's reflection is left out of both appearances when the horizon of either moves
   // with its height (HorizonMoves): the same scene and lights make both spheres' reflections
   // alike, and the one that rests shows no motion to measure.
@@ -430,6 +440,18 @@ OffsetEstimate LimbColumnOffset(const Appearance& a_whole, double row_offset) {
   e.err = limb.centre_err.x();
   e.n = size_t(limb.rays);
   e.source = "limb";
+  return e;
+}
+
+OffsetEstimate ColumnWithoutTheUpperOutline(const LearntSphere& s) {
+  OffsetEstimate e = SymmetryColumnOffset(s.appearance);
+  const OffsetEstimate& w = s.whole_outline_col;
+  if (e.source == "none" || w.source == "none") return e;
+  const double half = 0.5 * (w.value - e.value);
+  e.value += half;
+  e.err = std::hypot(std::max(e.err, w.err), half);
+  e.n += w.n;
+  e.source = "symmetry_and_whole_outline";
   return e;
 }
 

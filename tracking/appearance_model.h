@@ -23,7 +23,8 @@
 //     (plate - R - reference row);
 //   - limb (columns): the centre of the sphere's outline in the appearance (limb_fit.h), which
 //     does not depend on where the lamps are;
-//   - symmetry (columns, where the outline cannot be fitted): with the camera and the lights in
+//   - symmetry (columns, where the outline cannot be fitted; checked against the whole outline,
+//     ColumnWithoutTheUpperOutline): with the camera and the lights in
 //     a vertical plane through the sphere, the appearance is mirror symmetric about the vertical
 //     through the centre; the template is registered to its own mirror image
 //     (cv::findTransformECC) and the axis is half the shift. Highlights are clipped first
@@ -57,11 +58,25 @@ struct LearningSample {
   std::array<Eigen::Vector2d, 2> centre{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
 };
 
+struct OffsetEstimate {
+  double value = 0;                                        // px, reference -> centre
+  double err = std::numeric_limits<double>::quiet_NaN();   // standard uncertainty, px
+  size_t n = 0;                                            // frames it rests on
+  std::string source;  // silhouette | plate_contact(_of_other(_outline)) | limb | whole_outline |
+                       // symmetry(_and_whole_outline) | none
+};
+
 struct LearntSphere {
   Appearance appearance;
   std::vector<size_t> samples;               // learning samples used (both spheres found)
   std::vector<Eigen::Vector2d> rough;        // their rough centres
   std::vector<Eigen::Vector2d> registered;   // their reference positions after learning
+  // Re-centred templates: the column of the whole outline (the plate's reflection kept, row
+  // fitted) in the final appearance before that reflection was cut, relative to its reference;
+  // source "none" where it could not be fitted. The cut appearance's faint upper outline can
+  // give no edge at all (a 20-frame mean of under-exposed steel); this one is then the
+  // symmetry estimate's cross-check (ColumnWithoutTheUpperOutline).
+  OffsetEstimate whole_outline_col{0, std::numeric_limits<double>::quiet_NaN(), 0, "none"};
 };
 
 // Re-centring (footage without clean silhouettes): the first template reaches this much beyond
@@ -99,13 +114,6 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
 // that does not has caught a reflection's boundary instead of the outline.
 inline constexpr double kOutlineRadiusAgreement = 0.03;
 
-struct OffsetEstimate {
-  double value = 0;                                        // px, reference -> centre
-  double err = std::numeric_limits<double>::quiet_NaN();   // standard uncertainty, px
-  size_t n = 0;                                            // frames it rests on
-  std::string source;                                      // silhouette | plate_contact | symmetry | none
-};
-
 // Silhouette: median of rough - registered per axis (0 column, 1 row), error from the MAD.
 OffsetEstimate SilhouetteOffset(const LearntSphere& s, int axis);
 // Plate contact from the whole track: reference rows and plate rows per frame (NaN: not found).
@@ -117,6 +125,12 @@ OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
 OffsetEstimate LimbColumnOffset(const Appearance& a, double row_offset);
 // Symmetry axis of the appearance, relative to its reference column.
 OffsetEstimate SymmetryColumnOffset(const Appearance& a);
+// The column where the upper outline gives none: the symmetry axis and the whole outline (the
+// plate reflection's boundary in it, which ends short of the rim by different amounts on the two
+// sides) rest on different assumptions, each pixels wrong where its own fails; with both, their
+// midpoint and half their difference in the uncertainty (source "symmetry_and_whole_outline"),
+// else the symmetry alone.
+OffsetEstimate ColumnWithoutTheUpperOutline(const LearntSphere& s);
 // A plate-contact estimate rests on a resting sphere when at least this many frames are in its
 // cluster; fewer (a sphere that only lands now and then, or never in the footage) and the
 // lowest frames are flight, not contact.

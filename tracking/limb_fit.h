@@ -29,7 +29,9 @@
 //   5. the column from mirrored pairs of envelope rays (theta, pi - theta): each pair's centre
 //      column is where its chord's perpendicular bisector meets the centre's row (the chord's
 //      midpoint alone is drawn toward the point the rays are cast from, see limb_fit.cc); it
-//      needs no radius, when there are enough pairs.
+//      needs no radius, when there are enough pairs. Without pairs (one side of the outline
+//      dark), the column is the midpoint of the circle fits with the radius held and free, with
+//      half their difference in its uncertainty (limb_fit.cc).
 // A common inward shift of every edge (the grazing rim reflecting the backdrop: 0.2-0.4 px on the
 // POV-Ray steel) cancels in the pairs; it shortens the radius and, where only the lower half has
 // edges, moves the row: the template method takes its rows from the plate contact, not from

@@ -185,7 +185,7 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
   for (int k = 0; k < 2; ++k) {
     const double row = o.row[k].source == "none" ? std::nan("") : o.row[k].value;
     o.col[k] = LimbColumnOffset(m.learnt[k].appearance, row);
-    if (o.col[k].source == "none") o.col[k] = SymmetryColumnOffset(m.learnt[k].appearance);
+    if (o.col[k].source == "none") o.col[k] = ColumnWithoutTheUpperOutline(m.learnt[k]);
   }
   return o;
 }

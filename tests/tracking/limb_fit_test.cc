@@ -168,6 +168,27 @@ TEST(LimbFit, AnOutlineSeenOnOneSideGivesTheColumnWhenTheRowIsKnown) {
   EXPECT_NEAR(f.centre.y(), l.centre.y(), 1e-9) << "the row is held";
 }
 
+// One side of an outline whose edge sits inside the rim (the rim reflecting the dark backdrop):
+// no mirrored pairs cancel the shift. With the radius held the column moved toward the seen side
+// by more than the shift (0.43 px for a band of 0.3) and claimed 0.01 px; now it lies between
+// that fit and the one with the radius free, and the stated uncertainty covers what is left.
+TEST(LimbFit, AOneSidedOutlineInsideTheRimStatesItsUncertainty) {
+  Look l;
+  l.rim_band = 0.3;
+  Appearance a = Make(l);
+  a.mask.colRange(kHalf + 2, a.mask.cols).setTo(0);  // the right half unknown (dark)
+  LimbFitOptions o = Opts(l.radius, false, 6.0);
+  o.row = l.centre.y();
+  const LimbFit f = FitLimb(a, o);
+  ASSERT_TRUE(f.ok);
+  EXPECT_EQ(f.pairs, 0);
+  const double error = f.centre.x() - l.centre.x();
+  EXPECT_LT(std::abs(error), 0.25) << "the held radius alone: 0.43 px";
+  EXPECT_LT(f.centre_err.x(), 0.3);
+  EXPECT_LE(std::abs(error), 1.5 * f.centre_err.x())
+      << "error " << error << " px, stated " << f.centre_err.x() << " px";
+}
+
 TEST(LimbFit, NoOutlineNoFit) {
   Look l;
   l.radius = 23.75;

@@ -4,6 +4,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -181,6 +182,43 @@ TEST(AppearanceOffset, SymmetryAxisOfAMirrorSymmetricAppearance) {
   EXPECT_EQ(e.source, "symmetry");
   EXPECT_NEAR(e.value, 0.3, 0.02);
   EXPECT_LT(e.err, 0.05);
+}
+
+// Where the upper outline gives no edge, the column rests on the symmetry axis; light from one
+// side moves that axis. The whole outline (fitted in learning, given here as it was fitted:
+// 0.05 px right of the truth) brackets it with the symmetry: their midpoint, and an uncertainty
+// that covers the error (the symmetry alone claimed a few hundredths of a pixel).
+TEST(AppearanceOffset, WithoutTheUpperOutlineTheSymmetryIsCheckedByTheWholeOutline) {
+  LearntSphere s;
+  Appearance& a = s.appearance;
+  a.radius_px = kR;
+  a.half = int(std::ceil(kR + 4));
+  const int size = 2 * a.half + 1;
+  a.image = cv::Mat(size, size, CV_32F);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      const double dx = x - a.half - 0.3, dy = y - a.half;
+      const double r = std::sqrt(dx * dx + dy * dy);
+      const double disc = 1.0 / (1.0 + std::exp((r - kR) / 0.6));
+      // Light from the right: the sphere's reflections brighter on its right side, one lamp.
+      const double side = 1.0 + 0.8 * std::clamp(dx / kR, -1.0, 1.0);
+      a.image.at<float>(y, x) =
+          float(10 + disc * side * (20 + 60 * std::max(0.0, dy / kR)) +
+                120 * std::exp(-((dx - 6) * (dx - 6) + (dy + 8) * (dy + 8)) / 3.0));
+    }
+  }
+  a.mask = cv::Mat::ones(size, size, CV_8U);
+  const OffsetEstimate alone = ColumnWithoutTheUpperOutline(s);
+  ASSERT_EQ(alone.source, "symmetry") << "no whole outline: the symmetry alone";
+  const double symmetry_error = std::abs(alone.value - 0.3);
+  ASSERT_GT(symmetry_error, 0.1) << "the lamp must move the axis for this test to mean anything";
+
+  s.whole_outline_col = OffsetEstimate{0.35, 0.03, 60, "whole_outline"};
+  const OffsetEstimate e = ColumnWithoutTheUpperOutline(s);
+  EXPECT_EQ(e.source, "symmetry_and_whole_outline");
+  EXPECT_NEAR(e.value, 0.5 * (alone.value + 0.35), 1e-12);
+  EXPECT_LT(std::abs(e.value - 0.3), symmetry_error);
+  EXPECT_LE(std::abs(e.value - 0.3), e.err) << "the stated uncertainty covers the error";
 }
 
 TEST(AppearanceOffset, SilhouetteIsTheMedianDifference) {
