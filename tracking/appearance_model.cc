@@ -463,11 +463,15 @@ OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to
   // Both outlines over the same pixels (the rod's side of each and the lower cuts of both left
   // out of both): the arcs fitted are the same, and so is their bias.
   Appearance f = UpperPart(from), t = UpperPart(to);
-  f.mask = f.mask & t.mask;
-  t.mask = f.mask;
+  // A new matrix: assigned to f.mask, the expression would be written into the matrix f shares
+  // with `from` wherever UpperPart returned it whole, and the learnt appearance lose pixels.
+  const cv::Mat common = f.mask & t.mask;
+  f.mask = common;
+  t.mask = common;
   LimbFitOptions lo;
   lo.radius_px = from.radius_px;
-  lo.max_shift_px = kLimbOffsetMaxPx;
+  lo.max_shift_px = kTransferOutlineMaxShiftPx;
+  lo.one_side_ok = true;
   const LimbFit a = FitLimb(f, lo), b = FitLimb(t, lo);
   if (!a.ok || !b.ok) return OffsetEstimate{0, NAN, 0, "none"};
   OffsetEstimate e;
@@ -476,6 +480,18 @@ OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to
                     b.centre_err.y() * b.centre_err.y());
   e.n = from_offset.n;
   e.source = "plate_contact_of_other_outline";
+  return e;
+}
+
+OffsetEstimate CombineRowTransfers(const OffsetEstimate& registered,
+                                   const OffsetEstimate& outline) {
+  if (outline.source == "none") return registered;
+  if (registered.source == "none") return outline;
+  OffsetEstimate e = registered;
+  const double half = 0.5 * (outline.value - registered.value);
+  e.value += half;
+  e.err = std::hypot(std::max(registered.err, outline.err), half);
+  e.source = "plate_contact_of_other_both";
   return e;
 }
 

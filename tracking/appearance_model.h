@@ -148,8 +148,21 @@ OffsetEstimate TransferOffset(const Appearance& from, const Appearance& to,
 // The same carried through the two outlines (limb_fit.h, row fitted): whatever bias the outline
 // fit has (an edge seen a fraction of a pixel inside the rim) is common to two spheres under the
 // same lights and cancels: to's offset = from's + (to's outline row - from's outline row).
-// Source "plate_contact_of_other_outline".
+// Source "plate_contact_of_other_outline". Each outline may show one side only (the far side
+// dark under one-sided light): both are fitted over the same pixels, so their arcs are alike.
 OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to,
                                     const OffsetEstimate& from_offset);
+// The bouncing sphere's row from both transfers. They rest on different assumptions (the two
+// appearances alike, or the two outlines alike) and each fails where its own does: light from
+// one side or a soft box makes the appearances unlike (the registered row 0.15-0.22 px off on
+// the POV-Ray footage), a template framed far above its centre or a dark outline defeats the
+// outline fit. With both, their midpoint and half their difference in the uncertainty (source
+// "plate_contact_of_other_both"); else the one there is.
+OffsetEstimate CombineRowTransfers(const OffsetEstimate& registered,
+                                   const OffsetEstimate& outline);
+// Outline fits for the transfer reach this far from the reference: the bouncing sphere's template
+// is framed on its lowest frames and can sit more than kLimbOffsetMaxPx above its centre (POV-Ray
+// A_r 2.0, 40 frames: 4.4 px), px.
+inline constexpr double kTransferOutlineMaxShiftPx = 6.0;
 
 }  // namespace dimer::tracking

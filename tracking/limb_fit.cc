@@ -321,7 +321,7 @@ LimbFit FitLimb(const Appearance& a, const LimbFitOptions& o) {
   int left = 0, right = 0;
   for (const Edge& e : edges) (e.p.x() < c.x() ? left : right) += 1;
   const bool both_sides = left >= kLimbMinRays / 4 && right >= kLimbMinRays / 4;
-  if (int(edges.size()) < kLimbMinRays || (!both_sides && !row_fixed) ||
+  if (int(edges.size()) < kLimbMinRays || (!both_sides && !row_fixed && !o.one_side_ok) ||
       (row_fixed ? std::abs(c.x() - ref.x()) : (c - ref).norm()) > o.max_shift_px) {
     return out;
   }

@@ -82,6 +82,10 @@ struct LimbFitOptions {
   // column (and radius) are fitted, and an outline seen on one side only still gives it. NaN:
   // the row is fitted too.
   double row = std::numeric_limits<double>::quiet_NaN();
+  // With the row free, an outline seen on one side only is refused (its column and row trade
+  // against each other) unless this is set: the outline transfer (appearance_model.h) fits two
+  // spheres' outlines over the same pixels, and the two one-sided arcs err alike.
+  bool one_side_ok = false;
 };
 
 // Fits the outline of the sphere in `a` (CV_32F appearance with its mask).

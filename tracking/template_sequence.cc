@@ -168,17 +168,15 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
   // The sphere that rests longer (more frames in its contact cluster) sets the contact; the
   // other one, if it rests much less (it bounces: the frames near its impacts are flight, up to
   // a few tenths of a pixel above contact, and bias its own estimate upward), gets that offset
-  // carried over by registering the two appearances.
+  // carried over, by registering the two appearances and through their outlines
+  // (CombineRowTransfers).
   const int ref = o.row[1].n > o.row[0].n ? 1 : 0, other = 1 - ref;
   if (o.row[ref].source == "plate_contact" && o.row[ref].n >= kMinRestingFrames &&
       double(o.row[other].n) < kTransferBelowFraction * double(o.row[ref].n)) {
-    OffsetEstimate t = TransferOffset(m.learnt[ref].appearance, m.learnt[other].appearance,
-                                      o.row[ref], 1);
-    // Appearances too unlike to register (the lamps reflected at different places in the two
-    // spheres once the plate's reflection is left out): through their outlines instead.
-    if (t.source == "none") {
-      t = TransferRowByOutline(m.learnt[ref].appearance, m.learnt[other].appearance, o.row[ref]);
-    }
+    const Appearance& from = m.learnt[ref].appearance;
+    const Appearance& to = m.learnt[other].appearance;
+    const OffsetEstimate t = CombineRowTransfers(TransferOffset(from, to, o.row[ref], 1),
+                                                 TransferRowByOutline(from, to, o.row[ref]));
     if (t.source != "none") o.row[other] = t;
   }
   // Columns from the outline, whose row is then known (where only one side of it shows).

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 
+#include "tracking/appearance_model.h"
 #include "tracking/disc_coverage.h"
 
 namespace dimer::tracking {
@@ -187,6 +188,46 @@ TEST(LimbFit, AOneSidedOutlineInsideTheRimStatesItsUncertainty) {
   EXPECT_LT(f.centre_err.x(), 0.3);
   EXPECT_LE(std::abs(error), 1.5 * f.centre_err.x())
       << "error " << error << " px, stated " << f.centre_err.x() << " px";
+}
+
+// The outline transfer (appearance_model.h) fits two spheres' one-sided outlines with the row
+// free (one_side_ok) and keeps only the difference of their rows: the one-sided fit's own error
+// (its row and column trade along the half arc) is common to both and mostly cancels. Not
+// wholly: the plate reflection's cut ends the two arcs at different heights about their centres
+// (the bouncing sphere's 4.6 px higher in its template), 0.11 px here, which is why the tracker
+// takes the midpoint of this and the registered transfer (CombineRowTransfers).
+TEST(LimbFit, OneSidedOutlinesCarryTheRowOverToTheOtherSphere) {
+  Look rests, bounces;
+  bounces.centre = {0.37, 4.6};  // a bouncing sphere's template, framed above its centre
+  Appearance from = Make(rests, 3), to = Make(bounces, 4);
+  from.mask.colRange(kHalf + 2, from.mask.cols).setTo(0);  // the right halves dark
+  to.mask.colRange(kHalf + 2, to.mask.cols).setTo(0);
+  LimbFitOptions o = Opts(rests.radius, false, 6.0);
+  ASSERT_FALSE(FitLimb(to, o).ok) << "one side, row free: refused unless asked";
+  const OffsetEstimate rest_row{rests.centre.y(), 0.03, 40, "plate_contact"};
+  const OffsetEstimate t = TransferRowByOutline(from, to, rest_row);
+  ASSERT_EQ(t.source, "plate_contact_of_other_outline");
+  EXPECT_NEAR(t.value, bounces.centre.y(), 0.15) << t.err;
+}
+
+// The transfer fits both outlines over the pixels both know. Their appearances are the tracker's
+// learnt ones, shared with everything after: the common mask must be a new one. (It was
+// written into `from`'s own mask wherever `from` showed no reflection horizon, and the
+// registered transfer and the column fits that came after saw the other sphere's cuts.)
+TEST(LimbFit, TheOutlineTransferLeavesBothAppearancesAlone) {
+  Look rests, bounces;
+  bounces.centre = {0.37, 1.6};
+  Appearance from = Make(rests, 3), to = Make(bounces, 4);
+  // No reflection horizon to find in `from` (its central columns unknown, as where the rod and
+  // a cut hide them): its upper part is the whole appearance, the same matrices.
+  from.mask.colRange(kHalf - 13, kHalf + 14).setTo(0);
+  to.mask.colRange(0, 12).setTo(0);
+  to.mask.rowRange(0, 10).setTo(0);
+  const cv::Mat from_mask = from.mask.clone(), to_mask = to.mask.clone();
+  const OffsetEstimate rest_row{rests.centre.y(), 0.03, 40, "plate_contact"};
+  TransferRowByOutline(from, to, rest_row);
+  EXPECT_EQ(cv::countNonZero(from.mask != from_mask), 0) << "from's mask was written";
+  EXPECT_EQ(cv::countNonZero(to.mask != to_mask), 0) << "to's mask was written";
 }
 
 TEST(LimbFit, NoOutlineNoFit) {

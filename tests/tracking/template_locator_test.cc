@@ -221,6 +221,23 @@ TEST(AppearanceOffset, WithoutTheUpperOutlineTheSymmetryIsCheckedByTheWholeOutli
   EXPECT_LE(std::abs(e.value - 0.3), e.err) << "the stated uncertainty covers the error";
 }
 
+// The bouncing sphere's row carried over two ways: one alone is taken as it is; two that disagree
+// give their midpoint, with an uncertainty that covers either being the right one.
+TEST(AppearanceOffset, RowTransfersAreCombinedWithTheirDisagreementInTheUncertainty) {
+  const OffsetEstimate none{0, NAN, 0, "none"};
+  const OffsetEstimate reg{1.20, 0.03, 40, "plate_contact_of_other"};
+  const OffsetEstimate out{0.90, 0.06, 40, "plate_contact_of_other_outline"};
+  EXPECT_EQ(CombineRowTransfers(reg, none).source, "plate_contact_of_other");
+  EXPECT_EQ(CombineRowTransfers(none, out).source, "plate_contact_of_other_outline");
+  EXPECT_EQ(CombineRowTransfers(none, none).source, "none");
+  const OffsetEstimate both = CombineRowTransfers(reg, out);
+  EXPECT_EQ(both.source, "plate_contact_of_other_both");
+  EXPECT_NEAR(both.value, 1.05, 1e-12);
+  EXPECT_NEAR(both.err, std::hypot(0.06, 0.15), 1e-12);
+  EXPECT_GE(both.err, std::abs(both.value - reg.value));
+  EXPECT_EQ(both.n, 40u);
+}
+
 TEST(AppearanceOffset, SilhouetteIsTheMedianDifference) {
   LearntSphere s;
   for (int i = 0; i < 21; ++i) {
