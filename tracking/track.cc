@@ -630,6 +630,21 @@ void RunTrack(const TrackArgs& args) {
                    k == 0 ? "left" : "right", c.value, c.err, c.source.c_str(), w.value, w.err,
                    w.source.c_str(), w.n);
     }
+    // An offset is a constant shift of every frame's centre: it biases absolute positions (a
+    // sphere's height above the plate, the tilt) but not velocities, slip or drift. Say so where
+    // its uncertainty exceeds the 0.1 px the tracker aims at.
+    constexpr double kOffsetWarnPx = 0.1;
+    for (int k = 0; k < 2; ++k) {
+      for (int axis = 0; axis < 2; ++axis) {
+        const OffsetEstimate& e = axis == 0 ? r.offsets.col[k] : r.offsets.row[k];
+        if (!(e.err > kOffsetWarnPx)) continue;
+        std::fprintf(stderr,
+                     "dimerlab track: warning: the %s sphere's %s is uncertain by %.2f px (%s): "
+                     "its absolute position may be off by as much; its motion is not\n",
+                     k == 0 ? "left" : "right", axis == 0 ? "column" : "row", e.err,
+                     e.source.c_str());
+      }
+    }
     // Rows rest on plate - R: a radius error is a row bias, so say where R came from.
     if (r.radius_source == "outline") {
       std::fprintf(stderr,
