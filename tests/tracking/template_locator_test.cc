@@ -160,8 +160,10 @@ TEST(AppearanceOffset, PlateContactIsTheRestingCluster) {
   EXPECT_TRUE(std::isnan(none.err));
 }
 
-TEST(AppearanceOffset, SymmetryAxisOfAMirrorSymmetricAppearance) {
-  // A left-right symmetric pattern drawn 0.3 px right of the reference column: offset +0.3.
+// A mirror sphere's appearance drawn `col` px right of the reference column: a soft disc, the
+// plate reflected below, two lamps placed symmetrically about the centre; `light_from_right`
+// makes its reflections brighter on the right and keeps only the right lamp.
+Appearance MirrorSphereLike(double col, bool light_from_right) {
   Appearance a;
   a.radius_px = kR;
   a.half = int(std::ceil(kR + 4));
@@ -169,16 +171,23 @@ TEST(AppearanceOffset, SymmetryAxisOfAMirrorSymmetricAppearance) {
   a.image = cv::Mat(size, size, CV_32F);
   for (int y = 0; y < size; ++y) {
     for (int x = 0; x < size; ++x) {
-      const double dx = x - a.half - 0.3, dy = y - a.half;
+      const double dx = x - a.half - col, dy = y - a.half;
       const double r = std::sqrt(dx * dx + dy * dy);
       const double disc = 1.0 / (1.0 + std::exp((r - kR) / 0.6));
+      const double side = light_from_right ? 1.0 + 0.8 * std::clamp(dx / kR, -1.0, 1.0) : 1.0;
+      const double lamp_x = light_from_right ? dx - 6 : std::abs(dx) - 6;
       a.image.at<float>(y, x) =
-          float(10 + disc * (20 + 60 * std::max(0.0, dy / kR)) +
-                120 * std::exp(-((std::abs(dx) - 6) * (std::abs(dx) - 6) + (dy + 8) * (dy + 8)) / 3.0));
+          float(10 + disc * side * (20 + 60 * std::max(0.0, dy / kR)) +
+                120 * std::exp(-(lamp_x * lamp_x + (dy + 8) * (dy + 8)) / 3.0));
     }
   }
   a.mask = cv::Mat::ones(size, size, CV_8U);
-  const OffsetEstimate e = SymmetryColumnOffset(a);
+  return a;
+}
+
+TEST(AppearanceOffset, SymmetryAxisOfAMirrorSymmetricAppearance) {
+  // A left-right symmetric pattern drawn 0.3 px right of the reference column: offset +0.3.
+  const OffsetEstimate e = SymmetryColumnOffset(MirrorSphereLike(0.3, false));
   EXPECT_EQ(e.source, "symmetry");
   EXPECT_NEAR(e.value, 0.3, 0.02);
   EXPECT_LT(e.err, 0.05);
@@ -190,24 +199,7 @@ TEST(AppearanceOffset, SymmetryAxisOfAMirrorSymmetricAppearance) {
 // that covers the error (the symmetry alone claimed a few hundredths of a pixel).
 TEST(AppearanceOffset, WithoutTheUpperOutlineTheSymmetryIsCheckedByTheWholeOutline) {
   LearntSphere s;
-  Appearance& a = s.appearance;
-  a.radius_px = kR;
-  a.half = int(std::ceil(kR + 4));
-  const int size = 2 * a.half + 1;
-  a.image = cv::Mat(size, size, CV_32F);
-  for (int y = 0; y < size; ++y) {
-    for (int x = 0; x < size; ++x) {
-      const double dx = x - a.half - 0.3, dy = y - a.half;
-      const double r = std::sqrt(dx * dx + dy * dy);
-      const double disc = 1.0 / (1.0 + std::exp((r - kR) / 0.6));
-      // Light from the right: the sphere's reflections brighter on its right side, one lamp.
-      const double side = 1.0 + 0.8 * std::clamp(dx / kR, -1.0, 1.0);
-      a.image.at<float>(y, x) =
-          float(10 + disc * side * (20 + 60 * std::max(0.0, dy / kR)) +
-                120 * std::exp(-((dx - 6) * (dx - 6) + (dy + 8) * (dy + 8)) / 3.0));
-    }
-  }
-  a.mask = cv::Mat::ones(size, size, CV_8U);
+  s.appearance = MirrorSphereLike(0.3, true);
   const OffsetEstimate alone = ColumnWithoutTheUpperOutline(s);
   ASSERT_EQ(alone.source, "symmetry") << "no whole outline: the symmetry alone";
   const double symmetry_error = std::abs(alone.value - 0.3);
