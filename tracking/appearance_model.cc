@@ -443,16 +443,26 @@ OffsetEstimate LimbColumnOffset(const Appearance& a_whole, double row_offset) {
   return e;
 }
 
-OffsetEstimate ColumnWithoutTheUpperOutline(const LearntSphere& s) {
-  OffsetEstimate e = SymmetryColumnOffset(s.appearance);
-  const OffsetEstimate& w = s.whole_outline_col;
-  if (e.source == "none" || w.source == "none") return e;
-  const double half = 0.5 * (w.value - e.value);
+namespace {
+
+// Two estimates of one offset resting on different assumptions, each wrong where its own fails:
+// their midpoint, with half their difference added to the larger uncertainty (the truth may be
+// at either end). `a`'s frame count is kept.
+OffsetEstimate Midway(const OffsetEstimate& a, const OffsetEstimate& b, const char* source) {
+  OffsetEstimate e = a;
+  const double half = 0.5 * (b.value - a.value);
   e.value += half;
-  e.err = std::hypot(std::max(e.err, w.err), half);
-  e.n += w.n;
-  e.source = "symmetry_and_whole_outline";
+  e.err = std::hypot(std::max(a.err, b.err), half);
+  e.source = source;
   return e;
+}
+
+}  // namespace
+
+OffsetEstimate ColumnWithoutTheUpperOutline(const LearntSphere& s) {
+  const OffsetEstimate e = SymmetryColumnOffset(s.appearance);
+  if (e.source == "none" || s.whole_outline_col.source == "none") return e;
+  return Midway(e, s.whole_outline_col, "symmetry_and_whole_outline");
 }
 
 OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to,
@@ -487,12 +497,7 @@ OffsetEstimate CombineRowTransfers(const OffsetEstimate& registered,
                                    const OffsetEstimate& outline) {
   if (outline.source == "none") return registered;
   if (registered.source == "none") return outline;
-  OffsetEstimate e = registered;
-  const double half = 0.5 * (outline.value - registered.value);
-  e.value += half;
-  e.err = std::hypot(std::max(registered.err, outline.err), half);
-  e.source = "plate_contact_of_other_both";
-  return e;
+  return Midway(registered, outline, "plate_contact_of_other_both");
 }
 
 OffsetEstimate TransferOffset(const Appearance& from, const Appearance& to,
