@@ -76,7 +76,8 @@ std::string DecodeRaw(const std::string& path, bool eight_bit, const std::string
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-std::vector<cv::Mat> FramesWithRampAndExtremes(int n, int w, int h, int type, int max_value, uint64_t seed) {
+std::vector<cv::Mat> FramesWithRampAndExtremes(int n, int w, int h, int type, int max_value,
+                                               uint64_t seed) {
   // Random pixels, plus the extremes 0 and max in the first row's first two pixels, and a
   // top-bottom ramp in the first column so that a flipped image cannot match by chance.
   cv::RNG rng(seed);
@@ -112,7 +113,8 @@ TEST_P(CineAgainstFfmpeg, HeaderAndPixelsReadAsWritten) {
   const int w = 36, h = 20, n = 7;  // w*h a multiple of 4 (10-bit packing)
   const bool eight = c.pixels == CinePixels::k8Bit;
   const int max_value = (1 << c.real_bpp) - 1;
-  const auto frames = FramesWithRampAndExtremes(n, w, h, eight ? CV_8U : CV_16U, max_value, 1234 + c.real_bpp);
+  const auto frames =
+      FramesWithRampAndExtremes(n, w, h, eight ? CV_8U : CV_16U, max_value, 1234 + c.real_bpp);
   CineWriteOptions o;
   o.pixels = c.pixels;
   o.real_bpp = c.real_bpp;
