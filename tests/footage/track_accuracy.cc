@@ -45,12 +45,14 @@ SphereAccuracy Summarise(const std::vector<Eigen::Vector2d>& errors, size_t good
   }
   for (const auto& e : errors) a.bias += e;
   a.bias /= double(errors.size());
-  double var = 0;
+  Eigen::Vector2d var(0, 0);
   for (const auto& e : errors) {
-    var += (e - a.bias).squaredNorm();
+    var += (e - a.bias).cwiseAbs2();
     a.max_error = std::max(a.max_error, (e - a.bias).norm());
   }
-  a.scatter = std::sqrt(var / double(errors.size()));
+  const double n = double(errors.size());
+  a.scatter = std::sqrt(var.sum() / n);
+  a.bias_sampling = (var / n / n).cwiseSqrt();
   return a;
 }
 
@@ -180,11 +182,17 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
     }
   }
   for (int k = 0; k < 2; ++k) a.sphere[k] = Summarise(errors[k], good[k]);
-  if (res.method == tracking::Method::kTemplate) {
+  a.template_run = res.method == tracking::Method::kTemplate;
+  if (a.template_run) {
     const tracking::Frame first = source->Read(0);
     const double noise = first.error.empty() ? tracking::FrameNoiseSigma(first.image) : kNaN;
     for (int k = 0; k < 2; ++k) {
-      a.sphere[k].scatter_bound = tracking::TranslationBound(res.appearance[k], noise).norm();
+      SphereAccuracy& s = a.sphere[k];
+      s.scatter_bound = tracking::TranslationBound(res.appearance[k], noise).norm();
+      s.stated_err = Eigen::Vector2d(res.offsets.col[k].err, res.offsets.row[k].err);
+      for (int c = 0; c < 2; ++c) {
+        s.bias_sigmas(c) = std::abs(s.bias(c)) / std::hypot(s.stated_err(c), s.bias_sampling(c));
+      }
     }
   }
   a.plate_bias = a.plate_found > 0 ? plate_sum / double(a.plate_found) : kNaN;
@@ -194,19 +202,21 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
 
 std::string AccuracyHeader() {
   return "| method | found L / R (%) | bias L / R (px) | scatter L / R (px) | scatter bound L / R "
-         "(px) | swaps | plate bias / max (px) | meets targets |\n"
-         "|---|---|---|---|---|---|---|---|\n";
+         "(px) | bias / stated σ L / R | swaps | plate bias / max (px) | meets targets |\n"
+         "|---|---|---|---|---|---|---|---|---|\n";
 }
 
 std::string AccuracyRow(const TrackAccuracy& a) {
   char buf[400];
   std::snprintf(buf, sizeof buf,
-                "| %s | %.1f / %.1f | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f | %zu | %+.3f / %.3f "
-                "| %s |\n",
+                "| %s | %.1f / %.1f | %.3f / %.3f | %.3f / %.3f | %.3f / %.3f | %.1f / %.1f | %zu "
+                "| %+.3f / %.3f | %s |\n",
                 a.method.c_str(), 100 * a.sphere[0].found_fraction,
                 100 * a.sphere[1].found_fraction, a.sphere[0].bias.norm(),
                 a.sphere[1].bias.norm(), a.sphere[0].scatter, a.sphere[1].scatter,
                 a.sphere[0].scatter_bound, a.sphere[1].scatter_bound,
+                std::fmax(a.sphere[0].bias_sigmas(0), a.sphere[0].bias_sigmas(1)),
+                std::fmax(a.sphere[1].bias_sigmas(0), a.sphere[1].bias_sigmas(1)),
                 a.identity_swaps, a.plate_bias, a.plate_max_error,
                 a.MeetsTargets() ? "yes" : "no");
   return buf;

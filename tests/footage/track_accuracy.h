@@ -44,10 +44,21 @@ struct SphereAccuracy {
   // Template method: the Cramér-Rao bound on the scatter, sqrt(sd_col^2 + sd_row^2) of
   // tracking/precision_bound.h with the first frame's noise; NaN for the other methods.
   double scatter_bound = std::numeric_limits<double>::quiet_NaN();
+  // The bias's own sampling error per component (col, row): sd / sqrt(found), px.
+  Eigen::Vector2d bias_sampling{0, 0};
+  // Template method: the uncertainty the tracker states for the offset it added (col, row; the
+  // track file's /template/offset_err), and the bias in units of that uncertainty and the
+  // sampling error together, |bias| / hypot(stated, sampling), per component; NaN for the
+  // other methods. Whether a user can trust the file's uncertainty: kCoverageSigmas.
+  Eigen::Vector2d stated_err{std::numeric_limits<double>::quiet_NaN(),
+                             std::numeric_limits<double>::quiet_NaN()};
+  Eigen::Vector2d bias_sigmas{std::numeric_limits<double>::quiet_NaN(),
+                              std::numeric_limits<double>::quiet_NaN()};
 };
 
 struct TrackAccuracy {
   std::string method;
+  bool template_run = false;            // the template method ran (asked for, or chosen by auto)
   size_t frames = 0;                    // rows of truth.csv
   std::array<SphereAccuracy, 2> sphere; // left, right
   size_t identity_swaps = 0;
@@ -64,6 +75,10 @@ inline constexpr double kScatterTargetPx = 0.05;
 inline constexpr double kBiasTargetPx = 0.1;
 inline constexpr double kFoundTarget = 0.99;
 inline constexpr double kPlateTargetPx = 0.3;
+// The stated offset uncertainty covers the bias when the bias is within this many of it (with
+// the bias's sampling error): 95 % for a normal error. Not one of the issue's targets: what
+// makes /template/offset_err worth reading where the targets are missed.
+inline constexpr double kCoverageSigmas = 2.0;
 
 // Tracks `folder` (every image in it) with `method` (a `--method` name of tracking/refiner.h)
 // and compares with `folder`/truth.csv. `threads` 0: all cores. `scale_given`: the tracker is
@@ -76,7 +91,8 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
                                    int threads = 0, bool scale_given = true,
                                    const tracking::EccStop* ecc = nullptr);
 
-// One table row: "| method | found L/R | bias L/R | scatter L/R | bound L/R | swaps | plate |".
+// One table row: "| method | found L/R | bias L/R | scatter L/R | bound L/R | bias/stated L/R |
+// swaps | plate | meets |", bias/stated the larger component of bias_sigmas.
 std::string AccuracyRow(const TrackAccuracy& a);
 std::string AccuracyHeader();
 
