@@ -4,8 +4,10 @@
 // footage".
 //   bench_tracking_footage [frames] [subframes] [cache_dir] [methods]
 //   bench_tracking_footage --ecc [frames] [subframes] [cache_dir]
-// (--ecc: what ECC's stopping rule trades, tracking/template_locator.h EccStop: every case
-// tracked by `auto` with each rule; the accuracy, how far the answers move from the default
+//   bench_tracking_footage --learn-passes [frames] [subframes] [cache_dir]
+// (--ecc: what ECC's stopping rule trades, tracking/template_locator.h EccStop; --learn-passes:
+// what the template learning's passes trade, tracking/appearance_model.h LearnOptions. Every
+// case tracked by `auto` with each rule; the accuracy, how far the answers move from the first
 // rule's, and the CPU time per frame.)
 // Defaults: 40 frames of the hop motion, 6 exposure slices (300 us at 2000 frames/s), cache
 // folder bench_footage_cache (footage is reused while its scenes are unchanged), methods
@@ -94,46 +96,95 @@ std::string Footage(const Case& c, size_t frames, int slices, const std::string&
   return dir;
 }
 
-// --ecc: every case tracked by `auto` with each ECC stopping rule, on one thread (so the CPU
-// time is the tracking's alone). Per rule: cases meeting every target, the mean scatter and the
-// worst |bias| over the spheres of all cases, how far the spheres' mean positions moved from
-// the first rule's (ECC run to convergence: median and largest), and the CPU time per frame.
-int EccTrade(size_t frames, int slices, const std::string& cache) {
-  const std::vector<Case> cases = AllCases();
+// One trade-off rule run over every case by `auto` on one thread (so the CPU time is the
+// tracking's alone): cases meeting every target, the mean scatter and the worst |bias| over the
+// spheres of all cases, each sphere's bias (to see how far a rule moves the answers), and the
+// CPU time per frame.
+struct RuleResult {
+  int met = 0;
+  double scatter = 0, worst_bias = 0, cpu_us_per_frame = 0;
+  std::vector<Eigen::Vector2d> bias;
+};
+
+// `ecc` null: the tracker's default rule.
+RuleResult RunRule(const std::vector<std::string>& dirs, const dimer::tracking::EccStop* ecc,
+                   int learn_passes) {
+  RuleResult r;
+  double cpu = 0;
+  size_t tracked = 0;
+  for (const std::string& dir : dirs) {
+    const std::clock_t t0 = std::clock();
+    const TrackAccuracy a = MeasureTrackAccuracy(dir, "auto", 1, true, ecc, learn_passes);
+    cpu += double(std::clock() - t0) / CLOCKS_PER_SEC;
+    tracked += a.frames;
+    r.met += a.MeetsTargets();
+    for (const SphereAccuracy& s : a.sphere) {
+      r.scatter += s.scatter / double(2 * dirs.size());
+      r.worst_bias = std::max(r.worst_bias, s.bias.norm());
+      r.bias.push_back(s.bias);
+    }
+  }
+  r.cpu_us_per_frame = 1e6 * cpu / double(tracked);
+  return r;
+}
+
+// "median / largest" distance of each sphere's bias from the first rule's.
+std::string Moved(const RuleResult& r, const RuleResult& first) {
+  std::vector<double> moved;
+  for (size_t i = 0; i < r.bias.size(); ++i) moved.push_back((r.bias[i] - first.bias[i]).norm());
+  std::sort(moved.begin(), moved.end());
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.4f / %.4f", moved[moved.size() / 2], moved.back());
+  return buf;
+}
+
+std::vector<std::string> AllFootage(size_t frames, int slices, const std::string& cache) {
   std::vector<std::string> dirs;
-  for (const Case& c : cases) dirs.push_back(Footage(c, frames, slices, cache, nullptr));
+  for (const Case& c : AllCases()) dirs.push_back(Footage(c, frames, slices, cache, nullptr));
+  return dirs;
+}
+
+// --ecc: every case tracked with each ECC stopping rule; how far the spheres' mean positions
+// moved from the first rule's (ECC run to convergence: median and largest).
+int EccTrade(size_t frames, int slices, const std::string& cache) {
+  const std::vector<std::string> dirs = AllFootage(frames, slices, cache);
   std::printf("ECC stopping rule against accuracy: %zu POV-Ray cases x %zu frames, `auto`, 1 "
               "thread, load average %.1f at start\n\n| max iterations | epsilon | cases "
               "meeting the targets | mean scatter (px) | worst \\|bias\\| (px) | moved from "
               "the first rule's, median / largest (px) | CPU per frame (us) |\n"
-              "|---|---|---|---|---|---|---|\n", cases.size(), frames, LoadAverage());
+              "|---|---|---|---|---|---|---|\n", dirs.size(), frames, LoadAverage());
   const std::vector<dimer::tracking::EccStop> rules = {
       {50, 1e-7}, {50, 1e-6}, {50, 1e-5}, {50, 1e-4}, {20, 1e-7}, {10, 1e-7}, {5, 1e-7}};
-  std::vector<Eigen::Vector2d> reference;  // the first rule's bias per case and sphere
+  RuleResult first;
   for (const auto& rule : rules) {
-    int met = 0;
-    double scatter = 0, worst_bias = 0, cpu = 0;
-    size_t tracked = 0;
-    std::vector<Eigen::Vector2d> bias;
-    for (const std::string& dir : dirs) {
-      const std::clock_t t0 = std::clock();
-      const TrackAccuracy a = MeasureTrackAccuracy(dir, "auto", 1, true, &rule);
-      cpu += double(std::clock() - t0) / CLOCKS_PER_SEC;
-      tracked += a.frames;
-      met += a.MeetsTargets();
-      for (const SphereAccuracy& s : a.sphere) {
-        scatter += s.scatter / double(2 * dirs.size());
-        worst_bias = std::max(worst_bias, s.bias.norm());
-        bias.push_back(s.bias);
-      }
-    }
-    if (reference.empty()) reference = bias;
-    std::vector<double> moved;
-    for (size_t i = 0; i < bias.size(); ++i) moved.push_back((bias[i] - reference[i]).norm());
-    std::sort(moved.begin(), moved.end());
-    std::printf("| %d | %.0e | %d of %zu | %.4f | %.3f | %.4f / %.4f | %.0f |\n",
-                rule.max_iterations, rule.epsilon, met, dirs.size(), scatter, worst_bias,
-                moved[moved.size() / 2], moved.back(), 1e6 * cpu / double(tracked));
+    const RuleResult r = RunRule(dirs, &rule, dimer::tracking::kLearnPasses);
+    if (first.bias.empty()) first = r;
+    std::printf("| %d | %.0e | %d of %zu | %.4f | %.3f | %s | %.0f |\n", rule.max_iterations,
+                rule.epsilon, r.met, dirs.size(), r.scatter, r.worst_bias, Moved(r, first).c_str(),
+                r.cpu_us_per_frame);
+    std::fflush(stdout);
+  }
+  std::printf("\nload average at the end %.1f\n", LoadAverage());
+  return 0;
+}
+
+// --learn-passes: every case tracked with each number of the template learning's passes
+// (tracking/appearance_model.h, LearnOptions), the tracker's default first; how far the
+// spheres' mean positions moved from the default's.
+int LearnPassesTrade(size_t frames, int slices, const std::string& cache) {
+  const std::vector<std::string> dirs = AllFootage(frames, slices, cache);
+  std::printf("Learning passes against accuracy: %zu POV-Ray cases x %zu frames, `auto`, 1 "
+              "thread, load average %.1f at start\n\n| learning passes | cases meeting the "
+              "targets | mean scatter (px) | worst \\|bias\\| (px) | moved from the default's, "
+              "median / largest (px) | CPU per frame (us) |\n|---|---|---|---|---|---|\n",
+              dirs.size(), frames, LoadAverage());
+  RuleResult first;
+  for (int passes : {dimer::tracking::kLearnPasses, 2, 1, 0}) {
+    const RuleResult r = RunRule(dirs, nullptr, passes);
+    if (first.bias.empty()) first = r;
+    std::printf("| %d%s | %d of %zu | %.4f | %.3f | %s | %.0f |\n", passes,
+                passes == dimer::tracking::kLearnPasses ? " (default)" : "", r.met, dirs.size(),
+                r.scatter, r.worst_bias, Moved(r, first).c_str(), r.cpu_us_per_frame);
     std::fflush(stdout);
   }
   std::printf("\nload average at the end %.1f\n", LoadAverage());
@@ -143,9 +194,12 @@ int EccTrade(size_t frames, int slices, const std::string& cache) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc > 1 && std::string(argv[1]) == "--ecc") {
-    return EccTrade(argc > 2 ? size_t(std::atol(argv[2])) : 40, argc > 3 ? std::atoi(argv[3]) : 6,
-                    argc > 4 ? argv[4] : "bench_footage_cache");
+  if (argc > 1 && (std::string(argv[1]) == "--ecc" || std::string(argv[1]) == "--learn-passes")) {
+    const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 40;
+    const int slices = argc > 3 ? std::atoi(argv[3]) : 6;
+    const std::string cache = argc > 4 ? argv[4] : "bench_footage_cache";
+    return std::string(argv[1]) == "--ecc" ? EccTrade(frames, slices, cache)
+                                           : LearnPassesTrade(frames, slices, cache);
   }
   const size_t frames = argc > 1 ? size_t(std::atol(argv[1])) : 40;
   const int slices = argc > 2 ? std::atoi(argv[2]) : 6;

@@ -2,6 +2,7 @@
 
 #include "tracking/limb_fit.h"
 #include "tracking/median.h"
+#include "tracking/parallel_for.h"
 
 #include <opencv2/imgproc.hpp>
 
@@ -200,17 +201,19 @@ namespace {
 // averaging and registration to the mean. Invalid appearance if too few samples.
 void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
               const std::vector<size_t>& used, int k, int half, double radius_px,
-              int cut_row, std::vector<Eigen::Vector2d> pos, LearntSphere* s) {
+              int cut_row, std::vector<Eigen::Vector2d> pos, const LearnOptions& learn,
+              LearntSphere* s) {
   Appearance a;
-  for (int pass = 0; pass <= kLearnPasses; ++pass) {
+  for (int pass = 0; pass <= learn.passes; ++pass) {
     a = Average(images, samples, used, pos, k, half, radius_px, cut_row);
     if (!a.valid()) return;
-    // Register every sample to the mean (the last pass only to report where they sit).
-    for (size_t i = 0; i < used.size(); ++i) {
+    // Register every sample to the mean (the last pass only to report where they sit); each
+    // sample on its own, so any thread count gives the same positions.
+    ParallelFor(used.size(), learn.threads, [&](size_t i) {
       const Located l = LocateAppearance(samples[used[i]].image, a, pos[i], kLearnSearchPx,
                                          ContextOf(samples[used[i]], k));
       if (l.ok) pos[i] = l.position;
-    }
+    });
   }
   s->appearance = a;
   s->registered = pos;
@@ -220,7 +223,8 @@ void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSamp
 
 std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& samples,
                                              double radius_px, bool recentre, bool fit_radius,
-                                             bool* radius_from_outline) {
+                                             bool* radius_from_outline,
+                                             const LearnOptions& learn) {
   if (radius_from_outline) *radius_from_outline = false;
   std::array<LearntSphere, 2> out;
   std::vector<cv::Mat> images(samples.size());
@@ -247,7 +251,7 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   for (int k = 0; k < 2; ++k) {
     out[k].samples = used;
     for (size_t j : used) out[k].rough.push_back(samples[j].centre[k]);
-    LearnOne(images, samples, used, k, half, radius_px, -1, out[k].rough, &out[k]);
+    LearnOne(images, samples, used, k, half, radius_px, -1, out[k].rough, learn, &out[k]);
     if (!out[k].appearance.valid()) return {};
   }
   if (!recentre) return out;
@@ -281,7 +285,7 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   for (int k = 0; k < 2; ++k) {
     start[k] = out[k].registered;
     for (Eigen::Vector2d& p : start[k]) p += Eigen::Vector2d(col_shift[k], shift);
-    LearnOne(images, samples, used, k, final_half, radius_px, -1, start[k], &out[k]);
+    LearnOne(images, samples, used, k, final_half, radius_px, -1, start[k], learn, &out[k]);
     if (!out[k].appearance.valid()) return {};
   }
   for (int k = 0; k < 2; ++k) {
@@ -309,7 +313,7 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   for (int k = 0; k < 2; ++k) {
     if (horizon[k] < 0) continue;
     LearnOne(images, samples, used, k, final_half, radius_px,
-             std::max(0, horizon[k] - kHorizonGuardPx), start[k], &out[k]);
+             std::max(0, horizon[k] - kHorizonGuardPx), start[k], learn, &out[k]);
     if (!out[k].appearance.valid()) return {};
   }
   return out;

@@ -45,8 +45,22 @@ namespace dimer::tracking {
 // Learning frames: every k-th of the first kLearnSpanFrames, k chosen for kLearnFrames frames.
 inline constexpr size_t kLearnFrames = 48;
 inline constexpr size_t kLearnSpanFrames = 4000;
-// Registration passes (patches to the mean, mean rebuilt): the mean moves < 0.01 px after 3.
-inline constexpr int kLearnPasses = 3;
+// Registration passes after the first (patches to the mean, mean rebuilt). The first pass
+// takes the patches from the rough centres (pixels apart) to the registration's noise; every
+// pass after it moves them by that noise again (POV-Ray front_point: rms 0.13 px, then
+// 0.023-0.030 px on each of passes 1, 2 and 3, with no downward trend), so one is kept: it
+// cost a third of a 40-frame film's CPU per pass and the answers move within their stated
+// uncertainty (bench/bench_tracking_footage --learn-passes; docs/BENCHMARKS.md).
+inline constexpr int kLearnPasses = 1;
+
+// How the learning runs: `passes` as kLearnPasses (0: the rough positions' mean is the
+// appearance; each pass more averages and registers every sample once again), `threads` for
+// the samples' registrations (tracking/parallel_for.h: the result does not depend on it).
+// bench/bench_tracking_footage --learn-passes measures what the passes buy.
+struct LearnOptions {
+  int passes = kLearnPasses;
+  int threads = 1;
+};
 // Frames whose reference row is within this of the lowest (relative to the plate) rest, px.
 inline constexpr double kContactBandPx = 0.3;
 
@@ -104,12 +118,14 @@ inline constexpr int kHorizonGuardPx = 2;
 // Both spheres' appearances (0 left, 1 right); invalid appearance if too few samples.
 // `recentre` (footage without clean silhouettes): the templates are framed again around the
 // rough centres shifted by provisional offsets, columns from the outline, rows from the plate
-// contact (see the .cc), and leave out the plate's reflection (kHorizonGuardPx). `fit_radius` (with `recentre`; the scale is not given): `radius_px` is
-// only a guess and the radius is taken from the outline; the appearances' radius_px holds it.
+// contact (see the .cc), and leave out the plate's reflection (kHorizonGuardPx). `fit_radius`
+// (with `recentre`; the scale is not given): `radius_px` is only a guess and the radius is taken
+// from the outline; the appearances' radius_px holds it.
 std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& samples,
                                              double radius_px, bool recentre,
                                              bool fit_radius = false,
-                                             bool* radius_from_outline = nullptr);
+                                             bool* radius_from_outline = nullptr,
+                                             const LearnOptions& learn = {});
 // Both spheres' outline radii must agree within this fraction to be taken (fit_radius): one
 // that does not has caught a reflection's boundary instead of the outline.
 inline constexpr double kOutlineRadiusAgreement = 0.03;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tracking/parallel_for.h"
 #include "tracking/plate_edge.h"
 
 namespace dimer::tracking {
@@ -69,24 +70,24 @@ std::vector<size_t> LearningIndices(size_t frames) {
 
 SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
                                      const TrackerOptions& reference, Method requested,
-                                     bool radius_known) {
+                                     bool radius_known, const LearnOptions& learn) {
   SequenceMethod m;
-  std::vector<FrameTrack> probes;
-  std::vector<LearningSample> samples;
-  std::vector<std::array<bool, 2>> clean;
+  std::vector<FrameTrack> probes(learning.size());
+  std::vector<LearningSample> samples(learning.size());
+  std::vector<std::array<bool, 2>> clean(learning.size());
   TrackerOptions o = reference;
   o.method = Method::kCentroid;
   o.appearance.reset();
-  for (const Frame& f : learning) {
+  ParallelFor(learning.size(), learn.threads, [&](size_t i) {
+    const Frame& f = learning[i];
     SequenceTracker t(o);  // a fresh acquisition per frame: the learning frames are far apart
-    probes.push_back(t.Process(f.image, f.index));
-    LearningSample s;
+    probes[i] = t.Process(f.image, f.index);
+    LearningSample& s = samples[i];
     s.image = f.image;
-    s.plate_row = probes.back().plate_row;
-    s.found = probes.back().found;
-    s.centre = probes.back().centre;
-    samples.push_back(s);
-    std::array<bool, 2> c{false, false};
+    s.plate_row = probes[i].plate_row;
+    s.found = probes[i].found;
+    s.centre = probes[i].centre;
+    std::array<bool, 2>& c = clean[i];
     for (int k = 0; k < 2; ++k) {
       if (s.found[0] && s.found[1]) {
         c[k] = CleanSilhouette(f.image, s.centre[k], reference.radius_px, s.centre[1 - k],
@@ -95,8 +96,7 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
         c[k] = CleanSilhouette(f.image, s.centre[k], reference.radius_px, s.centre[k], s.plate_row);
       }
     }
-    clean.push_back(c);
-  }
+  });
   m.choice = ChooseMethod(probes, clean, requested);
   if (m.choice.method != Method::kTemplate) {
     m.plate_shift = EstimatePlateShift(samples, reference.radius_px);
@@ -124,7 +124,8 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
     for (LearningSample& s : samples) s.plate_row += m.plate_shift.value;
   }
   m.learnt = LearnAppearances(samples, reference.radius_px, !m.choice.silhouettes,
-                              !m.choice.silhouettes && !radius_known, &m.radius_from_outline);
+                              !m.choice.silhouettes && !radius_known, &m.radius_from_outline,
+                              learn);
   if (!m.learnt[0].appearance.valid() || !m.learnt[1].appearance.valid()) {
     // Nothing to learn from (fewer than 3 learning frames with both spheres): the silhouette
     // methods are what is left.

@@ -33,10 +33,11 @@ struct SequenceMethod {
 // method, learns both appearances. `requested` is kAuto or an explicit method. `radius_known`:
 // the reference's radius comes from the scale; otherwise it is the silhouette methods' measure
 // and, on footage that is not made of silhouettes, the radius is taken from the spheres'
-// outline (limb_fit.h) and held in the appearances' radius_px.
+// outline (limb_fit.h) and held in the appearances' radius_px. The learning frames are measured
+// on `learn.threads` threads too (the result does not depend on it).
 SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
                                      const TrackerOptions& reference, Method requested,
-                                     bool radius_known);
+                                     bool radius_known, const LearnOptions& learn = {});
 
 struct TemplateOffsets {
   std::array<OffsetEstimate, 2> col, row;  // per sphere (left, right): reference -> centre

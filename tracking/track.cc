@@ -128,6 +128,7 @@ void SequenceOptions::Check() const {
   tracker.Check();
   if (threads < 0 || threads > 256) throw UsageError("--threads must be 0 (all cores) .. 256");
   if (chunk_frames < 1) throw UsageError("--chunk-frames must be >= 1");
+  if (learn_passes < 0 || learn_passes > 20) throw UsageError("learning passes must be 0 .. 20");
 }
 
 SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options,
@@ -182,7 +183,8 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
         reference.radius_px = std::isfinite(options.contact_radius_px) ? options.contact_radius_px
                                                                        : ref.radius_px;
         prepared = PrepareSequenceMethod(learning, reference, options.tracker.method,
-                                         std::isfinite(options.contact_radius_px));
+                                         std::isfinite(options.contact_radius_px),
+                                         LearnOptions{options.learn_passes, threads});
         chunk_opts.method = prepared.choice.method;
         chunk_opts.appearance = prepared.appearance;
         // The template's radius (the scale's, or its outline's) is every frame's radius, which

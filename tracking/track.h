@@ -28,6 +28,9 @@ struct SequenceOptions {
   size_t chunk_frames = 512;  // frames per chunk (changing it may change the last digits)
   // Template method: the sphere radius for the plate-contact offset, px; NaN: the measured one.
   double contact_radius_px = std::numeric_limits<double>::quiet_NaN();
+  // Template method: the learning's passes (appearance_model.h, LearnOptions); it runs on
+  // `threads` threads.
+  int learn_passes = kLearnPasses;
   void Check() const;
 };
 

@@ -127,7 +127,7 @@ bool TrackAccuracy::MeetsTargets(std::string* why) const {
 
 TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string& method,
                                    int threads, bool scale_given,
-                                   const tracking::EccStop* ecc) {
+                                   const tracking::EccStop* ecc, int learn_passes) {
   double radius = kNaN;
   const std::vector<TruthRow> truth = ReadTruthCsv(folder + "/truth.csv", &radius);
   std::map<std::string, const TruthRow*> by_file;
@@ -137,6 +137,7 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
   opt.tracker.method = tracking::ParseMethod(method);
   opt.threads = threads;
   if (ecc) opt.tracker.ecc = *ecc;
+  opt.learn_passes = learn_passes;
   if (scale_given) opt.contact_radius_px = radius;
   auto source = tracking::FrameSource::Open(folder);
   const auto start = std::chrono::steady_clock::now();

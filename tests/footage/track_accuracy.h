@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "tracking/appearance_model.h"
 #include "tracking/template_locator.h"
 
 namespace dimer::footage {
@@ -86,10 +87,11 @@ inline constexpr double kCoverageSigmas = 2.0;
 // sphere radius in pixels, from truth.csv's header); without it the tracker measures the radius
 // from the spheres' look, which is what a front-lit steel sphere does not show.
 // `ecc`: the template method's ECC stopping rule (tracking/template_locator.h); null: the
-// tracker's default.
+// tracker's default. `learn_passes`: the template's learning passes (appearance_model.h).
 TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string& method,
                                    int threads = 0, bool scale_given = true,
-                                   const tracking::EccStop* ecc = nullptr);
+                                   const tracking::EccStop* ecc = nullptr,
+                                   int learn_passes = tracking::kLearnPasses);
 
 // One table row: "| method | found L/R | bias L/R | scatter L/R | bound L/R | bias/stated L/R |
 // swaps | plate | meets |", bias/stated the larger component of bias_sigmas.
