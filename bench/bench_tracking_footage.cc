@@ -179,7 +179,11 @@ int LearnPassesTrade(size_t frames, int slices, const std::string& cache) {
               "median / largest (px) | CPU per frame (us) |\n|---|---|---|---|---|---|\n",
               dirs.size(), frames, LoadAverage());
   RuleResult first;
-  for (int passes : {dimer::tracking::kLearnPasses, 2, 1, 0}) {
+  std::vector<int> passes_list = {dimer::tracking::kLearnPasses};
+  for (int p : {3, 2, 1, 0}) {
+    if (p != dimer::tracking::kLearnPasses) passes_list.push_back(p);
+  }
+  for (int passes : passes_list) {
     const RuleResult r = RunRule(dirs, nullptr, passes);
     if (first.bias.empty()) first = r;
     std::printf("| %d%s | %d of %zu | %.4f | %.3f | %s | %.0f |\n", passes,
