@@ -328,8 +328,10 @@ OffsetEstimate SilhouetteOffset(const LearntSphere& s, int axis) {
   e.value = MedianOf(d);
   std::vector<double> dev;
   for (double v : d) dev.push_back(std::abs(v - e.value));
-  // Standard error of a median: 1.2533 sigma / sqrt(n), sigma = 1.4826 MAD.
-  e.err = 1.2533 * 1.4826 * MedianOf(dev) / std::sqrt(double(d.size()));
+  // Standard error of a median: 1.2533 sigma / sqrt(n), sigma = 1.4826 MAD; and the silhouette
+  // centroid's own bias, which no number of frames averages away.
+  e.err = std::hypot(1.2533 * 1.4826 * MedianOf(dev) / std::sqrt(double(d.size())),
+                     kSilhouetteBiasPx);
   e.n = d.size();
   return e;
 }

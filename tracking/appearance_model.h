@@ -130,7 +130,14 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
 // that does not has caught a reflection's boundary instead of the outline.
 inline constexpr double kOutlineRadiusAgreement = 0.03;
 
-// Silhouette: median of rough - registered per axis (0 column, 1 row), error from the MAD.
+// The silhouette methods' own bias on footage they were not made on, px: the centroid on the
+// POV-Ray backlit and bright-background films is 0.028-0.031 px off in each column, toward the
+// rod (docs/BENCHMARKS.md, "Tracker on POV-Ray footage"). A silhouette offset inherits it, and
+// stated only the scatter of its median (0.003 px there: 12 of its own sigmas off).
+inline constexpr double kSilhouetteBiasPx = 0.03;
+
+// Silhouette: median of rough - registered per axis (0 column, 1 row); error from the MAD and
+// kSilhouetteBiasPx.
 OffsetEstimate SilhouetteOffset(const LearntSphere& s, int axis);
 // Plate contact from the whole track: reference rows and plate rows per frame (NaN: not found).
 OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,

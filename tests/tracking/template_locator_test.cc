@@ -241,6 +241,10 @@ TEST(AppearanceOffset, SilhouetteIsTheMedianDifference) {
   EXPECT_NEAR(c.value, 0.26, 0.011);
   EXPECT_NEAR(r.value, -1.5, 1e-12);
   EXPECT_EQ(c.n, 21u);
+  // The rows agree exactly: what is left of their uncertainty is the silhouette's own bias,
+  // which the frames do not average away; the columns scatter and add to it.
+  EXPECT_NEAR(r.err, kSilhouetteBiasPx, 1e-12);
+  EXPECT_GT(c.err, kSilhouetteBiasPx);
 }
 
 }  // namespace
