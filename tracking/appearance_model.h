@@ -48,9 +48,10 @@ inline constexpr size_t kLearnSpanFrames = 4000;
 // Registration passes after the first (patches to the mean, mean rebuilt). The first pass
 // takes the patches from the rough centres (pixels apart) to the registration's noise; every
 // pass after it moves them by that noise again (POV-Ray front_point: rms 0.13 px, then
-// 0.023-0.030 px on each of passes 1, 2 and 3, with no downward trend), so one is kept: it
-// cost a third of a 40-frame film's CPU per pass and the answers move within their stated
-// uncertainty (bench/bench_tracking_footage --learn-passes; docs/BENCHMARKS.md).
+// 0.023-0.030 px on each of passes 1, 2 and 3, with no downward trend), so one is kept: each
+// pass cost ~16 ms of CPU per frame of a 40-frame film (90 ms with three, 57 with one) and the
+// answers move within their stated uncertainty (bench/bench_tracking_footage --learn-passes;
+// docs/BENCHMARKS.md).
 inline constexpr int kLearnPasses = 1;
 
 // How the learning runs: `passes` as kLearnPasses (0: the rough positions' mean is the
