@@ -63,10 +63,8 @@ MaskContext ContextOf(const LearningSample& s, int k) {
   return ctx;
 }
 
-// Row (template coordinates) of the horizon of the plate's reflection in a mirror sphere: the
-// strongest mean vertical step across the central columns (|x| <= kHorizonHalfWidthR R) between
-// kHorizonTopR R above and kHorizonBottomR R below the centre, if it stands kHorizonMinRatio
-// times above the median step there; -1 if there is none (a matte sphere, a backlit one).
+}  // namespace
+
 int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, double radius_px) {
   cv::Mat gy;
   cv::Sobel(image, gy, CV_32F, 0, 1, 3, 1.0 / 8.0);
@@ -77,18 +75,17 @@ int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, doubl
   std::vector<double> step;
   int best = -1;
   double best_step = 0;
+  std::vector<double> column_steps;
   for (int y = y0; y <= y1; ++y) {
-    double sum = 0;
-    int n = 0;
+    column_steps.clear();
     for (int x = x0; x <= x1; ++x) {
       if (!mask.at<uint8_t>(y - 1, x) || !mask.at<uint8_t>(y, x) || !mask.at<uint8_t>(y + 1, x)) {
         continue;
       }
-      sum += gy.at<float>(y, x);
-      ++n;
+      column_steps.push_back(gy.at<float>(y, x));
     }
-    if (n < (x1 - x0 + 1) / 2) continue;
-    step.push_back(std::abs(sum / n));
+    if (int(column_steps.size()) < (x1 - x0 + 1) / 2) continue;
+    step.push_back(std::abs(MedianOf(column_steps)));
     if (step.back() > best_step) {
       best_step = step.back();
       best = y;
@@ -98,9 +95,11 @@ int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, doubl
   return best_step > kHorizonMinRatio * MedianOf(step) ? best : -1;
 }
 
+namespace {
+
 // Whether the horizon at template row `horizon` moves within the sphere with its height above
-// the plate: per sample, the horizon's sub-pixel row (centroid of the mean vertical step across
-// the central columns, within kHorizonWindowPx rows) against the height (plate - row), fitted by
+// the plate: per sample, the horizon's sub-pixel row (centroid of the vertical step across the
+// central columns, their median as in ReflectionHorizon, within kHorizonWindowPx rows) against the height (plate - row), fitted by
 // a straight line; it moves when the slope exceeds kHorizonMovesPerPx and three standard errors
 // over heights spanning kMinHeightSpanPx. A resting sphere (no span) or a renderer whose
 // reflection is painted on the sphere (no slope) keeps its whole appearance.
@@ -116,15 +115,16 @@ bool HorizonMoves(const std::vector<cv::Mat>& images, const std::vector<Learning
     if (!std::isfinite(plate) || !Patch(images[used[i]], pos[i], half, &patch)) continue;
     cv::Sobel(patch, gy, CV_32F, 0, 1, 3, 1.0 / 8.0);
     double sw = 0, swy = 0, peak = 0;
-    std::vector<double> step;
+    std::vector<double> step, column_steps;
     for (int y = horizon - kHorizonWindowPx; y <= horizon + kHorizonWindowPx; ++y) {
-      double sum = 0;
+      double across = 0;
       if (y >= 1 && y < patch.rows - 1) {
-        for (int x = x0; x <= x1; ++x) sum += gy.at<float>(y, x);
-        sum = std::abs(sum / (x1 - x0 + 1));
+        column_steps.clear();
+        for (int x = x0; x <= x1; ++x) column_steps.push_back(gy.at<float>(y, x));
+        across = std::abs(MedianOf(column_steps));
       }
-      step.push_back(sum);
-      peak = std::max(peak, sum);
+      step.push_back(across);
+      peak = std::max(peak, across);
     }
     for (size_t j = 0; j < step.size(); ++j) {
       const double w = std::max(0.0, step[j] - 0.5 * peak);

@@ -116,6 +116,16 @@ inline constexpr double kLimbOffsetMaxPx = 4.0;
 // carried through the outlines) use the part above the horizon in every case.
 inline constexpr int kHorizonGuardPx = 2;
 
+// Row (template coordinates) of the horizon of the plate's reflection in a mirror sphere
+// `image` (CV_32F, `mask` CV_8U): the strongest vertical step across the central columns
+// (|x| <= 0.5 R) between 0.3 R above and 0.7 R below the centre, if it stands 4 times above the
+// median step there; -1 if there is none (a matte sphere, a backlit one). The step of a row is
+// the median over those columns: the horizon crosses them all, a lamp's reflection only some.
+// Their mean took a soft box's bright reflection just above the horizon for it (POV-Ray
+// front_softbox), and the cut below it then ran through the lamp, whose cut edge locked the
+// rows to the pixel grid (0.06-0.08 px of scatter, 0.014 px found at the real horizon).
+int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, double radius_px);
+
 // Both spheres' appearances (0 left, 1 right); invalid appearance if too few samples.
 // `recentre` (footage without clean silhouettes): the templates are framed again around the
 // rough centres shifted by provisional offsets, columns from the outline, rows from the plate

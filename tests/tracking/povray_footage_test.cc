@@ -14,6 +14,7 @@
 // its scenes are unchanged (the folder's scene hash): 20 frames per case, 2 exposure slices.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -125,6 +126,27 @@ TEST_P(PovrayFootage, StatedOffsetUncertaintyCoversTheBias) {
           << names[k] << " " << axes[ax] << ": bias " << s.bias(ax) << " px, stated +-"
           << s.stated_err(ax) << " px";
     }
+  }
+}
+
+// The scatter alone, per sphere, in every case (CTest `povray.scatter.CASE`), also those short
+// of the targets for other reasons (front_softbox's columns): within the 0.05 px, or,
+// where the footage's own Cramér-Rao bound is above that (under-exposed), within
+// kScatterBoundFactor of the bound.
+TEST_P(PovrayFootage, ScatterWithinTheTargetOrTheFootagesBound) {
+  const Case& c = GetParam();
+  const TrackAccuracy a = MeasureTrackAccuracy(Footage(c), TestMethod(), 2);
+  ASSERT_EQ(a.frames, kFrames);
+  const char* names[2] = {"left", "right"};
+  for (int k = 0; k < 2; ++k) {
+    const SphereAccuracy& s = a.sphere[k];
+    const double limit = std::isfinite(s.scatter_bound)
+                             ? std::max(kScatterTargetPx, kScatterBoundFactor * s.scatter_bound)
+                             : kScatterTargetPx;
+    std::printf("[ stats    ] %s %s: scatter %.3f px, bound %.3f px, limit %.3f px\n", c.name,
+                names[k], s.scatter, s.scatter_bound, limit);
+    EXPECT_LE(s.scatter, limit) << names[k] << " scatter about the bias, px (bound "
+                                << s.scatter_bound << ")";
   }
 }
 

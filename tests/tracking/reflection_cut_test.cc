@@ -10,6 +10,7 @@
 #include <cmath>
 #include <random>
 
+#include "tracking/appearance_model.h"
 #include "tracking/disc_coverage.h"
 #include "tracking/frame_source.h"
 #include "tracking/track.h"
@@ -104,6 +105,37 @@ TEST(ReflectionCut, ARisingMirrorSphereDoesNotFollowItsReflection) {
   // Matched with its reflection the row would follow the horizon by a good part of
   // kHorizonPerLift; left out, it does not follow it at all.
   EXPECT_LT(std::abs(slope), 0.1 * kHorizonPerLift);
+}
+
+// The horizon of the plate's reflection, found in an appearance that also holds a soft box's
+// reflection just above it: a disc of radius 4.5 px, saturated, 5 px above the horizon and 9
+// of the 25 central columns wide, over a dim sphere (7) and a dim plate reflection (30 below the
+// horizon), the levels of the POV-Ray front_softbox spheres. The lamp's lower edge steps 8x
+// more than the horizon over its columns and 3x more averaged over all the central columns;
+// the horizon crosses all of them.
+TEST(ReflectionCut, ASoftBoxAboveTheHorizonIsNotTakenForIt) {
+  constexpr int kHalf = 28;
+  constexpr double kRadius = 23.75;
+  constexpr int kHorizonRow = kHalf + 4;  // first row of the plate's reflection
+  for (const double lamp_col : {-5.0, 0.0, 6.0}) {
+    Appearance a;
+    a.half = kHalf;
+    a.radius_px = kRadius;
+    a.image = cv::Mat(2 * kHalf + 1, 2 * kHalf + 1, CV_32F);
+    a.mask = cv::Mat::zeros(a.image.size(), CV_8U);
+    for (int y = 0; y < a.image.rows; ++y) {
+      for (int x = 0; x < a.image.cols; ++x) {
+        const double dx = x - kHalf, dy = y - kHalf;
+        const double lamp = 0.5 * std::erfc((std::hypot(dx - lamp_col, dy + 4.0) - 4.5) / 0.7);
+        a.image.at<float>(y, x) = float((y >= kHorizonRow ? 30.0 : 7.0) + 248.0 * lamp);
+        a.mask.at<uint8_t>(y, x) = std::hypot(dx, dy) <= kRadius ? 1 : 0;
+      }
+    }
+    const int row = ReflectionHorizon(a.image, a.mask, a.half, a.radius_px);
+    // The Sobel step straddles the two rows about the change.
+    EXPECT_GE(row, kHorizonRow - 1) << "lamp at column " << lamp_col;
+    EXPECT_LE(row, kHorizonRow) << "lamp at column " << lamp_col;
+  }
 }
 
 }  // namespace
