@@ -19,6 +19,7 @@ constexpr std::pair<Lighting, const char*> kLightingNames[] = {
     {Lighting::kUnderexposed, "underexposed"},
     {Lighting::kOverexposed, "overexposed"},
     {Lighting::kMirrorPlate, "mirror_plate"},
+    {Lighting::kRingLight, "ring_light"},
 };
 
 constexpr double kMm = 1000.0;  // scene units per metre
@@ -96,6 +97,22 @@ std::string Lights(Lighting l) {
              "emission 0.85 } } }\n";
     case Lighting::kOneSidedGainRamp:
       return "light_source { <-500, 150, -300> rgb 1.3 }\nbackground { rgb 0 }\n";
+    case Lighting::kRingLight: {
+      // The lighting machine-vision setups use on axis: 16 LEDs on a ring 60 mm in radius
+      // around the lens (10 mm in front of the pinhole, 0.7 m away), behind a glowing diffuser
+      // ring that the steel mirrors near each sphere's centre. Not used to tune the tracker.
+      std::string s;
+      constexpr int kLeds = 16;
+      for (int i = 0; i < kLeds; ++i) {
+        const double a = 2.0 * M_PI * (i + 0.5) / kLeds;
+        s += "light_source { " + Vec(60 * std::cos(a), 60 * std::sin(a), -690) + " rgb 0.09 }\n";
+      }
+      return s +
+             "torus { 60, 6 rotate -90 * x translate <0, 0, -688>\n"
+             "  texture { pigment { rgb 1 } finish { ambient 0 diffuse 0 emission 0.9 } }\n"
+             "  no_shadow }\n"
+             "background { rgb 0 }\n";
+    }
   }
   return "";
 }

@@ -39,6 +39,7 @@ enum class Lighting {
   kUnderexposed,      // front_point at a quarter of the exposure
   kOverexposed,       // front_point at four times the exposure (highlights and plate clip)
   kMirrorPlate,       // front_point on a polished plate that mirrors the spheres
+  kRingLight,         // polished steel lit by an LED ring around the lens, dark background
 };
 std::string ToString(Lighting l);
 // Throws UsageError naming the option and listing the accepted names.
