@@ -36,6 +36,12 @@ constexpr double kHorizonMinRatio = 4.0;
 constexpr int kHorizonWindowPx = 4;
 constexpr double kHorizonMovesPerPx = 0.005;
 constexpr double kMinHeightSpanPx = 3.0;
+// Re-centring's row shift (LearnAppearances): a sphere's lowest (plate - R - row) counts when
+// this many of its learning samples, and this fraction of them, lie within kRestShiftSupportPx
+// above it (a resting sphere's rows scatter by a few tenths of a pixel).
+constexpr size_t kRestShiftMinSupport = 3;
+constexpr double kRestShiftSupportFraction = 0.1;
+constexpr double kRestShiftSupportPx = 1.0;
 // Floor of the symmetry offset's uncertainty, px (ECC's own repeatability on a template).
 constexpr double kSymmetryErrFloorPx = 0.01;
 
@@ -272,13 +278,25 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
     radius_px = 0.5 * (radii[0] + radii[1]);
     if (radius_from_outline) *radius_from_outline = true;
   }
+  // Each sphere's lowest (plate - R - row) that enough of its samples support (kRestShift*):
+  // a registration that failed in one learning frame (17 px below the resting cluster on a
+  // 200-frame under-exposed film, and the template then framed 17 px off) is no sphere sinking
+  // into the plate. The smallest over both spheres; the plain minimum if neither has such a
+  // cluster (no sphere rests long).
   double shift = std::numeric_limits<double>::infinity();
+  double lowest = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 2; ++k) {
+    std::vector<double> g;
     for (size_t i = 0; i < used.size(); ++i) {
-      const double g = samples[used[i]].plate_row - radius_px - out[k].registered[i].y();
-      if (std::isfinite(g)) shift = std::min(shift, g);
+      g.push_back(samples[used[i]].plate_row - radius_px - out[k].registered[i].y());
+      if (std::isfinite(g.back())) lowest = std::min(lowest, g.back());
     }
+    const size_t support = std::max(kRestShiftMinSupport,
+                                    size_t(std::ceil(kRestShiftSupportFraction * double(g.size()))));
+    const double v = LowestSupported(g, kRestShiftSupportPx, support);
+    if (std::isfinite(v)) shift = std::min(shift, v);
   }
+  if (!std::isfinite(shift)) shift = lowest;
   if (!std::isfinite(shift)) shift = 0;
   const int final_half = int(std::ceil(radius_px + kTemplateMarginPx));
   std::array<std::vector<Eigen::Vector2d>, 2> start;
