@@ -123,7 +123,7 @@ inline constexpr int kHorizonGuardPx = 2;
 // the median over those columns: the horizon crosses them all, a lamp's reflection only some.
 // Their mean took a soft box's bright reflection just above the horizon for it (POV-Ray
 // front_softbox), and the cut below it then ran through the lamp, whose cut edge locked the
-// rows to the pixel grid (0.06-0.08 px of scatter, 0.014 px found at the real horizon).
+// rows to the pixel grid (a row scatter of 0.06-0.08 px; 0.014 px with the real horizon).
 int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, double radius_px);
 
 // Both spheres' appearances (0 left, 1 right); invalid appearance if too few samples.

@@ -1,8 +1,6 @@
 #pragma once
 // Robust order statistics of the template method (appearance_model.cc, limb_fit.cc), one
 // definition each.
-
-// The median of a sample (the upper middle element for an even count), NaN for an empty one.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,6 +8,7 @@
 
 namespace dimer::tracking {
 
+// The median of a sample (the upper middle element for an even count), NaN for an empty one.
 inline double MedianOf(std::vector<double> v) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
   std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
