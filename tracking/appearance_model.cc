@@ -107,9 +107,9 @@ namespace {
 // the plate: per sample, the horizon's sub-pixel row (centroid of the vertical step across the
 // central columns, their median as in ReflectionHorizon, within kHorizonWindowPx rows) against
 // the height (plate - row), fitted by a straight line; it moves when the slope exceeds
-// kHorizonMovesPerPx and three standard errors
-// over heights spanning kMinHeightSpanPx. A resting sphere (no span) or a renderer whose
-// reflection is painted on the sphere (no slope) keeps its whole appearance.
+// kHorizonMovesPerPx and three standard errors over heights spanning kMinHeightSpanPx. A resting
+// sphere (no span) or a renderer whose reflection is painted on the sphere (no slope) keeps its
+// whole appearance.
 bool HorizonMoves(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
                   const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
                   int half, int horizon, double radius_px) {
