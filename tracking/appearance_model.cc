@@ -21,8 +21,10 @@ constexpr int kMinSamplesPerPixel = 2;
 // Fewer usable samples than this and no appearance is learnt.
 constexpr size_t kMinSamples = 3;
 // Registration of the samples to the mean: whole-pixel search, px (rough centres of the
-// existing methods scatter by up to ~2 px on footage they do not suit).
+// existing methods scatter by up to ~2 px on footage they do not suit, at R = 23.75 px), the
+// larger of this and kLearnSearchR times the radius (Reach, appearance_model.h).
 constexpr int kLearnSearchPx = 4;
+constexpr double kLearnSearchR = 0.16;
 // Symmetry: levels above this quantile of the appearance are clipped to it (highlights).
 constexpr double kSymmetryClipQuantile = 0.9;
 // Symmetry from the rim: the ring [R - kRimInsidePx, R + kRimOutsidePx] holds the outline and
@@ -210,6 +212,7 @@ void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSamp
               const std::vector<size_t>& used, int k, int half, double radius_px,
               int cut_row, std::vector<Eigen::Vector2d> pos, const LearnOptions& learn,
               LearntSphere* s) {
+  const int search_px = int(std::lround(Reach(kLearnSearchPx, kLearnSearchR, radius_px)));
   Appearance a;
   for (int pass = 0; pass <= learn.passes; ++pass) {
     a = Average(images, samples, used, pos, k, half, radius_px, cut_row);
@@ -217,7 +220,7 @@ void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSamp
     // Register every sample to the mean (the last pass only to report where they sit); each
     // sample on its own, so any thread count gives the same positions.
     ParallelFor(used.size(), learn.threads, [&](size_t i) {
-      const Located l = LocateAppearance(samples[used[i]].image, a, pos[i], kLearnSearchPx,
+      const Located l = LocateAppearance(samples[used[i]].image, a, pos[i], search_px,
                                          ContextOf(samples[used[i]], k));
       if (l.ok) pos[i] = l.position;
     });
@@ -253,7 +256,8 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   // The final offsets are estimated on the whole track (appearance_model.h). The final
   // appearances leave out the plate's reflection where its horizon moves (kHorizonGuardPx).
   const double wide_radius = fit_radius ? kRecentreRadiusHigh * radius_px : radius_px;
-  const int half = int(std::ceil((recentre ? wide_radius + kRecentreSearchPx : radius_px) +
+  const double recentre_search = Reach(kRecentreSearchPx, kRecentreSearchR, radius_px);
+  const int half = int(std::ceil((recentre ? wide_radius + recentre_search : radius_px) +
                                  kTemplateMarginPx));
   for (int k = 0; k < 2; ++k) {
     out[k].samples = used;
@@ -268,7 +272,7 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
     LimbFitOptions lo;
     lo.radius_px = radius_px;
     lo.fit_radius = fit_radius;
-    lo.max_shift_px = kRecentreSearchPx;
+    lo.max_shift_px = recentre_search;
     const LimbFit limb = FitLimb(out[k].appearance, lo);
     if (!limb.ok) continue;
     col_shift[k] = limb.centre.x();
@@ -310,7 +314,7 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   for (int k = 0; k < 2; ++k) {
     LimbFitOptions lo;
     lo.radius_px = radius_px;
-    lo.max_shift_px = kLimbOffsetMaxPx;
+    lo.max_shift_px = Reach(kLimbOffsetMaxPx, kLimbOffsetMaxR, radius_px);
     const LimbFit whole = FitLimb(out[k].appearance, lo);
     if (whole.ok) {
       out[k].whole_outline_col = OffsetEstimate{whole.centre.x(), whole.centre_err.x(),
@@ -456,7 +460,7 @@ OffsetEstimate LimbColumnOffset(const Appearance& a_whole, double row_offset) {
   const Appearance a = UpperPart(a_whole);
   LimbFitOptions lo;
   lo.radius_px = a.radius_px;
-  lo.max_shift_px = kLimbOffsetMaxPx;
+  lo.max_shift_px = Reach(kLimbOffsetMaxPx, kLimbOffsetMaxR, a.radius_px);
   lo.row = row_offset;
   const LimbFit limb = FitLimb(a, lo);
   if (!limb.ok) return OffsetEstimate{0, NAN, 0, "none"};
@@ -505,7 +509,8 @@ OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to
   t.mask = common;
   LimbFitOptions lo;
   lo.radius_px = from.radius_px;
-  lo.max_shift_px = kTransferOutlineMaxShiftPx;
+  lo.max_shift_px =
+      Reach(kTransferOutlineMaxShiftPx, kTransferOutlineMaxShiftR, from.radius_px);
   lo.one_side_ok = true;
   const LimbFit a = FitLimb(f, lo), b = FitLimb(t, lo);
   if (!a.ok || !b.ok) return OffsetEstimate{0, NAN, 0, "none"};

@@ -33,6 +33,7 @@
 #include <opencv2/core.hpp>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <string>
@@ -94,13 +95,28 @@ struct LearntSphere {
   OffsetEstimate whole_outline_col{0, std::numeric_limits<double>::quiet_NaN(), 0, "none"};
 };
 
+// How far the learning reaches for a sphere: the larger of a floor in pixels (blur, noise) and
+// a fraction of the radius. The rough centres' errors are a fraction of the radius (a
+// centroid on a front-lit steel sphere sits ~0.45 R low, on its reflection of the plate), so
+// reaches fixed in pixels failed at a finer scale: at 0.1 mm/px (R = 47.5 px) the first
+// template cut off the sphere's top and one column was 4.3 px off (docs/BENCHMARKS.md,
+// "Scale, defocus and bit depth"). The fractions are set so that at the scale the reaches were
+// tuned on (R = 23.75 px) the floors hold.
+inline double Reach(double floor_px, double per_radius, double radius_px) {
+  return std::max(floor_px, per_radius * radius_px);
+}
+
 // Re-centring (footage without clean silhouettes): the first template reaches this much beyond
-// the radius to hold a sphere whose rough centre is off by up to that, px; with the radius
-// unknown, it is sized for kRecentreRadiusHigh times the guess.
+// the radius to hold a sphere whose rough centre is off by up to that,
+// Reach(kRecentreSearchPx, kRecentreSearchR, R); with the radius unknown, it is sized for
+// kRecentreRadiusHigh times the guess.
 inline constexpr double kRecentreSearchPx = 14.0;
+inline constexpr double kRecentreSearchR = 0.58;
 inline constexpr double kRecentreRadiusHigh = 1.3;
-// The limb column offset of a re-centred template is within this of its reference point, px.
+// The limb column offset of a re-centred template is within
+// Reach(kLimbOffsetMaxPx, kLimbOffsetMaxR, R) of its reference point.
 inline constexpr double kLimbOffsetMaxPx = 4.0;
+inline constexpr double kLimbOffsetMaxR = 0.16;
 
 // A steel sphere on a plate reflects the plate in its lower part, and on real optics that
 // reflection is not fixed to the sphere: its horizon (the plate's far edge seen in the sphere, a
@@ -194,9 +210,10 @@ OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to
 // "plate_contact_of_other_both"); else the one there is.
 OffsetEstimate CombineRowTransfers(const OffsetEstimate& registered,
                                    const OffsetEstimate& outline);
-// Outline fits for the transfer reach this far from the reference: the bouncing sphere's template
-// is framed on its lowest frames and can sit more than kLimbOffsetMaxPx above its centre (POV-Ray
-// A_r 2.0, 40 frames: 4.4 px), px.
+// Outline fits for the transfer reach Reach(kTransferOutlineMaxShiftPx, ...R, R) from the
+// reference: the bouncing sphere's template is framed on its lowest frames and can sit more
+// than the limb offset's reach above its centre (POV-Ray A_r 2.0, 40 frames: 4.4 px).
 inline constexpr double kTransferOutlineMaxShiftPx = 6.0;
+inline constexpr double kTransferOutlineMaxShiftR = 0.25;
 
 }  // namespace dimer::tracking
