@@ -124,18 +124,46 @@ int PlateStepIndex(const std::vector<double>& profile, double* size) {
   return StrongestStep(profile, size);
 }
 
+// Rows kBracketRows off the step a sharp edge has levelled off, a defocused one not: through a
+// lens blurring by 2 px (Gaussian sigma), 4 % of the step is still to come there, the coverage
+// sum counts it on the wrong side, and the row came out 0.2 px high on average, 0.37 px at worst
+// (POV-Ray defocus_2px, docs/BENCHMARKS.md "Scale, defocus and bit depth"). So the bracket
+// widens, one row on each side at a time up to kMaxBracketRows, while a row at either end still
+// differs from the next one in by more than kBracketTailFraction of the step (and half the
+// smallest step that counts as an edge, above the noise), and that difference is the tail of
+// this edge, decaying outward, not the start of another one.
+constexpr int kMaxBracketRows = kPlateBandHalfPx - 1;
+constexpr double kBracketTailFraction = 0.01;
+
+int BracketRows(const std::vector<double>& p, int k, double min_step) {
+  const int n = int(p.size());
+  int b = kBracketRows;
+  const double sign = p[k + 1] > p[k] ? 1 : -1;
+  while (b < kMaxBracketRows && k - b - 1 >= 0 && k + b + 1 < n) {
+    const double t = std::max(kBracketTailFraction * std::abs(p[k + b] - p[k - b]), 0.5 * min_step);
+    const double top = sign * (p[k - b + 1] - p[k - b]), top_out = sign * (p[k - b] - p[k - b - 1]);
+    const double bot = sign * (p[k + b] - p[k + b - 1]), bot_out = sign * (p[k + b + 1] - p[k + b]);
+    const bool top_tail = top > t && top_out < top;
+    const bool bot_tail = bot > t && bot_out < bot;
+    if (!top_tail && !bot_tail) break;
+    ++b;
+  }
+  return b;
+}
+
 double EdgeRowInProfile(const std::vector<double>& profile, int first_row, double min_step) {
   const int n = int(profile.size());
   double best = 0;
   const int k = StrongestStep(profile, &best);
   if (k < 0 || best < min_step || k - kBracketRows < 0 || k + kBracketRows >= n) return kNaN;
-  const double above = profile[k - kBracketRows], below = profile[k + kBracketRows];
+  const int b = BracketRows(profile, k, min_step);
+  const double above = profile[k - b], below = profile[k + b];
   if (std::abs(below - above) < min_step) return kNaN;
-  double covered = 0;  // sum of lower-side fractions over rows k-2 .. k+2
-  for (int j = k - kBracketRows + 1; j <= k + kBracketRows - 1; ++j) {
+  double covered = 0;  // sum of lower-side fractions over rows k-b+1 .. k+b-1
+  for (int j = k - b + 1; j <= k + b - 1; ++j) {
     covered += std::clamp((profile[j] - above) / (below - above), 0.0, 1.0);
   }
-  return first_row + (k + kBracketRows - 1) + 0.5 - covered;
+  return first_row + (k + b - 1) + 0.5 - covered;
 }
 
 double FindPlateRowCoarse(const cv::Mat& frame) {
