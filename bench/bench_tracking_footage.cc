@@ -5,10 +5,12 @@
 //   bench_tracking_footage [frames] [subframes] [cache_dir] [methods]
 //   bench_tracking_footage --ecc [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --learn-passes [frames] [subframes] [cache_dir]
+//   bench_tracking_footage --camera [frames] [subframes] [cache_dir]
 // (--ecc: what ECC's stopping rule trades, tracking/template_locator.h EccStop; --learn-passes:
 // what the template learning's passes trade, tracking/appearance_model.h LearnOptions. Every
 // case tracked by `auto` with each rule; the accuracy, how far the answers move from the first
-// rule's, and the CPU time per frame.)
+// rule's, and the CPU time per frame. --camera: front-lit steel through other cameras,
+// tests/footage/camera_variants.h: another scale, defocus, 16 bit; every method.)
 // Defaults: 40 frames of the hop motion, 6 exposure slices (300 us at 2000 frames/s), cache
 // folder bench_footage_cache (footage is reused while its scenes are unchanged), methods
 // "auto,centroid,template" (comma-separated `--method` names of tracking/refiner.h; auto is the
@@ -27,6 +29,7 @@
 #include <thread>
 #include <vector>
 
+#include "tests/footage/camera_variants.h"
 #include "tests/footage/povray_footage.h"
 #include "tests/footage/track_accuracy.h"
 
@@ -38,6 +41,7 @@ struct Case {
   std::string name;
   Lighting lighting;
   double aspect_ratio;
+  int camera = -1;  // index into CameraVariants(); -1: the lighting's own camera
 };
 
 std::vector<std::string> SplitList(const std::string& s) {
@@ -78,10 +82,19 @@ std::vector<Case> AllCases() {
   return cases;
 }
 
+// front_point through each camera of tests/footage/camera_variants.h.
+std::vector<Case> CameraCases() {
+  std::vector<Case> cases;
+  const std::vector<CameraVariant> v = CameraVariants();
+  for (size_t i = 0; i < v.size(); ++i) cases.push_back({v[i].name, Lighting::kFrontPoint, 3.9, int(i)});
+  return cases;
+}
+
 // The footage of `c` in `cache` (rendered when missing or changed); its folder.
 std::string Footage(const Case& c, size_t frames, int slices, const std::string& cache,
                     double* povray_cpu) {
-  FootageOptions o = FootageOptions::For(c.lighting);
+  FootageOptions o = c.camera >= 0 ? FootageFor(CameraVariants()[size_t(c.camera)])
+                                   : FootageOptions::For(c.lighting);
   o.shape.aspect_ratio = c.aspect_ratio;
   o.subframes = slices;
   o.reuse = true;
@@ -198,6 +211,11 @@ int LearnPassesTrade(size_t frames, int slices, const std::string& cache) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const bool camera = argc > 1 && std::string(argv[1]) == "--camera";
+  if (camera) {
+    --argc;
+    ++argv;
+  }
   if (argc > 1 && (std::string(argv[1]) == "--ecc" || std::string(argv[1]) == "--learn-passes")) {
     const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 40;
     const int slices = argc > 3 ? std::atoi(argv[3]) : 6;
@@ -210,12 +228,12 @@ int main(int argc, char** argv) {
   const std::string cache = argc > 3 ? argv[3] : "bench_footage_cache";
   const std::vector<std::string> methods =
       SplitList(argc > 4 ? argv[4] : "auto,centroid,template");
-  const std::vector<Case> cases = AllCases();
+  const std::vector<Case> cases = camera ? CameraCases() : AllCases();
   std::filesystem::create_directories(cache);
-  std::printf("POV-Ray footage: %zu frames per case, 640x320, 0.2 mm/px, 300 us exposure in %d "
-              "slices, PSF 0.5 px, noise 2 grey levels, 8 bit; %u cores, load average %.1f at "
-              "start\n\n",
-              frames, slices, std::thread::hardware_concurrency(), LoadAverage());
+  std::printf("POV-Ray footage: %zu frames per case, 640x320, %s, 300 us exposure in %d "
+              "slices, noise 2 grey levels; %u cores, load average %.1f at start\n\n",
+              frames, camera ? "front_point, the camera as named" : "0.2 mm/px, PSF 0.5 px, 8 bit",
+              slices, std::thread::hardware_concurrency(), LoadAverage());
   // The harness's table with two columns in front.
   const std::string header = AccuracyHeader();
   const size_t line2 = header.find('\n') + 1;

@@ -22,7 +22,9 @@
 #include <filesystem>
 #include <ostream>
 #include <string>
+#include <vector>
 
+#include "tests/footage/camera_variants.h"
 #include "tests/footage/povray_footage.h"
 #include "tests/footage/track_accuracy.h"
 #include "tracking/frame_source.h"
@@ -50,6 +52,7 @@ struct Case {
   const char* name;
   Lighting lighting;
   double aspect_ratio;
+  int camera = -1;  // index into CameraVariants() (front_point seen by another camera); -1: none
 };
 
 // gtest prints the parameter by name (test names and messages), not as bytes.
@@ -57,7 +60,8 @@ void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
 
 // Renders (or reuses) the case's footage and returns its folder.
 std::string Footage(const Case& c) {
-  FootageOptions o = FootageOptions::For(c.lighting);
+  FootageOptions o = c.camera >= 0 ? FootageFor(CameraVariants()[size_t(c.camera)])
+                                   : FootageOptions::For(c.lighting);
   o.shape.aspect_ratio = c.aspect_ratio;
   o.subframes = kSlices;
   o.reuse = true;
@@ -218,6 +222,20 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"front_point_ar2_0", Lighting::kFrontPoint, 2.0},
                       Case{"front_point_ar2_1", Lighting::kFrontPoint, 2.1},
                       Case{"front_point_ar2_3", Lighting::kFrontPoint, 2.3}),
+    [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
+
+// Front-lit steel through cameras the tracker was not tuned on (tests/footage/camera_variants.h).
+std::vector<Case> CameraCases() {
+  std::vector<Case> cases;
+  const std::vector<CameraVariant> v = CameraVariants();
+  for (size_t i = 0; i < v.size(); ++i) {
+    cases.push_back(Case{v[i].name, Lighting::kFrontPoint, 3.9, int(i)});
+  }
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cameras, PovrayFootage, ::testing::ValuesIn(CameraCases()),
     [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
 
 }  // namespace

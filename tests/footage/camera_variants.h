@@ -1,0 +1,39 @@
+#pragma once
+// Cameras the tracker was not tuned on: the front-lit steel scene (Lighting::kFrontPoint) filmed
+// at another scale, out of focus, or at 16 bits. Every other POV-Ray case is 0.2 mm/px
+// (sphere radius 23.75 px), PSF 0.5 px, 8 bit; a lab's lens and camera give other figures, and
+// the tracker's reaches, bands and thresholds were set there. Used by the tests
+// (tests/tracking/povray_footage_test.cc) and the bench (bench_tracking_footage --camera).
+#include <vector>
+
+#include "tests/footage/povray_footage.h"
+
+namespace dimer::footage {
+
+struct CameraVariant {
+  const char* name;
+  double m_per_px;      // scale at the dimer plane
+  double psf_sigma_px;  // Gaussian PSF (defocus)
+  int bit_depth;
+};
+
+inline std::vector<CameraVariant> CameraVariants() {
+  return {
+      {"fine_scale", 1.0e-4, 0.5, 8},    // R = 47.5 px: a macro lens, or a larger sensor
+      {"coarse_scale", 4.0e-4, 0.5, 8},  // R = 11.9 px: a wide field for a long drift
+      {"defocus_1px", 2.0e-4, 1.0, 8},   // the dimer plane slightly out of focus
+      {"defocus_2px", 2.0e-4, 2.0, 8},   // a shallow depth of field at full aperture
+      {"bit16", 2.0e-4, 0.5, 16},        // a 12-bit sensor saved in 16-bit files
+  };
+}
+
+// Front-lit steel (front_point) with the variant's camera.
+inline FootageOptions FootageFor(const CameraVariant& v) {
+  FootageOptions o = FootageOptions::For(Lighting::kFrontPoint);
+  o.camera.m_per_px = v.m_per_px;
+  o.psf_sigma_px = v.psf_sigma_px;
+  o.bit_depth = v.bit_depth;
+  return o;
+}
+
+}  // namespace dimer::footage
