@@ -33,13 +33,14 @@
 #include <opencv2/core.hpp>
 
 #include <Eigen/Core>
-#include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "tracking/template_locator.h"
+#include "tracking/tolerances.h"
 
 namespace dimer::tracking {
 
@@ -95,16 +96,11 @@ struct LearntSphere {
   OffsetEstimate whole_outline_col{0, std::numeric_limits<double>::quiet_NaN(), 0, "none"};
 };
 
-// How far the learning reaches for a sphere: the larger of a floor in pixels (blur, noise) and
-// a fraction of the radius. The rough centres' errors are a fraction of the radius (a
-// centroid on a front-lit steel sphere sits ~0.45 R low, on its reflection of the plate), so
-// reaches fixed in pixels failed at a finer scale: at 0.1 mm/px (R = 47.5 px) the first
-// template cut off the sphere's top and one column was 4.3 px off (docs/BENCHMARKS.md,
-// "Scale, defocus and bit depth"). The fractions are set so that at the scale the reaches were
-// tuned on (R = 23.75 px) the floors hold.
-inline double Reach(double floor_px, double per_radius, double radius_px) {
-  return std::max(floor_px, per_radius * radius_px);
-}
+// How far the learning reaches for a sphere (Reach, tolerances.h): the rough centres' errors
+// are a fraction of the radius (a centroid on a front-lit steel sphere sits ~0.45 R low, on its
+// reflection of the plate), so reaches fixed in pixels failed at a finer scale: at 0.1 mm/px
+// (R = 47.5 px) the first template cut off the sphere's top and one column was 4.3 px off
+// (docs/BENCHMARKS.md, "Scale, defocus and bit depth").
 
 // Re-centring (footage without clean silhouettes): the first template reaches this much beyond
 // the radius to hold a sphere whose rough centre is off by up to that,
@@ -125,12 +121,18 @@ inline constexpr double kLimbOffsetMaxR = 0.16;
 // row drifted by 0.05 px per px of lift on the POV-Ray footage (docs/BENCHMARKS.md). So when the
 // horizon of either sphere moves with its height above the plate in the learning frames (a
 // straight-line fit, appearance_model.cc HorizonMoves), both final appearances leave out
-// everything from kHorizonGuardPx above their horizon down (2 px did better there than 4 or 6);
+// everything from HorizonGuard(R) above their horizon down (at R = 23.75 px, 2 px did better
+// there than 4 or 6; the guard scales with the radius: at 0.1 mm/px 2 px left a bouncing
+// sphere's row drifting 0.18 px over its lift);
 // what remains is fixed to the sphere: the outline against the backdrop, the lamps' highlights.
 // Where it does not move (our renderer paints the reflection on the sphere) the whole appearance
 // is kept: cut, it located impacts 2x less precisely there. The outline fits (columns, the row
 // carried through the outlines) use the part above the horizon in every case.
 inline constexpr int kHorizonGuardPx = 2;
+inline constexpr double kHorizonGuardR = 0.084;
+inline int HorizonGuard(double radius_px) {
+  return int(std::lround(Reach(kHorizonGuardPx, kHorizonGuardR, radius_px)));
+}
 
 // Row (template coordinates) of the horizon of the plate's reflection in a mirror sphere
 // `image` (CV_32F, `mask` CV_8U): the strongest vertical step across the central columns

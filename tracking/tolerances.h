@@ -2,7 +2,17 @@
 // Every tolerance, margin and iteration cap of the tracking library, named once with its unit.
 // They derive from two base facts: pixels are the unit of image geometry, and the spheres are
 // tens of pixels across, so a few pixels of margin separate a sphere from its surroundings.
+#include <algorithm>
+
 namespace dimer::tracking {
+
+// A reach that scales with the sphere: the larger of a floor in pixels (blur, noise, a pixel's
+// own extent) and a fraction of the radius in pixels (errors that grow with the sphere's image:
+// a rough centre's offset, how differently two appearances are framed). Each fraction is set so
+// that at the scale the floors were tuned on (0.2 mm/px, R = 23.75 px) the floor holds.
+inline double Reach(double floor_px, double per_radius, double radius_px) {
+  return std::max(floor_px, per_radius * radius_px);
+}
 
 // Half-size added to the sphere radius for a measurement window, px. Must exceed the largest
 // frame-to-frame prediction error (a sphere moves < 1 px per frame at 2000 frames/s), else the

@@ -18,9 +18,15 @@ namespace {
 // headroom (the silhouette of a mirror sphere can look smaller than the sphere).
 constexpr double kProvisionalRadiusScale = 1.25;
 // Template method: whole-pixel search around a prediction (< 1 px per frame at 2000 frames/s)
-// and around an acquisition's coarse match (its parabola is within ~0.5 px), px.
+// and around an acquisition's coarse match, px. The coarse match is the first sphere's
+// appearance, and the second sphere's is framed differently (a sphere that never rests is
+// framed on its lowest learning frames, above its centre: 3 px at 0.2 mm/px, 6 px at 0.1 mm/px),
+// so the acquisition reaches Reach(kAcquireSearchPx, kAcquireSearchR, R) (appearance_model.h):
+// at 0.1 mm/px a 4 px search missed, the first frame came out 1.9 px off, and following,
+// which moves at most a pixel a frame, took three frames to catch up.
 constexpr int kFollowSearchPx = 2;
 constexpr int kAcquireSearchPx = 4;
+constexpr double kAcquireSearchR = 0.16;
 // A learnt appearance is found where its correlation coefficient reaches this (a present sphere
 // scores > 0.9 at sigma = 2; an empty window or the plate scores far less).
 constexpr double kMinTemplateScore = 0.5;
@@ -208,7 +214,9 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
   if (uses_template()) {
     for (size_t i = 0; i < found.size(); ++i) {
       const Eigen::Vector2d* other = found.size() == 2 ? &found[1 - i].centre : nullptr;
-      found[i] = Locate(frame, slot_of[i], found[i].centre, other, out->plate_row, kAcquireSearchPx);
+      const int search_px =
+          int(std::lround(Reach(kAcquireSearchPx, kAcquireSearchR, radius_px_)));
+      found[i] = Locate(frame, slot_of[i], found[i].centre, other, out->plate_row, search_px);
     }
   }
   for (size_t i = 0; i < found.size(); ++i) {
