@@ -254,7 +254,7 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   // gives the row shift (no sphere sinks below plate - R, so the smallest (plate - R - row) over
   // both spheres); both appearances are then learnt again around the rough centres so shifted.
   // The final offsets are estimated on the whole track (appearance_model.h). The final
-  // appearances leave out the plate's reflection where its horizon moves (kHorizonGuardPx).
+  // appearances leave out the plate's reflection where its horizon moves (HorizonGuard).
   const double wide_radius = fit_radius ? kRecentreRadiusHigh * radius_px : radius_px;
   const double recentre_search = Reach(kRecentreSearchPx, kRecentreSearchR, radius_px);
   const int half = int(std::ceil((recentre ? wide_radius + recentre_search : radius_px) +
@@ -332,14 +332,23 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
     moves = moves || (horizon[k] >= 0 && HorizonMoves(images, samples, used, out[k].registered,
                                                       a.half, horizon[k], radius_px));
   }
-  if (!moves) return out;
+  std::array<LearntSphere, 2> cut = out;
   for (int k = 0; k < 2; ++k) {
     if (horizon[k] < 0) continue;
     LearnOne(images, samples, used, k, final_half, radius_px,
-             std::max(0, horizon[k] - kHorizonGuardPx), start[k], learn, &out[k]);
-    if (!out[k].appearance.valid()) return {};
+             std::max(0, horizon[k] - HorizonGuard(radius_px)), start[k], learn, &cut[k]);
+    if (!cut[k].appearance.valid()) return {};
   }
-  return out;
+  // Registered with the whole appearance, a sphere follows its own reflection as much as its
+  // outline and highlights where the reflection is most of what it shows (a lens blurring by
+  // 2 px: the outline and the highlights are faint), and the horizon barely moves against such
+  // positions. Measured against the positions the cut appearance registers, which nothing of
+  // the reflection pulls, it does (POV-Ray defocus_2px).
+  for (int k = 0; k < 2 && !moves; ++k) {
+    moves = horizon[k] >= 0 && HorizonMoves(images, samples, used, cut[k].registered,
+                                            cut[k].appearance.half, horizon[k], radius_px);
+  }
+  return moves ? cut : out;
 }
 
 OffsetEstimate SilhouetteOffset(const LearntSphere& s, int axis) {
@@ -444,7 +453,7 @@ OffsetEstimate SymmetryColumnOffset(const Appearance& a) {
   return e;
 }
 
-// The appearance above its plate reflection's horizon (less kHorizonGuardPx), where the outline
+// The appearance above its plate reflection's horizon (less HorizonGuard), where the outline
 // is the sphere's own and not a reflection's boundary; itself when it shows no horizon (a cut
 // template, a matte or backlit sphere).
 Appearance UpperPart(const Appearance& a) {
@@ -452,7 +461,7 @@ Appearance UpperPart(const Appearance& a) {
   if (horizon < 0) return a;
   Appearance u = a;
   u.mask = a.mask.clone();
-  u.mask.rowRange(std::max(0, horizon - kHorizonGuardPx), u.mask.rows).setTo(0);
+  u.mask.rowRange(std::max(0, horizon - HorizonGuard(a.radius_px)), u.mask.rows).setTo(0);
   return u;
 }
 
