@@ -86,7 +86,9 @@ std::vector<Case> AllCases() {
 std::vector<Case> CameraCases() {
   std::vector<Case> cases;
   const std::vector<CameraVariant> v = CameraVariants();
-  for (size_t i = 0; i < v.size(); ++i) cases.push_back({v[i].name, Lighting::kFrontPoint, 3.9, int(i)});
+  for (size_t i = 0; i < v.size(); ++i) {
+    cases.push_back({v[i].name, Lighting::kFrontPoint, 3.9, int(i)});
+  }
   return cases;
 }
 

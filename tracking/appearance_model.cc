@@ -22,7 +22,7 @@ constexpr int kMinSamplesPerPixel = 2;
 constexpr size_t kMinSamples = 3;
 // Registration of the samples to the mean: whole-pixel search, px (rough centres of the
 // existing methods scatter by up to ~2 px on footage they do not suit, at R = 23.75 px), the
-// larger of this and kLearnSearchR times the radius (Reach, appearance_model.h).
+// larger of this and kLearnSearchR times the radius (Reach, tolerances.h).
 constexpr int kLearnSearchPx = 4;
 constexpr double kLearnSearchR = 0.16;
 // Symmetry: levels above this quantile of the appearance are clipped to it (highlights).

@@ -46,7 +46,8 @@ TEST(PlateEdge, ADefocusedEdgeIsReadWhereItHasLevelledOff) {
       p[r] = 30 + 170 * covered;
     }
     // The smallest step that counts is the floor of a profile over many columns (2 levels).
-    worst = std::max(worst, std::abs(EdgeRowInProfile(p, 100, kPlateMinStepGreyLevels) - (100 + y)));
+    const double row = EdgeRowInProfile(p, 100, kPlateMinStepGreyLevels);
+    worst = std::max(worst, std::abs(row - (100 + y)));
   }
   std::printf("[ stats    ] blurred by sigma %.1f px: worst row error %.4f px\n", sigma, worst);
   EXPECT_LT(worst, 0.02);
