@@ -95,8 +95,7 @@ std::vector<Case> CameraCases() {
 // The footage of `c` in `cache` (rendered when missing or changed); its folder.
 std::string Footage(const Case& c, size_t frames, int slices, const std::string& cache,
                     double* povray_cpu) {
-  FootageOptions o = c.camera >= 0 ? FootageFor(CameraVariants()[size_t(c.camera)])
-                                   : FootageOptions::For(c.lighting);
+  FootageOptions o = CaseFootageOptions(c.lighting, c.camera);
   o.shape.aspect_ratio = c.aspect_ratio;
   o.subframes = slices;
   o.reuse = true;

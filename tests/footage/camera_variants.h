@@ -36,4 +36,11 @@ inline FootageOptions FootageFor(const CameraVariant& v) {
   return o;
 }
 
+// A case's footage options: its lighting's own camera, or (camera >= 0) front_point through
+// CameraVariants()[camera].
+inline FootageOptions CaseFootageOptions(Lighting lighting, int camera) {
+  return camera >= 0 ? FootageFor(CameraVariants()[size_t(camera)])
+                     : FootageOptions::For(lighting);
+}
+
 }  // namespace dimer::footage

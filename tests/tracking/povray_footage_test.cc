@@ -60,8 +60,7 @@ void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
 
 // Renders (or reuses) the case's footage and returns its folder.
 std::string Footage(const Case& c) {
-  FootageOptions o = c.camera >= 0 ? FootageFor(CameraVariants()[size_t(c.camera)])
-                                   : FootageOptions::For(c.lighting);
+  FootageOptions o = CaseFootageOptions(c.lighting, c.camera);
   o.shape.aspect_ratio = c.aspect_ratio;
   o.subframes = kSlices;
   o.reuse = true;
