@@ -73,6 +73,17 @@ std::string Footage(const Case& c) {
 
 class PovrayFootage : public ::testing::TestWithParam<Case> {};
 
+// The footage rendered (or found in the cache) with its truth, once per case before the checks
+// that read it (CTest `povray.render.CASE`, their fixture): without it the checks of one case,
+// started together on two cores, would each render the same footage.
+TEST_P(PovrayFootage, RenderedWithItsTruth) {
+  const std::string dir = Footage(GetParam());
+  double radius = 0;
+  const auto truth = ReadTruthCsv(dir + "/truth.csv", &radius);
+  EXPECT_EQ(truth.size(), kFrames) << dir << "/truth.csv";
+  EXPECT_GT(radius, 0) << dir << "/truth.csv";
+}
+
 TEST_P(PovrayFootage, TrackerMeetsTheIssueTargets) {
   const Case& c = GetParam();
   const std::string dir = Footage(c);
