@@ -11,7 +11,10 @@ namespace {
 
 // The rest level: the densest band of width 2 thr that starts among the lowest 2 % of the gaps
 // (a sphere cannot rest above where it touches; the slow apex of a bounce is dense too, but
-// high); NaN if that band holds too few frames.
+// high); NaN if that band holds too few frames, or if they are not gathered about its middle
+// as a rest's noise is. A sphere that only passes through the band on its way to and from the
+// plate fills it evenly: at a camera's noise (thr of 0.1-0.3 mm) that can be 5-10 % of a
+// bouncing end's frames (a POV-Ray film of the drift: 8 %, its level then 0.14 mm high).
 double RestLevel(const std::vector<double>& gap, double thr) {
   std::vector<double> v;
   for (double g : gap)
@@ -26,7 +29,11 @@ double RestLevel(const std::vector<double>& gap, double thr) {
     if (j - i > best_n) best_n = j - i, best_i = i;
   }
   if (best_n < kRestLevelMinFraction * v.size()) return kNaN;
-  return v[best_i + best_n / 2];
+  const double mid = v[best_i + best_n / 2];
+  size_t core = 0;  // within thr / 2 (2 sigma) of the middle: 95 % for a rest, 50 % if even
+  for (size_t k = best_i; k < best_i + best_n; ++k) core += std::abs(v[k] - mid) <= 0.5 * thr;
+  if (core < kRestCoreMinFraction * best_n) return kNaN;
+  return mid;
 }
 
 struct Quadratic {  // g(tau) = c0 + c1 tau + c2 tau^2, tau in frames
@@ -100,8 +107,9 @@ class ImpactFinder {
       }
       const bool on = g[i] - lvl <= thr;  // below the level counts as touching
       if (!on) {
-        if (in_flight && IsBounceMinimum(i) && peak >= lvl + 2 * thr) {
-          AddImpact(i, /*touch_end=*/i, /*bounce=*/true);
+        // A minimum the gap fell into by more than thr (not a dip of noise on the way up).
+        if (in_flight && IsBounceMinimum(i) && peak >= lvl + 2 * thr && peak - g[i] > thr &&
+            AddImpact(i, /*touch_end=*/i, /*bounce=*/true)) {
           peak = -INFINITY;
         }
         in_flight = true;
@@ -110,9 +118,24 @@ class ImpactFinder {
       }
       if (on && in_flight && peak >= lvl + 2 * thr) {
         long end = i;  // the touch: frames on the plate from i
-        while (end + 1 < n && std::isfinite(g[end + 1]) && g[end + 1] - lvl <= thr) ++end;
-        const bool bounce = end - i + 1 < kMinRestFrames && end + 1 < n &&
-                            std::isfinite(g[end + 1]) && g[end + 1] > lvl + thr;
+        for (;;) {
+          while (end + 1 < n && std::isfinite(g[end + 1]) && g[end + 1] - lvl <= thr) ++end;
+          // Frames above thr that come back to the plate without rising 2 thr (no flight, by
+          // the rule above) are part of the touch: camera noise lifts a frame of it now and then.
+          long k = end + 1;
+          while (k < n && std::isfinite(g[k]) && g[k] - lvl > thr && g[k] - lvl < 2 * thr) ++k;
+          if (k == end + 1 || k >= n || !std::isfinite(g[k]) || g[k] - lvl > thr) break;
+          end = k;
+        }
+        const bool lifts = end + 1 < n && std::isfinite(g[end + 1]) && g[end + 1] > lvl + thr;
+        bool bounce = end - i + 1 < kMinRestFrames && lifts;
+        // A touch of kMinRestFrames or more that the bounce's V (the flight before and after
+        // it, meeting at the plate) passes through within thr in every frame was no rest: with
+        // a camera's noise the bottom of a V holds 3-5 frames within thr of the plate.
+        if (!bounce && lifts && TouchOnTheBouncesV(i, end)) {
+          bounce = true;
+          std::fill(c_.resting.begin() + i, c_.resting.begin() + end + 1, 0);
+        }
         // A touch too short to be a rest, with no frame after it (the data ends or has a gap),
         // is unresolved: the impact may be at the data's edge or beyond. Not counted.
         const bool unresolved = !bounce && end - i + 1 < kMinRestFrames &&
@@ -133,6 +156,39 @@ class ImpactFinder {
     if (!(g[i] <= g[i - 1] && g[i] < g[i + 1])) return false;
     const double reach = std::max(g[i - 1] - g[i], g[i + 1] - g[i]);
     return g[i] - c_.level_m <= c_.threshold_m + reach;
+  }
+
+  // Whether the approach before `first` and the departure after `last`, fitted as flights in the
+  // lab frame, meet between them and pass less than thr below every frame from `first` to
+  // `last`. A rest holds the sphere above the V (which runs on into the plate); a frame below
+  // it is noise, or a bounce deeper than fitted, never a rest.
+  bool TouchOnTheBouncesV(long first, long last) const {
+    const std::vector<long> before = Side(first - 1, -1), after = Side(last + 1, +1);
+    if (before.size() < kImpactMinFitFrames || after.size() < kImpactMinFitFrames) return false;
+    const double tau0 = static_cast<double>(first);
+    const Quadratic qa = FitFrames(lab_, before, tau0), qd = FitFrames(lab_, after, tau0);
+    Quadratic diff;
+    diff.c = qa.c - qd.c;
+    const double kink = RootIn(diff, static_cast<double>(before.back()) - tau0,
+                               static_cast<double>(after.front()) - tau0);
+    if (!std::isfinite(kink)) return false;
+    for (long k = first; k <= last; ++k) {
+      const double tau = static_cast<double>(k) - tau0;
+      const double v = tau < kink ? qa.At(tau) : qd.At(tau);
+      if (!(lab_[k] - v <= c_.threshold_m)) return false;
+    }
+    return true;
+  }
+
+  // Whether the gap after the minimum at frame `i` rises more than thr above it before it is
+  // on the plate again (the data's end or a gap in it: unknown, taken as yes).
+  bool RisesFromTheMinimum(long i) const {
+    const auto& g = c_.gap;
+    for (long k = i + 1; k < static_cast<long>(g.size()) && std::isfinite(g[k]); ++k) {
+      if (g[k] - g[i] > c_.threshold_m) return true;
+      if (g[k] - c_.level_m <= c_.threshold_m) return false;
+    }
+    return true;
   }
 
   // Frames of the approach (before `first`) or departure (after `last`) that are airborne.
@@ -186,7 +242,8 @@ class ImpactFinder {
   }
 
   // `first`: first frame of the touch (or the bounce minimum); `last`: its last frame.
-  void AddImpact(long first, long last, bool bounce) {
+  // Returns false, adding nothing, for a minimum that is noise on a flight (below).
+  bool AddImpact(long first, long last, bool bounce) {
     const bool minimum = first == last && c_.gap[first] > c_.level_m + c_.threshold_m;
     const double tau0 = static_cast<double>(first);
     const double land_limit = static_cast<double>(last - first) + 1.0;
@@ -205,6 +262,11 @@ class ImpactFinder {
         if (std::isfinite(refined.tau)) sol = refined;
       }
     }
+    // A minimum above the plate is an impact only where a falling flight meets a rising one.
+    // Camera noise (sigma a third of a frame's travel) also makes minima on the way down, the
+    // plate reached a frame or two later, and on the way up: the gap does not rise more than
+    // thr from it before it is back on the plate, or the approach fitted to it rises.
+    if (minimum && (!RisesFromTheMinimum(first) || sol.v_before >= 0)) return false;
     Impact imp;
     imp.sphere = s_;
     imp.bounce = bounce;
@@ -216,6 +278,7 @@ class ImpactFinder {
     imp.t = run_.t0 + imp.frame * run_.dt;
     imp.plate_phase = std::isfinite(plate_.freq_hz) ? plate_.PhaseFraction(imp.t) : kNaN;
     c_.impacts.push_back(imp);
+    return true;
   }
 
   const SampledRun& run_;

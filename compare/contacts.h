@@ -4,12 +4,14 @@
 // gap_s = z_s - z_plate - R is the height of sphere s's lowest point above the plate. A tracker
 // may see it with a constant offset (lighting moves the apparent centre by a fraction of a
 // pixel), so the level at which a sphere touches is measured, not assumed: the densest band of
-// width 2 thr starting among the lowest 2 % of its gaps, when it holds >= 5 % of the frames (a
-// sphere that rests); a sphere that never rests takes the other sphere's level (same appearance), or 0.
+// width 2 thr starting among the lowest 2 % of its gaps, when it holds >= 5 % of the frames
+// gathered about its middle (a sphere that rests); a sphere that never rests takes the other
+// sphere's level (same appearance), or 0.
 // thr = max(4 sigma_gap, 1e-6 d), sigma_gap from the data (noise.h): every threshold follows
 // the noise, so a simulation (noise-free) resolves micro-bounces a camera cannot.
 //
-//   on the plate: gap - level <= thr;   resting: on the plate for >= 3 consecutive frames.
+//   on the plate: gap - level <= thr;   resting: on the plate for >= 3 consecutive frames,
+//   unless the flights before and after them, fitted as a bounce, pass through each within thr.
 //   impact: the end of a flight (a run of frames above level + thr that rose at least 2 thr)
 //   at a frame on the plate, or at a local minimum of the gap within one frame's travel of the
 //   plate (a bounce between two frames).
@@ -31,6 +33,9 @@ inline constexpr double kContactSigmas = 4.0;       // thr in units of the gap n
 inline constexpr double kContactFloorRel = 1e-6;    // thr floor, fraction of d (noise-free data)
 inline constexpr int kMinRestFrames = 3;            // a rest is this many frames on the plate
 inline constexpr double kRestLevelMinFraction = 0.05;
+// ... of which this fraction within thr / 2 of the band's middle (a rest: ~0.95 with Gaussian
+// noise, 0.92 measured on a POV-Ray film; frames passing through the band: ~0.5, 0.45 there).
+inline constexpr double kRestCoreMinFraction = 0.7;
 inline constexpr int kImpactFitFrames = 20;         // frames fitted on each side of an impact
 inline constexpr size_t kImpactMinFitFrames = 4;    // fewer: keep the first pass
 
