@@ -22,7 +22,8 @@ void AddCompareOptions(CLI::App* c, CompareCli* cli) {
   c->add_flag("--force", a.force, "replace an existing report folder");
   c->add_flag("--fit", a.fit, "fit eps, mu_hat, mu_hat_s, mu, mu_s by simulation");
   c->add_option("--freq", a.analysis.freq_hz, "drive frequency, Hz (needed when no plate is visible)");
-  c->add_option("--gamma", a.analysis.gamma, "drive Gamma (needed when no plate is visible)");
+  c->add_option("--gamma", a.analysis.gamma, "drive Gamma, e.g. from an accelerometer: needed when no plate is visible; with a visible "
+                "plate it replaces the Gamma read off the plate's motion (both reported)");
   c->add_option("--mode-window", a.analysis.window_periods, "periods per window of the mode timeline")
       ->capture_default_str();
   c->add_option("--phase-bins", a.analysis.phase_bins, "bins of the phase-averaged slip")

@@ -244,6 +244,8 @@ AttrList Headline(const Analysis& a, const Comparison* c) {
       {"freq_err", p.freq_err},
       {"gamma", p.gamma},
       {"gamma_err", p.gamma_err},
+      {"gamma_plate", p.gamma_plate},
+      {"gamma_plate_err", p.gamma_plate_err},
       {"plate_amplitude", p.amp_m},
       {"plate_phase", p.phase_rad},
       {"plate_phase_err", p.phase_err},
@@ -274,7 +276,8 @@ AttrList Headline(const Analysis& a, const Comparison* c) {
 AttrUnits HeadlineUnits() {
   return {{"mode_window_periods", "periods"}, {"drift_speed", "m/s"}, {"drift_speed_err", "m/s"},
           {"drift_scaled", "1"}, {"drift_scaled_err", "1"}, {"travel_mm", "mm"}, {"travel_time", "s"},
-          {"freq", "Hz"}, {"freq_err", "Hz"}, {"gamma", "1"}, {"gamma_err", "1"}, {"plate_amplitude", "m"},
+          {"freq", "Hz"}, {"freq_err", "Hz"}, {"gamma", "1"}, {"gamma_err", "1"}, {"gamma_plate", "1"}, {"gamma_plate_err", "1"},
+          {"plate_amplitude", "m"},
           {"plate_phase", "rad"}, {"plate_phase_err", "rad"}, {"plate_residual_rms", "m"}, {"ar_measured", "1"},
           {"diameter", "m"}, {"fps", "1/s"}, {"g_fit", "m/s^2"}, {"g_fit_err", "m/s^2"}, {"slip_after", "m/s"},
           {"slip_after_err", "m/s"}, {"slip_before", "m/s"}, {"slip_before_err", "m/s"}, {"outliers", "1"},

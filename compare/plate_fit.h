@@ -25,6 +25,8 @@ struct PlateDrive {
   double offset_m = 0;
   double phase_rad = kNaN, phase_err = kNaN;  // at t = 0 of the file's time axis, [0, 2 pi)
   double gamma = kNaN, gamma_err = kNaN;
+  // The fitted plate's own Gamma where --gamma replaced it (an accelerometer's value); NaN else.
+  double gamma_plate = kNaN, gamma_plate_err = kNaN;
   double residual_rms_m = kNaN;               // fit residual
   std::array<double, 3> harmonic_rel{kNaN, kNaN, kNaN};  // |2f|, |3f|, |4f| amplitude / amp
   int frames_used = 0;

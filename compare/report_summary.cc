@@ -57,7 +57,8 @@ void Drive(const Analysis& a, std::ostringstream& o) {
                                       r.n ? r.Time(r.n - 1) : r.t0) << " |\n"
     << "| drive source | " << d.source << " |\n"
     << "| drive frequency f | " << Pm(d.freq_hz, d.freq_err, 1, "Hz") << " |\n"
-    << "| Γ | " << Pm(d.gamma, d.gamma_err) << " |\n"
+    << "| Γ" << (std::isfinite(d.gamma_plate) ? " (--gamma)" : "") << " | " << Pm(d.gamma, d.gamma_err) << " |\n"
+    << (std::isfinite(d.gamma_plate) ? "| Γ of the tracked plate | " + Pm(d.gamma_plate, d.gamma_plate_err) + " |\n" : "")
     << "| plate amplitude | " << Pm(d.amp_m, d.amp_err, kMm, "mm") << " |\n"
     << "| plate phase at t = 0 | " << Pm(d.phase_rad, d.phase_err, 1, "rad") << " |\n"
     << "| plate fit residual (rms) | " << Num(d.residual_rms_m * kUm, "%.3g") << " µm |\n"
