@@ -129,8 +129,8 @@ class ImpactFinder {
         }
         const bool lifts = end + 1 < n && std::isfinite(g[end + 1]) && g[end + 1] > lvl + thr;
         bool bounce = end - i + 1 < kMinRestFrames && lifts;
-        // A touch of kMinRestFrames or more that the bounce's V (the flight before and after
-        // it, meeting at the plate) passes through within thr in every frame was no rest: with
+        // A touch of kMinRestFrames or more that the bounce's V (the flights before and after
+        // it, meeting at the plate) passes less than thr below in every frame was no rest: with
         // a camera's noise the bottom of a V holds 3-5 frames within thr of the plate.
         if (!bounce && lifts && TouchOnTheBouncesV(i, end)) {
           bounce = true;
