@@ -2,10 +2,8 @@
 // coefficient the scene does not constrain as unconstrained.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 
 #include "compare/fit.h"
 #include "compare/simulate.h"
@@ -27,10 +25,7 @@ TEST(Fit, RecoversRestitutionAndImpactFrictionFromASimulatedDrift) {
   truth.ar = 3.9;
   truth.eps = 0.6;
   truth.mu_hat = 0.12;
-  // 100 periods; 40 under the sanitizers (DIMERLAB_TEST_SCALE 0.2), where the fit's hundreds
-  // of simulations took 100 s: the same code, fewer impacts, the same assertions.
-  const char* scale = std::getenv("DIMERLAB_TEST_SCALE");
-  truth.cycles = std::max(40.0, std::round(100 * (scale ? std::atof(scale) : 1.0)));
+  truth.cycles = 100;
   const Analysis track = SimulateAndAnalyze(truth, {}, "truth");
   ASSERT_EQ(track.periods.settled.summary.label, "drift");
   sim::SimOptions start;  // the paper's coefficients as the starting point
