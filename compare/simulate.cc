@@ -28,7 +28,9 @@ sim::SimOptions SceneFromTrack(const Analysis& track, const sim::SimOptions& giv
   if (notes) {
     notes->push_back("simulated scene: A_r " + Num(o.ar) + " (measured), d " + Num(o.diameter_m * 1e3) +
                      " mm (file), f " + Num(o.freq_hz) + " Hz and Gamma " + Num(o.gamma) + " (" +
-                     track.plate.source + "), init " + sim::ToString(o.init) + " (observed " + mode +
+                     track.plate.source +
+                     (std::isfinite(track.plate.gamma_plate) ? ", Gamma from --gamma" : "") +
+                     "), init " + sim::ToString(o.init) + " (observed " + mode +
                      "), " + Num(o.cycles) + " periods of which " + std::to_string(transient_periods) +
                      " transient; eps " + Num(o.eps) + ", mu " + Num(o.mu) + ", mu_s " + Num(o.mu_s) +
                      ", mu_hat " + Num(o.mu_hat) + ", mu_hat_s " + Num(o.mu_hat_s));
