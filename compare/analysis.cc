@@ -18,12 +18,17 @@ constexpr double kGammaAgreeSigmas = 3.0, kGammaAgreeRel = 0.01;
 // than the amplitude read off its edge, whose pixels per mm differ from the dimer's when the edge
 // is nearer or further than the dimer (a POV-Ray film with the front edge 20 mm nearer at 0.7 m:
 // Gamma 2.3 % high). The fitted frequency and phase stay; the amplitude follows the given Gamma.
+// The plate amplitude that gives `gamma` at `freq_hz`: Gamma = 4 pi^2 a f^2 / g.
+double AmplitudeOfGamma(double gamma, double freq_hz) {
+  return gamma * kGravity / std::pow(2 * M_PI * freq_hz, 2);
+}
+
 void UseGivenGamma(double gamma, PlateDrive* p, std::vector<std::string>* warnings) {
   p->gamma_plate = p->gamma;
   p->gamma_plate_err = p->gamma_err;
   p->gamma = gamma;
   p->gamma_err = 0;
-  p->amp_m = gamma * kGravity / std::pow(2 * M_PI * p->freq_hz, 2);
+  p->amp_m = AmplitudeOfGamma(gamma, p->freq_hz);
   p->amp_err = 0;
   const double diff = p->gamma_plate - gamma;
   if (std::abs(diff) > std::max(kGammaAgreeSigmas * p->gamma_plate_err, kGammaAgreeRel * gamma)) {
@@ -42,7 +47,7 @@ PlateDrive DriveFromOptions(const SampledRun& run, const AnalysisOptions& o) {
   d.source = "options";
   d.freq_hz = o.freq_hz;
   d.gamma = o.gamma;
-  d.amp_m = o.gamma * kGravity / std::pow(2 * M_PI * o.freq_hz, 2);
+  d.amp_m = AmplitudeOfGamma(o.gamma, o.freq_hz);
   d.freq_err = d.gamma_err = d.amp_err = 0;
   constexpr int kBins = 40;
   std::vector<double> low(kBins, INFINITY);

@@ -81,6 +81,13 @@ double RootIn(const Quadratic& p, double lo, double hi) {
   return best;
 }
 
+// Where the approach `a` and the departure `d` meet in [lo, hi] (nearest lo); NaN if they do not.
+double Meet(const Quadratic& a, const Quadratic& d, double lo, double hi) {
+  Quadratic diff;
+  diff.c = a.c - d.c;
+  return RootIn(diff, lo, hi);
+}
+
 constexpr int kLandingBisections = 40;  // landing time to 1e-12 of a frame
 
 class ImpactFinder {
@@ -167,10 +174,8 @@ class ImpactFinder {
     if (before.size() < kImpactMinFitFrames || after.size() < kImpactMinFitFrames) return false;
     const double tau0 = static_cast<double>(first);
     const Quadratic qa = FitFrames(lab_, before, tau0), qd = FitFrames(lab_, after, tau0);
-    Quadratic diff;
-    diff.c = qa.c - qd.c;
-    const double kink = RootIn(diff, static_cast<double>(before.back()) - tau0,
-                               static_cast<double>(after.front()) - tau0);
+    const double kink = Meet(qa, qd, static_cast<double>(before.back()) - tau0,
+                             static_cast<double>(after.front()) - tau0);
     if (!std::isfinite(kink)) return false;
     for (long k = first; k <= last; ++k) {
       const double tau = static_cast<double>(k) - tau0;
@@ -221,9 +226,7 @@ class ImpactFinder {
     const double lo = static_cast<double>(before.back()) - tau0;
     if (after.size() >= 2) {
       const Quadratic qd = FitFrames(lab_, after, tau0);
-      Quadratic diff;
-      diff.c = qa.c - qd.c;
-      sol.tau = RootIn(diff, lo, static_cast<double>(after.front()) - tau0);
+      sol.tau = Meet(qa, qd, lo, static_cast<double>(after.front()) - tau0);
       if (std::isfinite(sol.tau)) sol.v_after = qd.Slope(sol.tau) / run_.dt - plate_.V(time(sol.tau));
     }
     if (!std::isfinite(sol.tau)) {  // landing: the approach meets the plate + contact level

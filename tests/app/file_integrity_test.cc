@@ -66,12 +66,16 @@ void XorByte(int fd, haddr_t at, unsigned char mask) {
   ASSERT_EQ(pwrite(fd, &b, 1, static_cast<off_t>(at)), 1);
 }
 
+// DIMERLAB_TEST_SCALE (default 1; 0.2 under the sanitizers): the share of bytes flipped.
+double TestScale() {
+  const char* s = std::getenv("DIMERLAB_TEST_SCALE");
+  return s ? std::atof(s) : 1.0;
+}
+
 TEST(FileIntegrity, EveryFlippedByteInADatasetIsReportedNamingIt) {
   // Every byte; every 5th under the sanitizers (DIMERLAB_TEST_SCALE 0.2: 70 s there), where the
   // point is the error paths' memory, which every 5th byte takes as well.
-  const char* scale_env = std::getenv("DIMERLAB_TEST_SCALE");
-  const double scale = scale_env ? std::atof(scale_env) : 1.0;
-  const hsize_t stride = std::max<hsize_t>(1, static_cast<hsize_t>(std::lround(1 / scale)));
+  const hsize_t stride = std::max<hsize_t>(1, static_cast<hsize_t>(std::lround(1 / TestScale())));
   testing::TempDir dir;
   for (const auto& file : testing::MakeEveryFileKind(dir)) {
     SCOPED_TRACE(file.kind);
@@ -158,9 +162,7 @@ struct LeakCheckPause {
 // or an attribute is an error too, or lands in padding and changes nothing a reader can see.
 // Every `stride`-th byte of the sim file (every 4th; fewer under the sanitizers).
 TEST(FileIntegrity, AFlippedByteAnywhereIsAnErrorOrChangesNothing) {
-  const char* scale_env = std::getenv("DIMERLAB_TEST_SCALE");
-  const double scale = scale_env ? std::atof(scale_env) : 1.0;
-  const off_t stride = std::max<off_t>(1, static_cast<off_t>(std::lround(4 / scale)));
+  const off_t stride = std::max<off_t>(1, static_cast<off_t>(std::lround(4 / TestScale())));
   // HDF5 1.10 itself leaks on some error paths through corrupt metadata, blocks it may have
   // taken from its free lists long before (never our ids: the count below proves that each of
   // our error paths closed what it opened). The sanitizer build's leak checker ignores what is

@@ -49,7 +49,7 @@ TEST(GivenGamma, ReplacesThePlatesGammaAndStatesBoth) {
   EXPECT_EQ(a.plate.gamma_plate, fitted.plate.gamma);
   EXPECT_EQ(a.plate.freq_hz, fitted.plate.freq_hz) << "the fitted frequency stays";
   EXPECT_EQ(a.plate.phase_rad, fitted.plate.phase_rad) << "the fitted phase stays";
-  EXPECT_NEAR(a.plate.amp_m * std::pow(2 * M_PI * a.plate.freq_hz, 2) / 9.81, 0.9, 1e-3);
+  EXPECT_NEAR(a.plate.amp_m * std::pow(2 * M_PI * a.plate.freq_hz, 2) / kGravity, 0.9, 1e-3);
   EXPECT_TRUE(Warned(a, "--gamma 0.9 is used")) << "3 % apart";
   EXPECT_EQ(a.periods.settled.summary.label, "drift");
 }
