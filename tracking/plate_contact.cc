@@ -246,7 +246,8 @@ Line FitLine(const std::vector<double>& edge, const std::vector<double>& row,
 }  // namespace
 
 PlateMotionScale FitPlateMotionScale(const std::vector<double>& edge,
-                                     const std::array<std::vector<double>, 2>& rows) {
+                                     const std::array<std::vector<double>, 2>& rows,
+                                     const PlateShift& shift) {
   PlateMotionScale best;
   for (int k = 0; k < 2; ++k) {
     const std::vector<double>& row = rows[k];
@@ -284,7 +285,26 @@ PlateMotionScale FitPlateMotionScale(const std::vector<double>& edge,
       best.sphere = k;
     }
   }
+  best.edge_ref = shift.edge_ref;
   return best;
+}
+
+PlateMotionScale GivenPlateMotionScale(double scale, const std::vector<double>& edge,
+                                       const PlateShift& shift) {
+  PlateMotionScale m;
+  m.given = true;
+  m.scale = scale;
+  m.err = 0;
+  if (shift.applied) {
+    m.edge_ref = shift.edge_ref;
+  } else {
+    std::vector<double> found;
+    for (double e : edge) {
+      if (std::isfinite(e)) found.push_back(e);
+    }
+    m.edge_ref = found.empty() ? 0.0 : MedianOf(found);
+  }
+  return m;
 }
 
 }  // namespace dimer::tracking

@@ -93,19 +93,36 @@ inline constexpr double kRestBandPx = 0.15;
 
 struct PlateMotionScale {
   bool fitted = false;
+  // Given by the user instead (`track --plate-m-per-px`: the edge's own scale over the dimer
+  // plane's); not fitted then.
+  bool given = false;
   double scale = 1;   // contact-line motion per px of edge motion
   double err = std::numeric_limits<double>::quiet_NaN();
+  double edge_ref = 0;  // the edge row the motion is scaled about (ContactRow)
   size_t frames = 0;  // resting frames it rests on
   int sphere = -1;    // 0 left, 1 right
 };
 
-// `edge` the found edge row per frame, `rows[k]` sphere k's tracked row per frame (NaN: none).
+// The plate edge a camera sees is seldom in the dimer's plane: a plate seen from the side shows
+// its front edge, nearer the camera by half the plate's depth, and it moves more pixels per
+// metre than the dimer does (by D_dimer / D_edge: 2.9 % on the POV-Ray film, 7 % for a 100 mm
+// deep plate filmed from 0.7 m). Read with the dimer plane's scale, the plate's amplitude, and
+// Gamma, come out that much high. A user who calibrates the edge's scale too
+// (`--plate-m-per-px`) gives the ratio: contact-line px per edge px = plate m/px / dimer m/px.
+// The edge is scaled about its median row (the plate's mean position: row0 is unchanged), or,
+// where the mirror-image shift was measured, about the edge row it was measured at.
+PlateMotionScale GivenPlateMotionScale(double scale, const std::vector<double>& edge,
+                                       const PlateShift& shift);
+
+// `edge` the found edge row per frame, `rows[k]` sphere k's tracked row per frame (NaN: none);
+// scaled about `shift.edge_ref`.
 PlateMotionScale FitPlateMotionScale(const std::vector<double>& edge,
-                                     const std::array<std::vector<double>, 2>& rows);
+                                     const std::array<std::vector<double>, 2>& rows,
+                                     const PlateShift& shift);
 
 // The contact line's row for a found edge row.
 inline double ContactRow(const PlateShift& p, const PlateMotionScale& m, double edge) {
-  return edge + p.value + (m.scale - 1.0) * (edge - p.edge_ref);
+  return edge + (p.applied ? p.value : 0.0) + (m.scale - 1.0) * (edge - m.edge_ref);
 }
 
 // From the learning samples (their plate rows and rough centres): the median of

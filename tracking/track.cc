@@ -129,6 +129,9 @@ void SequenceOptions::Check() const {
   if (threads < 0 || threads > 256) throw UsageError("--threads must be 0 (all cores) .. 256");
   if (chunk_frames < 1) throw UsageError("--chunk-frames must be >= 1");
   if (learn_passes < 0 || learn_passes > 20) throw UsageError("learning passes must be 0 .. 20");
+  if (!std::isnan(plate_motion_scale) && !(plate_motion_scale > 0 && std::isfinite(plate_motion_scale))) {
+    throw UsageError("the plate's motion scale must be > 0");
+  }
 }
 
 SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options,
@@ -226,16 +229,21 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
   result.plate_clip = RefitClippedPlate(options.tracker.psf_sigma_px,
                                         options.tracker.fit_psf_sigma, &result.frames);
   result.plate_shift = prepared.plate_shift;
-  if (prepared.plate_shift.applied) {
-    // The edge to the contact line: a constant at the learning frames' edge row, and the edge's
-    // motion scaled to the contact line's by a resting sphere (plate_contact.h).
+  const bool scale_given = std::isfinite(options.plate_motion_scale);
+  if (prepared.plate_shift.applied || scale_given) {
+    // The edge to the contact line: a constant at the learning frames' edge row (a polished
+    // plate's mirror images), and the edge's motion scaled to the contact line's, by the ratio
+    // of scales the user gave or else by a resting sphere (plate_contact.h).
     std::vector<double> edge;
     std::array<std::vector<double>, 2> rows;
     for (const FrameTrack& f : result.frames) {
       edge.push_back(f.plate_row);
       for (int k = 0; k < 2; ++k) rows[k].push_back(f.found[k] ? f.centre[k].y() : std::nan(""));
     }
-    result.plate_scale = FitPlateMotionScale(edge, rows);
+    result.plate_scale =
+        scale_given
+            ? GivenPlateMotionScale(options.plate_motion_scale, edge, prepared.plate_shift)
+            : FitPlateMotionScale(edge, rows, prepared.plate_shift);
     for (FrameTrack& f : result.frames) {
       f.plate_row = ContactRow(prepared.plate_shift, result.plate_scale, f.plate_row);
     }
@@ -267,6 +275,12 @@ void TrackArgs::Check() const {
     need(false, e.what());
   }
   need(std::isnan(m_per_px) || m_per_px > 0, "--m-per-px must be > 0 m/px");
+  need(std::isnan(plate_m_per_px) || (plate_m_per_px > 0 && std::isfinite(plate_m_per_px)),
+       "--plate-m-per-px must be > 0 m/px");
+  // The ratio of the two scales is what moves the plate rows, and it is needed while tracking
+  // (the template's plate-contact offsets read them), before a scale from --diameter exists.
+  need(std::isnan(plate_m_per_px) || !std::isnan(m_per_px),
+       "--plate-m-per-px needs --m-per-px (the dimer plane's scale)");
   need(diameter > 0 && std::isfinite(diameter), "--diameter must be > 0 m");
   need(polarity == "auto" || polarity == "bright" || polarity == "dark",
        "--polarity '" + polarity + "': expected auto, bright or dark");
@@ -425,9 +439,14 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                     {"plate_shift", r.plate_shift.applied ? r.plate_shift.value : 0.0},
                     {"plate_shift_err", r.plate_shift.applied ? r.plate_shift.err : 0.0},
                     {"plate_shift_reason", r.plate_shift.reason},
-                    {"plate_shift_edge_ref", r.plate_shift.applied ? r.plate_shift.edge_ref : 0.0},
+                    {"plate_shift_edge_ref",
+                     r.plate_shift.applied || r.plate_scale.given ? r.plate_scale.edge_ref : 0.0},
                     {"plate_motion_scale", r.plate_scale.scale},
                     {"plate_motion_scale_err", r.plate_scale.fitted ? r.plate_scale.err : 0.0},
+                    {"plate_motion_scale_source", std::string(r.plate_scale.given    ? "--plate-m-per-px"
+                                                              : r.plate_scale.fitted ? "fitted"
+                                                                                     : "none")},
+                    {"plate_m_per_px", std::isnan(args.plate_m_per_px) ? 0.0 : args.plate_m_per_px},
                     {"plate_clipped_frames", int64_t(r.plate_clip.frames)},
                     {"plate_clip_level", clip_found ? r.plate_clip.level.value : 0.0},
                     {"plate_clip_level_err", clip_found ? r.plate_clip.level.err : 0.0},
@@ -437,7 +456,8 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                     {"plate_psf_sigma_source", PsfSource(args, r.plate_clip)}};
   AttrUnits units = {{"fps", "1/s"}, {"plate_shift", "px"}, {"plate_shift_err", "px"},
                      {"plate_shift_edge_ref", "px"}, {"plate_motion_scale", "1"},
-                     {"plate_motion_scale_err", "1"}, {"plate_clipped_frames", "1"},
+                     {"plate_motion_scale_err", "1"}, {"plate_m_per_px", "m/px"},
+                     {"plate_clipped_frames", "1"},
                      {"plate_clip_level", "grey levels"}, {"plate_clip_level_err", "grey levels"},
                      {"plate_clip_refitted", "1"}, {"plate_psf_sigma", "px"},
                      {"m_per_px", "m/px"}, {"row0", "px"},
@@ -572,6 +592,7 @@ void RunTrack(const TrackArgs& args) {
     seq.contact_radius_px = 0.5 * args.diameter / args.m_per_px;
   }
   seq.tracker.polarity = args.polarity == "bright" ? 1 : args.polarity == "dark" ? -1 : 0;
+  if (!std::isnan(args.plate_m_per_px)) seq.plate_motion_scale = args.plate_m_per_px / args.m_per_px;
   AtomicOutput out(args.output, args.force);  // refuses an existing output before any work
   auto source = SelectFrames(FrameSource::Open(args.input), ParseFrameRange(args.frames),
                              args.input);
@@ -609,6 +630,13 @@ void RunTrack(const TrackArgs& args) {
   // The plate's top in view: its row is the contact line found from the mirror images.
   if (r.plate_shift.applied && !args.quiet) {
     std::fprintf(stderr, "dimerlab track: plate: %s\n", r.plate_shift.reason.c_str());
+  }
+  if (r.plate_scale.given && !args.quiet) {
+    std::fprintf(stderr,
+                 "dimerlab track: plate: the edge's motion scaled by %.6g to the dimer's plane "
+                 "(--plate-m-per-px %.6g / --m-per-px %.6g), about edge row %.3f\n",
+                 r.plate_scale.scale, args.plate_m_per_px, args.m_per_px, r.plate_scale.edge_ref);
+  } else if (r.plate_shift.applied && !args.quiet) {
     if (r.plate_scale.fitted) {
       std::fprintf(stderr,
                    "dimerlab track: plate: the contact line moves %.3f +- %.3f px per px of the "

@@ -31,6 +31,9 @@ struct SequenceOptions {
   // Template method: the learning's passes (appearance_model.h, LearnOptions); it runs on
   // `threads` threads.
   int learn_passes = kLearnPasses;
+  // The plate edge's motion per px in the dimer plane's px (plate_contact.h,
+  // GivenPlateMotionScale); NaN: 1, or fitted on a polished plate.
+  double plate_motion_scale = std::numeric_limits<double>::quiet_NaN();
   void Check() const;
 };
 
@@ -88,6 +91,9 @@ struct TrackArgs {
   double m_per_px = std::numeric_limits<double>::quiet_NaN();  // m/px; NaN: from --diameter
   double diameter = 9.5e-3;     // sphere diameter, m (calibration when m_per_px is not given)
   double row0 = std::numeric_limits<double>::quiet_NaN();      // z = 0 row, px; NaN: plate median
+  // The plate edge's own scale, m/px, where it is not in the dimer's plane (a plate's front
+  // edge is nearer the camera); needs m_per_px. NaN: the dimer plane's.
+  double plate_m_per_px = std::numeric_limits<double>::quiet_NaN();
   std::string method = "auto";  // auto | centroid | discfit | template
   std::string polarity = "auto";  // auto | bright | dark
   SequenceOptions sequence;

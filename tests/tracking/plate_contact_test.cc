@@ -151,14 +151,39 @@ TEST(PlateMotionScale, ARestingSphereGivesTheContactLinesMotionPerPxOfEdge) {
     const double lift = std::max(0.0, 12.0 * std::sin(2 * 3.14159265 * i / 40.0));
     rows[1].push_back(contact - kRadius - lift + noise(rng));
   }
-  const PlateMotionScale m = FitPlateMotionScale(edge, rows);
+  const PlateMotionScale m = FitPlateMotionScale(edge, rows, PlateShift{});
   ASSERT_TRUE(m.fitted);
   EXPECT_EQ(m.sphere, 0);
   EXPECT_NEAR(m.scale, 1.14, 3 * m.err);
   EXPECT_LT(m.err, 0.02);
   // A plate that hardly moves over the frames says nothing about the scale.
   for (double& e : edge) e = 245.9 + 0.05 * (e - 245.9);
-  EXPECT_FALSE(FitPlateMotionScale(edge, rows).fitted);
+  EXPECT_FALSE(FitPlateMotionScale(edge, rows, PlateShift{}).fitted);
+}
+
+// Given (`--plate-m-per-px`), the scale moves each edge row about the edge's median, or, on a
+// polished plate whose shift was measured, about the row it was measured at; gaps in the edge
+// (NaN: no plate found) neither count nor move.
+TEST(PlateMotionScale, AGivenScaleMovesTheEdgeAboutItsMedianRow) {
+  const std::vector<double> edge = {250.0, 251.0, std::nan(""), 249.0, 250.5, 248.0};
+  const PlateMotionScale m = GivenPlateMotionScale(0.9, edge, PlateShift{});
+  EXPECT_TRUE(m.given);
+  EXPECT_FALSE(m.fitted);
+  EXPECT_EQ(m.scale, 0.9);
+  EXPECT_EQ(m.err, 0.0);
+  EXPECT_EQ(m.edge_ref, 250.0);  // median of the five found rows
+  EXPECT_NEAR(ContactRow(PlateShift{}, m, 251.0), 250.9, 1e-12);
+  EXPECT_NEAR(ContactRow(PlateShift{}, m, 248.0), 248.2, 1e-12);
+  EXPECT_EQ(ContactRow(PlateShift{}, m, 250.0), 250.0);
+  // A shift measured but not applied moves nothing; applied, it adds, and sets the centre.
+  PlateShift shift;
+  shift.value = 3.0;
+  shift.edge_ref = 249.0;
+  EXPECT_EQ(ContactRow(shift, m, 250.0), 250.0);
+  shift.applied = true;
+  const PlateMotionScale on_shift = GivenPlateMotionScale(0.9, edge, shift);
+  EXPECT_EQ(on_shift.edge_ref, 249.0);
+  EXPECT_NEAR(ContactRow(shift, on_shift, 251.0), 251.0 + 3.0 - 0.1 * 2.0, 1e-12);
 }
 
 }  // namespace

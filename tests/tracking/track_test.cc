@@ -6,6 +6,7 @@
 #include <opencv2/videoio.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
@@ -138,6 +139,51 @@ TEST(RunTrack, BadFramesAreReportedSkippedAndTheRunContinues) {
   EXPECT_NE(reasons[4].find("not a decodable image"), std::string::npos);
   const auto index = h.ReadInt64("/frame_index");
   EXPECT_EQ(index, (std::vector<int64_t>{0, 1, 2, 8, 9, 10, 11}));
+}
+
+// `--plate-m-per-px`: the plate edge seen nearer the camera than the dimer (a front edge) moves
+// more px per metre; its motion is scaled to the dimer plane's by the ratio of the two scales,
+// about the edge's median row, and nothing else moves (the spheres, row0).
+TEST(RunTrack, PlateScaleMovesOnlyThePlateRowsAboutTheirMedian) {
+  dimer::testing::TempDir dir;
+  RenderDrift(dir, 24, Lighting::kBacklit);
+  TrackArgs t = Track(dir);
+  RunTrack(t);
+  TrackArgs scaled = t;
+  scaled.output = dir / "scaled.h5";
+  scaled.plate_m_per_px = 0.5 * t.m_per_px;
+  RunTrack(scaled);
+  H5Reader a(t.output), b(scaled.output);
+  const auto plate = a.ReadDoubles("/pixels/plate_row");
+  const auto plate_scaled = b.ReadDoubles("/pixels/plate_row");
+  ASSERT_EQ(plate.size(), 24u);
+  ASSERT_EQ(plate_scaled.size(), 24u);
+  std::vector<double> sorted = plate;
+  std::sort(sorted.begin(), sorted.end());
+  const double median = sorted[12];
+  EXPECT_GT(sorted.back() - sorted.front(), 1.0) << "the plate must move for this test";
+  for (size_t i = 0; i < plate.size(); ++i) {
+    EXPECT_NEAR(plate_scaled[i], median + 0.5 * (plate[i] - median), 1e-9) << "frame " << i;
+  }
+  EXPECT_EQ(a.ReadDoubles("/pixels/left"), b.ReadDoubles("/pixels/left"));
+  EXPECT_EQ(a.ReadDoubles("/pixels/right"), b.ReadDoubles("/pixels/right"));
+  EXPECT_EQ(*a.AttrDouble("/", "row0"), *b.AttrDouble("/", "row0"));
+  EXPECT_EQ(*b.AttrDouble("/", "plate_motion_scale"), 0.5);
+  EXPECT_EQ(*b.AttrDouble("/", "plate_m_per_px"), 1e-4);
+  EXPECT_EQ(*b.AttrDouble("/", "plate_shift_edge_ref"), median);
+  EXPECT_EQ(b.AttrString("/", "plate_motion_scale_source"), "--plate-m-per-px");
+  EXPECT_EQ(a.AttrString("/", "plate_motion_scale_source"), "none");
+  EXPECT_EQ(*a.AttrDouble("/", "plate_motion_scale"), 1.0);
+  // The ratio needs the dimer plane's scale before tracking: from --diameter it comes after.
+  scaled.m_per_px = std::nan("");
+  scaled.force = true;
+  try {
+    RunTrack(scaled);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--plate-m-per-px needs --m-per-px"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(RunTrack, UnusableInputsAreOneLineErrors) {
