@@ -48,6 +48,24 @@ std::string ModeText(const ModeSummary& m) {
                                 : m.label;
 }
 
+// How the tracked plate's motion became metres: a Γ read off a plate edge that is not in the
+// dimer's plane is off by the ratio of the two scales, so the summary says which was used.
+std::string PlateScaleRow(const Analysis& a) {
+  const SampledRun& r = a.run;
+  if (r.kind != "track" || a.plate.source != "fit" || r.plate_scale_source.empty()) return "";
+  std::string text;
+  if (r.plate_scale_source == "--plate-m-per-px") {
+    text = "the edge's own (--plate-m-per-px): its motion × " + Num(r.plate_motion_scale, "%.6g");
+  } else if (r.plate_scale_source == "fitted") {
+    text = "fitted on a resting sphere (polished plate): its motion × " +
+           Num(r.plate_motion_scale, "%.4g");
+  } else {
+    text = "the dimer plane's: an edge nearer the camera (a deep plate's front edge) reads Γ "
+           "high by D / (D − Δ); track --plate-m-per-px gives its own";
+  }
+  return "| plate edge's scale | " + text + " |\n";
+}
+
 void Drive(const Analysis& a, std::ostringstream& o) {
   const PlateDrive& d = a.plate;
   const SampledRun& r = a.run;
@@ -59,6 +77,7 @@ void Drive(const Analysis& a, std::ostringstream& o) {
     << "| drive frequency f | " << Pm(d.freq_hz, d.freq_err, 1, "Hz") << " |\n"
     << "| Γ" << (std::isfinite(d.gamma_plate) ? " (--gamma)" : "") << " | " << Pm(d.gamma, d.gamma_err) << " |\n"
     << (std::isfinite(d.gamma_plate) ? "| Γ of the tracked plate | " + Pm(d.gamma_plate, d.gamma_plate_err) + " |\n" : "")
+    << PlateScaleRow(a)
     << "| plate amplitude | " << Pm(d.amp_m, d.amp_err, kMm, "mm") << " |\n"
     << "| plate phase at t = 0 | " << Pm(d.phase_rad, d.phase_err, 1, "rad") << " |\n"
     << "| plate fit residual (rms) | " << Num(d.residual_rms_m * kUm, "%.3g") << " µm |\n"

@@ -119,6 +119,8 @@ SampledRun LoadSampledRun(const std::string& path) {
   if (kind == "track") {
     run.m_per_px = r.AttrDouble("/", "m_per_px").value_or(kNaN);
     run.row0_px = r.AttrDouble("/", "row0").value_or(kNaN);
+    run.plate_motion_scale = r.AttrDouble("/", "plate_motion_scale").value_or(kNaN);
+    run.plate_scale_source = r.AttrString("/", "plate_motion_scale_source").value_or("");
     if (r.Has("/frame_files") && r.Has("/frame_index")) {
       const std::vector<std::string> files = r.ReadStrings("/frame_files");
       run.frame_files.assign(run.n, "");

@@ -33,6 +33,10 @@ struct SampledRun {
   double m_per_px = kNaN;      // track files: calibration, m/px (col = x / m_per_px)
   double row0_px = kNaN;       // track files: row of z = 0 (row = row0 - z / m_per_px)
   std::vector<std::string> frame_files;  // track files: the image of each grid frame ("" none)
+  // Track files: how the plate edge's motion was scaled to the dimer plane's (`track`'s
+  // plate_motion_scale and its source: "--plate-m-per-px", "fitted" or "none"; "" when older).
+  double plate_motion_scale = kNaN;
+  std::string plate_scale_source;
   // Sim files only (empty or NaN for tracks).
   std::vector<std::array<double, 6>> state;  // lab (x, z, theta, u, v, omega) per frame
   double sim_freq_hz = kNaN, sim_gamma = kNaN, sim_plate_phase = kNaN;  // phase: fraction

@@ -380,6 +380,30 @@ TEST_F(ReportTest, SummaryNeverPrintsAValueForAnUnconstrainedParameter) {
   EXPECT_EQ(md.find("nan"), std::string::npos);
 }
 
+// The summary says at which scale the tracked plate's motion became metres: Γ read off an edge
+// that is not in the dimer's plane is off by the ratio of the scales (track --plate-m-per-px).
+TEST_F(ReportTest, SummarySaysWhichScaleThePlatesMotionWasReadAt) {
+  auto row = [&]() {
+    ReportInputs in;
+    in.track = &track_;
+    WriteReport(dir_.path().string(), in);
+    const std::string md = ReadText(dir_ / "summary.md");
+    const size_t at = md.find("| plate edge's scale |");
+    return at == std::string::npos ? std::string() : md.substr(at, md.find('\n', at) - at);
+  };
+  EXPECT_EQ(row(), "") << "a track file from before the attribute: nothing claimed";
+  track_.run.plate_scale_source = "none";
+  track_.run.plate_motion_scale = 1;
+  EXPECT_NE(row().find("the dimer plane's"), std::string::npos) << row();
+  EXPECT_NE(row().find("--plate-m-per-px"), std::string::npos) << row();
+  track_.run.plate_scale_source = "--plate-m-per-px";
+  track_.run.plate_motion_scale = 0.9714286;
+  EXPECT_NE(row().find("the edge's own (--plate-m-per-px): its motion × 0.971429"),
+            std::string::npos) << row();
+  track_.plate.source = "options";  // no plate tracked: no row
+  EXPECT_EQ(row(), "");
+}
+
 TEST_F(ReportTest, FigureWithoutDataIsSkippedAndSaidSo) {
   track_.slip = SlipResult();  // no resting sphere
   ReportInputs in;
