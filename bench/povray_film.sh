@@ -3,7 +3,8 @@
 # rendered by POV-Ray (tests/footage: polished steel lit by point lights, a perspective camera,
 # the plate's front edge nearer the camera than the dimer), tracked and compared with the
 # simulation. Prints the tracker's accuracy against the scene's truth, then the compare table
-# (track against simulation), then Gamma again with the plate edge's own scale given. docs/BENCHMARKS.md, "The whole pipeline on a POV-Ray film".
+# (track against simulation), then Gamma again with the plate edge's own scale given.
+# docs/BENCHMARKS.md, "The whole pipeline on a POV-Ray film".
 #   bench/povray_film.sh [BUILD_DIR] [WORK_DIR] [CYCLES]
 # Defaults: build, povray_film, 30 plate periods (2401 frames at 2000 frames/s). The frames are
 # 320x160 at 0.4 mm/px, one exposure slice, noise 2 grey levels; the footage is kept in

@@ -35,8 +35,8 @@ void UseGivenGamma(double gamma, PlateDrive* p, std::vector<std::string>* warnin
     warnings->push_back("--gamma " + Num(gamma) + " is used; the tracked plate moves as Gamma " +
                         Num(p->gamma_plate, 5) + " +- " + Num(p->gamma_plate_err, 2) + " (" +
                         Num(100 * diff / gamma, 3) + " %): an edge nearer the camera than the " +
-                        "dimer moves more pixels per mm (track --plate-m-per-px gives its own scale), " +
-                        "or --m-per-px or the accelerometer is off");
+                        "dimer moves more pixels per mm (track --plate-m-per-px gives its own " +
+                        "scale), or --m-per-px or the accelerometer is off");
   }
 }
 

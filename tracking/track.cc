@@ -129,7 +129,8 @@ void SequenceOptions::Check() const {
   if (threads < 0 || threads > 256) throw UsageError("--threads must be 0 (all cores) .. 256");
   if (chunk_frames < 1) throw UsageError("--chunk-frames must be >= 1");
   if (learn_passes < 0 || learn_passes > 20) throw UsageError("learning passes must be 0 .. 20");
-  if (!std::isnan(plate_motion_scale) && !(plate_motion_scale > 0 && std::isfinite(plate_motion_scale))) {
+  if (!std::isnan(plate_motion_scale) &&
+      !(plate_motion_scale > 0 && std::isfinite(plate_motion_scale))) {
     throw UsageError("the plate's motion scale must be > 0");
   }
 }
@@ -443,9 +444,10 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                      r.plate_shift.applied || r.plate_scale.given ? r.plate_scale.edge_ref : 0.0},
                     {"plate_motion_scale", r.plate_scale.scale},
                     {"plate_motion_scale_err", r.plate_scale.fitted ? r.plate_scale.err : 0.0},
-                    {"plate_motion_scale_source", std::string(r.plate_scale.given    ? "--plate-m-per-px"
-                                                              : r.plate_scale.fitted ? "fitted"
-                                                                                     : "none")},
+                    {"plate_motion_scale_source",
+                     std::string(r.plate_scale.given    ? "--plate-m-per-px"
+                                 : r.plate_scale.fitted ? "fitted"
+                                                        : "none")},
                     {"plate_m_per_px", std::isnan(args.plate_m_per_px) ? 0.0 : args.plate_m_per_px},
                     {"plate_clipped_frames", int64_t(r.plate_clip.frames)},
                     {"plate_clip_level", clip_found ? r.plate_clip.level.value : 0.0},
@@ -592,7 +594,9 @@ void RunTrack(const TrackArgs& args) {
     seq.contact_radius_px = 0.5 * args.diameter / args.m_per_px;
   }
   seq.tracker.polarity = args.polarity == "bright" ? 1 : args.polarity == "dark" ? -1 : 0;
-  if (!std::isnan(args.plate_m_per_px)) seq.plate_motion_scale = args.plate_m_per_px / args.m_per_px;
+  if (!std::isnan(args.plate_m_per_px)) {
+    seq.plate_motion_scale = args.plate_m_per_px / args.m_per_px;
+  }
   AtomicOutput out(args.output, args.force);  // refuses an existing output before any work
   auto source = SelectFrames(FrameSource::Open(args.input), ParseFrameRange(args.frames),
                              args.input);
