@@ -14,15 +14,16 @@ constexpr double kHarmonicWarn = 0.05;   // a harmonic above 5 % of the drive: n
 // --gamma and the tracked plate's Gamma differ: warned beyond 3 sigma and 1 %.
 constexpr double kGammaAgreeSigmas = 3.0, kGammaAgreeRel = 0.01;
 
-// --gamma with a visible plate: Gamma measured on the plate (an accelerometer) is worth more
-// than the amplitude read off its edge, whose pixels per mm differ from the dimer's when the edge
-// is nearer or further than the dimer (a POV-Ray film with the front edge 20 mm nearer at 0.7 m:
-// Gamma 2.3 % high). The fitted frequency and phase stay; the amplitude follows the given Gamma.
 // The plate amplitude that gives `gamma` at `freq_hz`: Gamma = 4 pi^2 a f^2 / g.
 double AmplitudeOfGamma(double gamma, double freq_hz) {
   return gamma * kGravity / std::pow(2 * M_PI * freq_hz, 2);
 }
 
+// --gamma with a visible plate: Gamma measured on the plate (an accelerometer) is worth more
+// than the amplitude read off its edge, whose pixels per mm differ from the dimer's when the edge
+// is nearer or further than the dimer (a POV-Ray film with the front edge 20 mm nearer at 0.7 m:
+// Gamma 2.3 % high; `track --plate-m-per-px` mends the edge itself). The fitted frequency and
+// phase stay; the amplitude follows the given Gamma.
 void UseGivenGamma(double gamma, PlateDrive* p, std::vector<std::string>* warnings) {
   p->gamma_plate = p->gamma;
   p->gamma_plate_err = p->gamma_err;
