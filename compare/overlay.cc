@@ -119,8 +119,8 @@ void Draw(const Analysis& a, const Comparison* c, size_t i, const std::string& e
   const double radius_px = 0.5 * r.diameter_m / r.m_per_px;
   const int marker = std::clamp(static_cast<int>(radius_px), kMinMarkerPx, kMaxMarkerPx);
   auto pixel = [&r](double x, double z) {
-    return cv::Point(static_cast<int>(std::lround(x / r.m_per_px)),
-                     static_cast<int>(std::lround(r.row0_px - z / r.m_per_px)));
+    const Eigen::Vector2d p = r.PixelOf(x, z);
+    return cv::Point(static_cast<int>(std::lround(p.x())), static_cast<int>(std::lround(p.y())));
   };
   const int radius = std::max(1, static_cast<int>(std::lround(radius_px)));
   const int line = radius_px > kThickLineRadiusPx ? 2 : 1;

@@ -6,7 +6,8 @@
 // (crosses, one colour per sphere) with circles of diameter d, the aligned simulation's spheres
 // at the same instant (circles in a third colour) when a comparison is given, and a line of text
 // with the time and the mode of the timeline window containing it. Pixels from the track's
-// calibration: col = x / m_per_px, row = row0_px - z / m_per_px.
+// calibration: col = x / m_per_px, row = row0_px - z / m_per_px (turned with a sloping plate's
+// edge: SampledRun::PixelOf).
 //
 // Writes overlay.avi (MJPG) over the first max_frames frames of the settled window and
 // stills/still_K.png (K = 0 .. stills - 1) at phases K / stills of its first period. Missing or

@@ -44,6 +44,15 @@ bool SampledRun::Valid(size_t i) const {
          std::isfinite(z[1][i]);
 }
 
+Eigen::Vector2d SampledRun::PixelOf(double x_m, double z_m) const {
+  if (plate_slope == 0) return {x_m / m_per_px, row0_px - z_m / m_per_px};
+  // track.cc's Calibration::ToMetres turned (col - col0, row - row0) by the slope's angle with
+  // [[cos, sin], [sin, -cos]], which is its own inverse.
+  const double a = std::atan(plate_slope), c = std::cos(a), s = std::sin(a);
+  const double u = x_m / m_per_px - col0_px, w = z_m / m_per_px;
+  return {col0_px + u * c + w * s, row0_px + u * s - w * c};
+}
+
 SampledRun SampleTrajectory(const Trajectory& traj, double fps, double diameter_m,
                             const std::string& label, const std::string& kind) {
   SampledRun run;
@@ -119,6 +128,8 @@ SampledRun LoadSampledRun(const std::string& path) {
   if (kind == "track") {
     run.m_per_px = r.AttrDouble("/", "m_per_px").value_or(kNaN);
     run.row0_px = r.AttrDouble("/", "row0").value_or(kNaN);
+    run.plate_slope = r.AttrDouble("/", "plate_slope").value_or(0.0);
+    run.col0_px = r.AttrDouble("/", "col0").value_or(0.0);
     run.plate_motion_scale = r.AttrDouble("/", "plate_motion_scale").value_or(kNaN);
     run.plate_scale_source = r.AttrString("/", "plate_motion_scale_source").value_or("");
     if (r.Has("/frame_files") && r.Has("/frame_index")) {

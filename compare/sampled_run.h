@@ -32,6 +32,12 @@ struct SampledRun {
   double ar = kNaN;            // A_r measured as median |c_r - c_l| / d + 1
   double m_per_px = kNaN;      // track files: calibration, m/px (col = x / m_per_px)
   double row0_px = kNaN;       // track files: row of z = 0 (row = row0 - z / m_per_px)
+  // Track files whose plate edge sloped (`track`'s plate_slope, rows per column, and the pivot
+  // column col0): x and z run along the plate and its normal; 0 and 0 when level or older.
+  double plate_slope = 0;
+  double col0_px = 0;
+  // The pixel (col, row) of the lab point (x_m, z_m), m, by the track file's calibration.
+  Eigen::Vector2d PixelOf(double x_m, double z_m) const;
   std::vector<std::string> frame_files;  // track files: the image of each grid frame ("" none)
   // Track files: how the plate edge's motion was scaled to the dimer plane's (`track`'s
   // plate_motion_scale and its source: "--plate-m-per-px", "fitted" or "none"; "" when older).

@@ -62,7 +62,7 @@ bool Patch(const cv::Mat& image, const Eigen::Vector2d& pos, int half, cv::Mat* 
 
 MaskContext ContextOf(const LearningSample& s, int k) {
   MaskContext ctx;
-  ctx.plate_row = s.plate_row;
+  ctx.plate_row = s.PlateRowAt(s.centre[k].x());
   const Eigen::Vector2d d = s.centre[1 - k] - s.centre[k];
   if (d.norm() > 0) {
     ctx.rod_dir = d.normalized();
@@ -120,7 +120,7 @@ bool HorizonMoves(const std::vector<cv::Mat>& images, const std::vector<Learning
   std::vector<double> h, z;
   cv::Mat patch, gy;
   for (size_t i = 0; i < used.size(); ++i) {
-    const double plate = samples[used[i]].plate_row;
+    const double plate = samples[used[i]].PlateRowAt(pos[i].x());
     if (!std::isfinite(plate) || !Patch(images[used[i]], pos[i], half, &patch)) continue;
     cv::Sobel(patch, gy, CV_32F, 0, 1, 3, 1.0 / 8.0);
     double sw = 0, swy = 0, peak = 0;
@@ -293,7 +293,8 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   for (int k = 0; k < 2; ++k) {
     std::vector<double> g;
     for (size_t i = 0; i < used.size(); ++i) {
-      g.push_back(samples[used[i]].plate_row - radius_px - out[k].registered[i].y());
+      g.push_back(samples[used[i]].PlateRowAt(out[k].registered[i].x()) - radius_px -
+                  out[k].registered[i].y());
       if (std::isfinite(g.back())) lowest = std::min(lowest, g.back());
     }
     const size_t support = std::max(kRestShiftMinSupport,

@@ -70,7 +70,14 @@ inline constexpr double kContactBandPx = 0.3;
 // One learning frame with the rough centres of the existing methods (left, right).
 struct LearningSample {
   cv::Mat image;
+  // The plate's row at column plate_col, sloping by plate_slope rows per column (tracker.h,
+  // FrameTrack).
   double plate_row = std::numeric_limits<double>::quiet_NaN();
+  double plate_col = 0;
+  double plate_slope = 0;
+  double PlateRowAt(double col) const {
+    return plate_slope == 0 ? plate_row : plate_row + plate_slope * (col - plate_col);
+  }
   std::array<bool, 2> found{false, false};
   std::array<Eigen::Vector2d, 2> centre{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
 };

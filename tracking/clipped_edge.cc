@@ -431,7 +431,7 @@ size_t RefitClippedRows(const std::vector<const ClippedEdgeProfile*>& frames,
                       kPlateClipCoarsePx, kPlateClipTolerancePx, &own);
       if (shared > own + kSharedLevelMaxExtraChi2) continue;
     }
-    (*rows)[i] = row;
+    (*rows)[i] = row - p.row_shift;
     ++replaced;
   }
   return replaced;

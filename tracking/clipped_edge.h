@@ -45,6 +45,10 @@ struct ClippedEdgeProfile {
   // pixel_sigma was measured on rows clear of the clip and of black; else it is the band's,
   // which the clip has cut, and the sequence's median noise is used instead.
   bool noise_measured = false;
+  // A sloping edge's profile is straightened by whole rows per column block; this is what those
+  // rows leave over (RefinePlateRow): subtracted from any row fitted on the profile, it gives the
+  // row at the reference column.
+  double row_shift = 0;
   bool valid() const { return !profile.empty(); }
 };
 

@@ -159,10 +159,10 @@ PlateShift EstimatePlateShift(const std::vector<LearningSample>& samples, double
     if (!std::isfinite(s.plate_row)) continue;
     for (int k = 0; k < 2; ++k) {
       if (!s.found[k]) continue;
-      const MirroredContact c =
-          FitMirroredContact(s.image, s.centre[k].x(), radius_px, s.plate_row);
+      const double plate = s.PlateRowAt(s.centre[k].x());
+      const MirroredContact c = FitMirroredContact(s.image, s.centre[k].x(), radius_px, plate);
       if (c.ok && c.reflection_chi2 >= kMinReflectionChi2) {
-        d.push_back(c.row - s.plate_row);
+        d.push_back(c.row - plate);
         edges.push_back(s.plate_row);
       }
     }

@@ -49,18 +49,20 @@ double BandNoise(const cv::Mat& frame, int r0, int r1, const std::vector<uint8_t
 
 // Pixel noise sigma for a clipped edge's fit (RefinePlateRow): as BandNoise, over the `use`
 // columns of the rows near the step k whose mean is clear of 0 and of the clip (elsewhere the
-// clip cuts the noise); NaN if there is none.
+// clip cuts the noise), each column's rows moved down by `shift` (a sloping edge); NaN if there
+// is none.
 double LitRowNoise(const cv::Mat& frame, int first_row, const std::vector<double>& profile, int k,
-                   const std::vector<uint8_t>& use) {
+                   const std::vector<uint8_t>& use, const std::vector<int>& shift) {
   const double clip = FullScale(frame);
   thread_local std::vector<double> d;
   d.clear();
   for (int i = k - kBracketRows; i <= k + kBracketRows; ++i) {
     if (std::min(profile[i], clip - profile[i]) < kPlateClipNoiseRowMargin * clip) continue;
     for (int col = 0; col + 1 < frame.cols; ++col) {
-      if (use[col] && use[col + 1]) {
-        d.push_back(std::abs(PixelAt(frame, first_row + i, col + 1) -
-                             PixelAt(frame, first_row + i, col)));
+      // (Neighbours in one block: read along the same shifted row.)
+      if (use[col] && use[col + 1] && shift[col] == shift[col + 1]) {
+        d.push_back(std::abs(PixelAt(frame, first_row + i + shift[col], col + 1) -
+                             PixelAt(frame, first_row + i + shift[col], col)));
       }
     }
   }
@@ -185,92 +187,145 @@ double FindPlateRowCoarse(const cv::Mat& frame) {
   return (k < 0 || best < min_step) ? kNaN : k + 0.5;
 }
 
-double RefinePlateRow(const cv::Mat& frame, double row_guess,
-                      const std::vector<std::pair<double, double>>& excluded, double psf_sigma_px,
-                      ClippedEdgeProfile* clipped) {
-  if (clipped) *clipped = ClippedEdgeProfile{};
-  if (!std::isfinite(row_guess)) return kNaN;
-  const int r0 = std::max(0, int(std::lround(row_guess)) - kPlateBandHalfPx);
+namespace {
+
+// The band's column blocks and each one's own edge (RefinePlateRow, PlateEdgeSlope).
+struct BlockEdge {
+  size_t block;
+  double row;  // its edge's row moved to ref_col along the slope
+  int sign;    // +1: brighter below
+};
+struct PlateBlocks {
+  int r0 = 0, rows = 0;                     // band rows r0 .. r0 + rows - 1 (at ref_col)
+  std::vector<std::pair<int, int>> blocks;  // [first, last] column
+  std::vector<int> shift;                   // whole rows each block is read down by
+  std::vector<double> rest;                 // slope (centre - ref_col) - shift: the fraction left
+  std::vector<double> sums;                 // block b's profile: sums[b * rows + i]
+  std::vector<uint8_t> use;                 // columns clear of the spheres
+  std::vector<BlockEdge> edges;             // blocks with an edge, row at ref_col
+  double sigma = 1;                         // pixel noise in the band
+  bool ok = false;
+};
+
+PlateBlocks MeasureBlocks(const cv::Mat& frame, double row_guess,
+                          const std::vector<std::pair<double, double>>& excluded, double slope,
+                          double ref_col) {
+  PlateBlocks pb;
+  if (!std::isfinite(row_guess)) return pb;
+  pb.r0 = std::max(0, int(std::lround(row_guess)) - kPlateBandHalfPx);
   const int r1 = std::min(frame.rows - 1, int(std::lround(row_guess)) + kPlateBandHalfPx);
-  const int rows = r1 - r0 + 1;
-  if (rows < 2 * kBracketRows + 2) return kNaN;
-  std::vector<uint8_t> use(frame.cols, 1);
+  pb.rows = r1 - pb.r0 + 1;
+  if (pb.rows < 2 * kBracketRows + 2) return pb;
+  pb.use.assign(frame.cols, 1);
   for (const auto& [a, b] : excluded) {
     for (int c = std::max(0, int(std::floor(a))); c <= std::min(frame.cols - 1, int(std::ceil(b)));
          ++c) {
-      use[c] = 0;
+      pb.use[c] = 0;
     }
   }
   // Column blocks: runs of clear columns cut into blocks of kPlateBlockColumns; a run's
-  // remainder of at least half a block is a block of its own, a shorter one is dropped.
-  std::vector<std::pair<int, int>> blocks;  // [first, last] column
+  // remainder of at least half a block is a block of its own, a shorter one is dropped. A block
+  // whose band, moved along the slope, leaves the frame is dropped too.
   for (int c = 0; c < frame.cols;) {
-    if (!use[c]) {
+    if (!pb.use[c]) {
       ++c;
       continue;
     }
     int end = c;
-    while (end + 1 < frame.cols && use[end + 1] && end + 1 - c < kPlateBlockColumns) ++end;
-    if (end - c + 1 >= kPlateBlockColumns / 2) blocks.emplace_back(c, end);
+    while (end + 1 < frame.cols && pb.use[end + 1] && end + 1 - c < kPlateBlockColumns) ++end;
+    if (end - c + 1 >= kPlateBlockColumns / 2) {
+      const double along = slope == 0 ? 0.0 : slope * (0.5 * (c + end) - ref_col);
+      const int shift = int(std::lround(along));
+      if (pb.r0 + shift >= 0 && r1 + shift < frame.rows) {
+        pb.blocks.emplace_back(c, end);
+        pb.shift.push_back(shift);
+        pb.rest.push_back(along - shift);
+      }
+    }
     c = end + 1;
   }
-  if (blocks.size() < size_t(kPlateMinBlocks)) return kNaN;
-  const double sigma = BandNoise(frame, r0, r1, use);
+  if (pb.blocks.size() < size_t(kPlateMinBlocks)) return pb;
+  pb.sigma = BandNoise(frame, pb.r0, r1, pb.use);
   // Block profiles (sums over the block's columns, per row).
-  thread_local std::vector<double> sums;
-  sums.assign(blocks.size() * size_t(rows), 0.0);
-  for (int row = r0; row <= r1; ++row) {
-    for (size_t b = 0; b < blocks.size(); ++b) {
-      sums[b * rows + (row - r0)] =
+  pb.sums.assign(pb.blocks.size() * size_t(pb.rows), 0.0);
+  for (int i = 0; i < pb.rows; ++i) {
+    for (size_t b = 0; b < pb.blocks.size(); ++b) {
+      const int row = pb.r0 + i + pb.shift[b];
+      pb.sums[b * pb.rows + i] =
           double(frame.depth() == CV_8U
-                     ? RangeSum<uint8_t>(frame, row, blocks[b].first, blocks[b].second)
-                     : RangeSum<uint16_t>(frame, row, blocks[b].first, blocks[b].second));
+                     ? RangeSum<uint8_t>(frame, row, pb.blocks[b].first, pb.blocks[b].second)
+                     : RangeSum<uint16_t>(frame, row, pb.blocks[b].first, pb.blocks[b].second));
     }
   }
-  // Each block's own edge and its sign (+1: brighter below).
-  struct BlockEdge {
-    size_t block;
-    double row;
-    int sign;
-  };
-  std::vector<BlockEdge> edges;
-  std::vector<double> profile(rows);
-  for (size_t b = 0; b < blocks.size(); ++b) {
-    const int n = blocks[b].second - blocks[b].first + 1;
-    for (int i = 0; i < rows; ++i) profile[i] = sums[b * rows + i] / n;
-    const double row = EdgeRowInProfile(profile, r0, MinStep(sigma, n, frame));
+  std::vector<double> profile(pb.rows);
+  for (size_t b = 0; b < pb.blocks.size(); ++b) {
+    const int n = pb.blocks[b].second - pb.blocks[b].first + 1;
+    for (int i = 0; i < pb.rows; ++i) profile[i] = pb.sums[b * pb.rows + i] / n;
+    const double row = EdgeRowInProfile(profile, pb.r0, MinStep(pb.sigma, n, frame));
     if (!std::isfinite(row)) continue;
-    const int k = std::clamp(int(std::lround(row)) - r0, kBracketRows, rows - 1 - kBracketRows);
-    edges.push_back({b, row, profile[k + kBracketRows] > profile[k - kBracketRows] ? 1 : -1});
+    const int k =
+        std::clamp(int(std::lround(row)) - pb.r0, kBracketRows, pb.rows - 1 - kBracketRows);
+    pb.edges.push_back({b, row - pb.rest[b],
+                        profile[k + kBracketRows] > profile[k - kBracketRows] ? 1 : -1});
   }
-  // The plate's edge has one sign across the width: the majority's. Blocks of the other sign
-  // (a reflection's edge, a highlight) and blocks far from the median row are left out.
+  pb.ok = true;
+  return pb;
+}
+
+// The plate's edge has one sign across the width: the majority's.
+int MajoritySign(const std::vector<BlockEdge>& edges) {
   const int positive = int(std::count_if(edges.begin(), edges.end(),
                                          [](const BlockEdge& e) { return e.sign > 0; }));
-  const int sign = 2 * positive >= int(edges.size()) ? 1 : -1;
+  return 2 * positive >= int(edges.size()) ? 1 : -1;
+}
+
+}  // namespace
+
+double RefinePlateRow(const cv::Mat& frame, double row_guess,
+                      const std::vector<std::pair<double, double>>& excluded, double psf_sigma_px,
+                      ClippedEdgeProfile* clipped, double slope, double ref_col) {
+  if (clipped) *clipped = ClippedEdgeProfile{};
+  if (!(std::isfinite(slope) && std::isfinite(ref_col))) slope = 0;
+  const PlateBlocks pb = MeasureBlocks(frame, row_guess, excluded, slope, ref_col);
+  if (!pb.ok) return kNaN;
+  const int r0 = pb.r0, rows = pb.rows;
+  const auto& blocks = pb.blocks;
+  const auto& sums = pb.sums;
+  // Blocks of the other sign (a reflection's edge, a highlight) and blocks far from the median
+  // row are left out.
+  const int sign = MajoritySign(pb.edges);
   std::vector<double> rows_found;
-  for (const auto& e : edges) {
+  for (const auto& e : pb.edges) {
     if (e.sign == sign) rows_found.push_back(e.row);
   }
   if (rows_found.size() < size_t(kPlateMinBlocks)) return kNaN;
   std::nth_element(rows_found.begin(), rows_found.begin() + rows_found.size() / 2,
                    rows_found.end());
   const double median = rows_found[rows_found.size() / 2];
-  // The inlier blocks' mean profile: one edge at one row, whatever each block's gain.
-  std::fill(profile.begin(), profile.end(), 0.0);
+  // The inlier blocks' mean profile: one edge at one row, whatever each block's gain. Each
+  // column's whole-row shift (`shift_of`) follows its block; what is left of the slope is
+  // averaged over the columns (`rest`) and taken off the row.
+  std::vector<double> profile(rows, 0.0);
   int n_cols = 0, inliers = 0;
+  double rest = 0;
   std::vector<uint8_t> inlier_cols(frame.cols, 0);
-  for (const auto& e : edges) {
+  std::vector<int> shift_of(frame.cols, 0);
+  for (const auto& e : pb.edges) {
     if (e.sign != sign || std::abs(e.row - median) > kPlateInlierPx) continue;
+    const int n = blocks[e.block].second - blocks[e.block].first + 1;
     for (int i = 0; i < rows; ++i) profile[i] += sums[e.block * rows + i];
-    n_cols += blocks[e.block].second - blocks[e.block].first + 1;
+    n_cols += n;
+    rest += n * pb.rest[e.block];
     std::fill(inlier_cols.begin() + blocks[e.block].first,
               inlier_cols.begin() + blocks[e.block].second + 1, 1);
+    std::fill(shift_of.begin() + blocks[e.block].first,
+              shift_of.begin() + blocks[e.block].second + 1, pb.shift[e.block]);
     ++inliers;
   }
   if (inliers < kPlateMinBlocks) return kNaN;
   for (double& p : profile) p /= n_cols;
-  const double row = EdgeRowInProfile(profile, r0, MinStep(sigma, n_cols, frame));
+  rest = slope == 0 ? 0.0 : rest / n_cols;
+  const double row = EdgeRowInProfile(profile, r0, MinStep(pb.sigma, n_cols, frame));
   if (!std::isfinite(row)) return row;
   // One side at the clip (most of its pixels at full scale): its level is unknown, and the
   // coverage sum (which reads it three rows off) would take the clip for it; the blurred edge
@@ -282,21 +337,73 @@ double RefinePlateRow(const cv::Mat& frame, double row_guess,
   const int bright_row = r0 + k + (below ? kBracketRows : -kBracketRows);
   int at_clip = 0;
   for (int col = 0; col < frame.cols; ++col) {
-    at_clip += inlier_cols[col] && PixelAt(frame, bright_row, col) >= clip;
+    at_clip += inlier_cols[col] && PixelAt(frame, bright_row + shift_of[col], col) >= clip;
   }
-  if (2 * at_clip < n_cols) return row;
+  if (2 * at_clip < n_cols) return row - rest;
   // No row clear of the clip and of black: the band's noise, which the clip has cut (a frame's
   // own fit is then too sure of itself; the sequence uses the others' noise, clipped_edge.h).
-  const double lit_sigma = LitRowNoise(frame, r0, profile, k, inlier_cols);
-  const double pixel_sigma = std::isfinite(lit_sigma) ? lit_sigma : sigma;
+  const double lit_sigma = LitRowNoise(frame, r0, profile, k, inlier_cols, shift_of);
+  const double pixel_sigma = std::isfinite(lit_sigma) ? lit_sigma : pb.sigma;
   const double fitted = ClippedEdgeRowInProfile(
       profile, r0, clip, pixel_sigma, pixel_sigma / std::sqrt(double(n_cols)), psf_sigma_px);
-  if (!std::isfinite(fitted)) return row;
+  if (!std::isfinite(fitted)) return row - rest;
   if (clipped) {
-    *clipped =
-        ClippedEdgeProfile{profile, r0, clip, pixel_sigma, n_cols, std::isfinite(lit_sigma)};
+    *clipped = ClippedEdgeProfile{profile, r0, clip, pixel_sigma, n_cols,
+                                  std::isfinite(lit_sigma), rest};
   }
-  return fitted;
+  return fitted - rest;
+}
+
+double PlateEdgeSlope(const cv::Mat& frame, double row_guess,
+                      const std::vector<std::pair<double, double>>& excluded, double* err) {
+  *err = kNaN;
+  const PlateBlocks pb = MeasureBlocks(frame, row_guess, excluded, 0, 0);
+  if (!pb.ok) return kNaN;
+  const int sign = MajoritySign(pb.edges);
+  std::vector<double> x, y;
+  for (const auto& e : pb.edges) {
+    if (e.sign != sign) continue;
+    x.push_back(0.5 * (pb.blocks[e.block].first + pb.blocks[e.block].second));
+    y.push_back(e.row);
+  }
+  const size_t n = x.size();
+  if (n < size_t(kPlateMinSlopeBlocks)) return kNaN;
+  // Theil-Sen: robust to the few blocks a reflection or a highlight moved.
+  std::vector<double> pair_slopes;
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = i + 1; j < n; ++j) {
+      if (x[j] != x[i]) pair_slopes.push_back((y[j] - y[i]) / (x[j] - x[i]));
+    }
+  }
+  std::nth_element(pair_slopes.begin(), pair_slopes.begin() + pair_slopes.size() / 2,
+                   pair_slopes.end());
+  const double robust = pair_slopes[pair_slopes.size() / 2];
+  std::vector<double> offsets;
+  for (size_t i = 0; i < n; ++i) offsets.push_back(y[i] - robust * x[i]);
+  std::nth_element(offsets.begin(), offsets.begin() + n / 2, offsets.end());
+  const double offset = offsets[n / 2];
+  // Least squares over the blocks within kPlateInlierPx of that line.
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  std::vector<size_t> in;
+  for (size_t i = 0; i < n; ++i) {
+    if (std::abs(y[i] - offset - robust * x[i]) > kPlateInlierPx) continue;
+    in.push_back(i);
+    sx += x[i];
+    sy += y[i];
+  }
+  const size_t m = in.size();
+  if (m < size_t(kPlateMinSlopeBlocks)) return kNaN;
+  const double mx = sx / double(m), my = sy / double(m);
+  for (size_t i : in) {
+    sxx += (x[i] - mx) * (x[i] - mx);
+    sxy += (x[i] - mx) * (y[i] - my);
+  }
+  if (!(sxx > 0)) return kNaN;
+  const double b = sxy / sxx;
+  double ss = 0;
+  for (size_t i : in) ss += std::pow(y[i] - my - b * (x[i] - mx), 2);
+  *err = std::sqrt(ss / double(m - 2) / sxx);
+  return b;
 }
 
 }  // namespace dimer::tracking

@@ -49,9 +49,26 @@ double FindPlateRowCoarse(const cv::Mat& frame);
 // profile is then copied to `clipped` (when given; cleared otherwise), for the sequence to fit
 // again once the clipped level is known (clipped_edge.h, SharedClippedLevel).
 // NaN if fewer than kPlateMinBlocks blocks agree.
+// A camera that is not level (or a tilted plate) shows the edge sloping by `slope` rows per
+// column (PlateEdgeSlope): each block's profile is then read `slope` (block column - ref_col)
+// rows down, to the nearest row, which lines the blocks' edges up; the row returned is the
+// edge's at column `ref_col` (the fractions of a row left over are subtracted, exactly: the
+// coverage sum is linear). With slope 0 (the default) nothing moves and ref_col is not used.
 double RefinePlateRow(const cv::Mat& frame, double row_guess,
                       const std::vector<std::pair<double, double>>& excluded,
                       double psf_sigma_px = kPlatePsfSigmaPx,
-                      ClippedEdgeProfile* clipped = nullptr);
+                      ClippedEdgeProfile* clipped = nullptr, double slope = 0,
+                      double ref_col = 0);
+
+// The plate edge's slope, rows per column (> 0: descending to the right), from its column
+// blocks' own rows near `row_guess` (as RefinePlateRow, columns in `excluded` left out): a
+// straight line through them, the blocks more than kPlateInlierPx off a first robust line
+// (Theil-Sen: the median of the pairwise slopes) left out. `err`: the slope's standard error.
+// NaN when fewer than kPlateMinSlopeBlocks blocks agree.
+double PlateEdgeSlope(const cv::Mat& frame, double row_guess,
+                      const std::vector<std::pair<double, double>>& excluded, double* err);
+inline constexpr int kPlateMinSlopeBlocks = 6;
+// Steeper than this (11 degrees) the plate is not the scene's horizontal edge.
+inline constexpr double kPlateMaxSlope = 0.2;
 
 }  // namespace dimer::tracking

@@ -54,7 +54,10 @@ bool HighlightSeed(const cv::Mat& image, double plate_row, double radius_px, Lea
   for (size_t i = 0; i < blobs.size(); ++i) (i < cut ? left : right) += blobs[i];
   s->centre = {left / double(cut), right / double(blobs.size() - cut)};
   s->found = {true, true};
-  if (!std::isfinite(s->plate_row)) s->plate_row = plate_row;
+  if (!std::isfinite(s->plate_row)) {  // the coarse row: the median column's, mid-frame
+    s->plate_row = plate_row;
+    s->plate_col = 0.5 * (image.cols - 1);
+  }
   return true;
 }
 
@@ -85,15 +88,17 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
     LearningSample& s = samples[i];
     s.image = f.image;
     s.plate_row = probes[i].plate_row;
+    s.plate_col = probes[i].plate_col;
+    s.plate_slope = probes[i].plate_slope;
     s.found = probes[i].found;
     s.centre = probes[i].centre;
     std::array<bool, 2>& c = clean[i];
     for (int k = 0; k < 2; ++k) {
+      const double plate = s.PlateRowAt(s.centre[k].x());
       if (s.found[0] && s.found[1]) {
-        c[k] = CleanSilhouette(f.image, s.centre[k], reference.radius_px, s.centre[1 - k],
-                               s.plate_row);
+        c[k] = CleanSilhouette(f.image, s.centre[k], reference.radius_px, s.centre[1 - k], plate);
       } else if (s.found[k]) {
-        c[k] = CleanSilhouette(f.image, s.centre[k], reference.radius_px, s.centre[k], s.plate_row);
+        c[k] = CleanSilhouette(f.image, s.centre[k], reference.radius_px, s.centre[k], plate);
       }
     }
   });
@@ -108,7 +113,11 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
     size_t from_highlights = 0;
     for (size_t i = 0; i < samples.size(); ++i) {
       LearningSample& s = samples[i];
-      const double plate = std::isfinite(s.plate_row) ? s.plate_row : FindPlateRowCoarse(s.image);
+      // (Above the plate everywhere: its highest point where it slopes.)
+      const double plate =
+          std::isfinite(s.plate_row)
+              ? std::min(s.PlateRowAt(0), s.PlateRowAt(s.image.cols - 1))
+              : FindPlateRowCoarse(s.image);
       if (!(s.found[0] && s.found[1])) from_highlights += HighlightSeed(s.image, plate, reference.radius_px, &s);
     }
     if (from_highlights > 0) {
@@ -161,7 +170,7 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
     std::vector<double> rows, plate;
     for (const FrameTrack& f : frames) {
       rows.push_back(f.found[k] ? f.centre[k].y() : std::nan(""));
-      plate.push_back(f.plate_row);
+      plate.push_back(f.PlateRowAt(f.centre[k].x()));  // (the plate under this sphere)
     }
     o.row[k] = ContactRowOffset(rows, plate, contact_radius_px);
   }

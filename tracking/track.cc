@@ -170,6 +170,20 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
         Frame f = buffer.empty() ? source.Read(next + j) : buffer[j];
         if (f.error.empty()) ref = MakeReference(f.image, options.tracker), have_ref = true;
       }
+      if (have_ref) {
+        // The plate edge's slope, from frames spread over the first chunk (plate_slope.h).
+        std::vector<cv::Mat> probe;
+        for (size_t j = 0; j < kSlopeFrames; ++j) {
+          const size_t i = j * count / kSlopeFrames;
+          if (j > 0 && i == (j - 1) * count / kSlopeFrames) continue;
+          Frame f = buffer.empty() ? source.Read(next + i) : buffer[i];
+          if (f.error.empty() && f.image.cols == ref.width && f.image.rows == ref.height) {
+            probe.push_back(f.image);
+          }
+        }
+        result.plate_slope = EstimatePlateSlope(probe, ref.polarity);
+        chunk_opts.plate_slope = result.plate_slope.value;
+      }
       if (have_ref && sequence_level) {
         // Learning frames by index only (sequential sources: within the first chunk, which is
         // decoded ahead anyway); the method and appearances are fixed before any chunk runs.
@@ -182,6 +196,7 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
         }
         TrackerOptions reference = options.tracker;
         reference.polarity = ref.polarity;
+        reference.plate_slope = chunk_opts.plate_slope;
         // The template is sized by the true radius when the scale is known (the silhouette
         // radius of a front-lit steel sphere can be pixels short).
         reference.radius_px = std::isfinite(options.contact_radius_px) ? options.contact_radius_px
@@ -309,8 +324,16 @@ std::string PsfSource(const TrackArgs& args, const PlateClip& clip) {
   return args.sequence.tracker.fit_psf_sigma ? "default" : "--psf-sigma";
 }
 
+// Pixels to metres. With a sloping plate edge (plate_slope.h) the axes turn with it: x along
+// the plate, z along its normal, about the plate's mean row `row0` at the frame's centre column
+// `col0`; with a level plate, x = col m_per_px and z = (row0 - row) m_per_px.
 struct Calibration {
   double m_per_px, row0;
+  double col0 = 0, cos_a = 1, sin_a = 0;  // pivot column; the slope's angle
+  Eigen::Vector2d ToMetres(const Eigen::Vector2d& px) const {
+    const double dc = px.x() - col0, dr = px.y() - row0;
+    return m_per_px * Eigen::Vector2d(col0 + dc * cos_a + dr * sin_a, dc * sin_a - dr * cos_a);
+  }
 };
 
 Calibration Calibrate(const TrackArgs& args, const SequenceResult& r) {
@@ -328,9 +351,16 @@ Calibration Calibrate(const TrackArgs& args, const SequenceResult& r) {
     }
     cal.m_per_px = args.diameter / (2.0 * radius);
   }
+  const double slope = r.plate_slope.value;
+  if (slope != 0) {
+    cal.col0 = 0.5 * (r.width - 1);
+    const double a = std::atan(slope);
+    cal.cos_a = std::cos(a);
+    cal.sin_a = std::sin(a);
+  }
   if (std::isnan(cal.row0)) {
     std::vector<double> rows;
-    for (const auto& f : r.frames) rows.push_back(f.plate_row);
+    for (const auto& f : r.frames) rows.push_back(f.PlateRowAt(cal.col0));
     cal.row0 = Median(rows);
     if (std::isnan(cal.row0)) cal.row0 = r.height - 0.5;  // no plate seen: bottom of the frame
   }
@@ -418,13 +448,16 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
       const Eigen::Vector2d c = f.found[k] ? f.centre[k] : Eigen::Vector2d(kNaN, kNaN);
       px[k].push_back(c.x());
       px[k].push_back(c.y());
-      tip[k] = {c.x() * cal.m_per_px, (cal.row0 - c.y()) * cal.m_per_px};
+      tip[k] = cal.ToMetres(c);
       found[2 * i + k] = f.found[k];
     }
     const Eigen::Vector2d axis = tip[1] - tip[0];
+    // The plate under the dimer: midway between the spheres (where it was read if one is lost).
+    const double plate_col = f.found[0] && f.found[1] ? 0.5 * (f.centre[0].x() + f.centre[1].x())
+                                                      : f.plate_col;
+    plate_row[i] = f.PlateRowAt(plate_col);
     traj.Append(double(f.index) / args.fps, tip[0], tip[1],
-                (cal.row0 - f.plate_row) * cal.m_per_px, std::atan2(axis.y(), axis.x()));
-    plate_row[i] = f.plate_row;
+                cal.ToMetres({plate_col, plate_row[i]}).y(), std::atan2(axis.y(), axis.x()));
     index[i] = int64_t(f.index);
   }
   std::vector<std::string> skipped_names, skipped_reasons;
@@ -455,14 +488,20 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                     {"plate_clip_refitted", int64_t(r.plate_clip.refitted)},
                     {"plate_psf_sigma", clip_found ? r.plate_clip.level.psf_sigma
                                                    : args.sequence.tracker.psf_sigma_px},
-                    {"plate_psf_sigma_source", PsfSource(args, r.plate_clip)}};
+                    {"plate_psf_sigma_source", PsfSource(args, r.plate_clip)},
+                    {"plate_slope", r.plate_slope.value},
+                    {"plate_slope_measured", r.plate_slope.measured},
+                    {"plate_slope_err", r.plate_slope.err},
+                    {"plate_slope_reason", r.plate_slope.reason}};
   AttrUnits units = {{"fps", "1/s"}, {"plate_shift", "px"}, {"plate_shift_err", "px"},
                      {"plate_shift_edge_ref", "px"}, {"plate_motion_scale", "1"},
                      {"plate_motion_scale_err", "1"}, {"plate_m_per_px", "m/px"},
                      {"plate_clipped_frames", "1"},
                      {"plate_clip_level", "grey levels"}, {"plate_clip_level_err", "grey levels"},
                      {"plate_clip_refitted", "1"}, {"plate_psf_sigma", "px"},
-                     {"m_per_px", "m/px"}, {"row0", "px"},
+                     {"plate_slope", "px/px"}, {"plate_slope_measured", "px/px"},
+                     {"plate_slope_err", "px/px"},
+                     {"m_per_px", "m/px"}, {"row0", "px"}, {"col0", "px"},
                      {"diameter", "m"},
                      {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
                      {"frames_tracked", "1"}, {"frames_skipped", "1"}};
@@ -482,7 +521,8 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
   }
   H5Writer w(path);
   const AttrList rest = {
-      {"m_per_px", cal.m_per_px}, {"row0", cal.row0}, {"diameter", args.diameter},
+      {"m_per_px", cal.m_per_px}, {"row0", cal.row0}, {"col0", cal.col0},
+      {"diameter", args.diameter},
       {"polarity", std::string(r.polarity > 0 ? "bright" : "dark")},
       {"polarity_requested", args.polarity},
       {"m_per_px_given", int64_t(!std::isnan(args.m_per_px))},
@@ -504,7 +544,9 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
             "sub-pixel centre of the right sphere: 0-based column and row of pixel centres, rows "
             "growing downward; NaN where not found");
   w.WriteDoubles("/pixels/plate_row", plate_row, {n}, "px");
-  w.SetAttr("/pixels/plate_row", "description", "row of the plate's top surface");
+  w.SetAttr("/pixels/plate_row", "description",
+            "row of the plate's top surface under the dimer (at the column midway between the "
+            "centres; the edge slopes by the root attribute plate_slope)");
   w.WriteInt64("/frame_index", index, {n});
   w.SetAttr("/frame_index", "units", "1");
   w.SetAttr("/frame_index", "description",
@@ -630,6 +672,14 @@ void RunTrack(const TrackArgs& args) {
                    "covered part of a pixel toward the dark side\n",
                    c.frames, c.level.informative, kClippedLevelMinFrames);
     }
+  }
+  // A camera not level (or a tilted plate): the rows are read under each sphere and the metres
+  // run along the plate.
+  if (r.plate_slope.applied && !args.quiet) {
+    std::fprintf(stderr,
+                 "dimerlab track: plate: the edge slopes by %.5f +- %.5f px per px (%s): the plate "
+                 "is read under each sphere, and x runs along it, z along its normal\n",
+                 r.plate_slope.value, r.plate_slope.err, r.plate_slope.reason.c_str());
   }
   // The plate's top in view: its row is the contact line found from the mirror images.
   if (r.plate_shift.applied && !args.quiet) {

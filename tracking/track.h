@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "tracking/frame_source.h"
+#include "tracking/plate_slope.h"
 #include "tracking/template_sequence.h"
 #include "tracking/tracker.h"
 
@@ -69,6 +70,7 @@ struct SequenceResult {
   PlateShift plate_shift;
   PlateMotionScale plate_scale;  // the edge's motion to the contact line's (with plate_shift)
   PlateClip plate_clip;          // an over-exposed plate's level and the rows fitted at it
+  PlateSlope plate_slope;        // the plate edge's slope in the image (plate_slope.h)
 };
 
 // Tracks every frame of `source`. `on_progress(done)` is called from the calling thread.

@@ -51,6 +51,7 @@ void TrackerOptions::Check() const {
   if (polarity < -1 || polarity > 1) bad += "polarity must be -1, 0 or +1; ";
   if (!std::isnan(radius_px) && !(radius_px >= 3)) bad += "sphere radius must be >= 3 px; ";
   if (!(psf_sigma_px >= 0 && psf_sigma_px <= 5)) bad += "PSF sigma must be 0..5 px; ";
+  if (!(std::abs(plate_slope) <= kPlateMaxSlope)) bad += "plate slope must be within +-0.2; ";
   if (!bad.empty()) throw UsageError(bad.substr(0, bad.size() - 2));
 }
 
@@ -99,12 +100,16 @@ SphereMeasurement SequenceTracker::FollowTemplate(const cv::Mat& frame, int k,
 
 double SequenceTracker::PlateRow(const cv::Mat& frame, double guess,
                                  const std::array<Eigen::Vector2d, 2>& centres, int n,
-                                 std::shared_ptr<const ClippedEdgeProfile>* clipped) const {
+                                 std::shared_ptr<const ClippedEdgeProfile>* clipped,
+                                 double* col) const {
   std::vector<std::pair<double, double>> excluded;
   const double r = (std::isnan(radius_px_) ? 0.0 : radius_px_) + kPlateSphereClearPx;
   for (int k = 0; k < n; ++k) excluded.emplace_back(centres[k].x() - r, centres[k].x() + r);
+  *col = n == 2 ? 0.5 * (centres[0].x() + centres[1].x())
+                : (n == 1 ? centres[0].x() : 0.5 * (frame.cols - 1));
   ClippedEdgeProfile profile;
-  const double row = RefinePlateRow(frame, guess, excluded, options_.psf_sigma_px, &profile);
+  const double row = RefinePlateRow(frame, guess, excluded, options_.psf_sigma_px, &profile,
+                                    options_.plate_slope, *col);
   clipped->reset();
   if (profile.valid()) *clipped = std::make_shared<const ClippedEdgeProfile>(std::move(profile));
   return row;
@@ -114,14 +119,16 @@ bool SequenceTracker::Follow(const cv::Mat& frame, FrameTrack* out) {
   if (!locked_[0] || !locked_[1] || !std::isfinite(plate_row_)) return false;
   const std::array<Eigen::Vector2d, 2> predicted{last_[0] + velocity_[0],
                                                  last_[1] + velocity_[1]};
-  out->plate_row = PlateRow(frame, plate_row_, predicted, 2, &out->clipped_plate);
+  out->plate_slope = options_.plate_slope;
+  out->plate_row = PlateRow(frame, plate_row_, predicted, 2, &out->clipped_plate, &out->plate_col);
   if (!std::isfinite(out->plate_row)) return false;
   for (int k = 0; k < 2; ++k) {
-    RefineContext ctx = Context(polarity_, out->plate_row, predicted[k], &predicted[1 - k]);
+    const double plate = out->PlateRowAt(predicted[k].x());
+    RefineContext ctx = Context(polarity_, plate, predicted[k], &predicted[1 - k]);
     ctx.precise_guess = true;  // constant-velocity prediction, < 1 px per frame at 2000 frames/s
     const SphereMeasurement m =
         uses_template()
-            ? FollowTemplate(frame, k, predicted, out->plate_row)
+            ? FollowTemplate(frame, k, predicted, plate)
             : MeasureSphere(frame, predicted[k], radius_px_, ctx, options_.method);
     if (!m.found()) return false;
     out->found[k] = true;
@@ -176,11 +183,12 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
     }
     radius_px_ = rims > 0 ? rim_sum / rims : std::max(dt_r, area_r);
   }
-  out->plate_row = PlateRow(frame, det.plate_row, coarse, n, &out->clipped_plate);
+  out->plate_slope = options_.plate_slope;
+  out->plate_row = PlateRow(frame, det.plate_row, coarse, n, &out->clipped_plate, &out->plate_col);
   std::vector<SphereMeasurement> found;
   for (int k = 0; k < n; ++k) {
-    const RefineContext ctx =
-        Context(polarity_, out->plate_row, coarse[k], n > 1 ? &coarse[1 - k] : nullptr);
+    const RefineContext ctx = Context(polarity_, out->PlateRowAt(coarse[k].x()), coarse[k],
+                                      n > 1 ? &coarse[1 - k] : nullptr);
     SphereMeasurement m;
     if (uses_template()) {  // coarse only: refined below with the identity's own appearance
       m.status = SphereMeasurement::Status::kFound;
@@ -216,7 +224,8 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
       const Eigen::Vector2d* other = found.size() == 2 ? &found[1 - i].centre : nullptr;
       const int search_px =
           int(std::lround(Reach(kAcquireSearchPx, kAcquireSearchR, radius_px_)));
-      found[i] = Locate(frame, slot_of[i], found[i].centre, other, out->plate_row, search_px);
+      found[i] = Locate(frame, slot_of[i], found[i].centre, other,
+                        out->PlateRowAt(found[i].centre.x()), search_px);
     }
   }
   for (size_t i = 0; i < found.size(); ++i) {

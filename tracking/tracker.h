@@ -41,6 +41,9 @@ struct TrackerOptions {
   EccStop ecc{50, 1e-5};
   // Method::kTemplate: the learnt appearances (left, right), shared by every chunk's tracker.
   std::shared_ptr<const std::array<Appearance, 2>> appearance;
+  // The plate edge's slope in the image, rows per column (a camera not quite level, or a tilted
+  // plate; plate_edge.h, PlateEdgeSlope), measured once for the sequence; 0: level.
+  double plate_slope = 0;
 
   void Check() const;  // InputError listing every invalid field
 };
@@ -51,7 +54,15 @@ struct FrameTrack {
   std::array<bool, 2> found{false, false};
   std::array<Eigen::Vector2d, 2> centre{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};  // px
   std::array<double, 2> radius_px{0, 0};           // measured radius (for calibration), px
-  double plate_row = std::numeric_limits<double>::quiet_NaN();  // plate top surface, px
+  // The plate's top surface: its row at column plate_col (under the dimer: midway between the
+  // spheres as they were predicted or found), sloping by plate_slope rows per column, px.
+  double plate_row = std::numeric_limits<double>::quiet_NaN();
+  double plate_col = 0;
+  double plate_slope = 0;
+  // The plate's row at column `col` (plate_row itself when the plate is level).
+  double PlateRowAt(double col) const {
+    return plate_slope == 0 ? plate_row : plate_row + plate_slope * (col - plate_col);
+  }
   // Where the plate's bright side clips: its profile, fitted again once the sequence knows the
   // clipped level (clipped_edge.h); null otherwise, and after that fit.
   std::shared_ptr<const ClippedEdgeProfile> clipped_plate;
@@ -74,9 +85,10 @@ class SequenceTracker {
   SphereMeasurement FollowTemplate(const cv::Mat& frame, int k,
                                    const std::array<Eigen::Vector2d, 2>& predicted,
                                    double plate_row) const;
+  // The plate's row under the spheres at `centres` (the first n), and the column it is at.
   double PlateRow(const cv::Mat& frame, double guess,
                   const std::array<Eigen::Vector2d, 2>& centres, int n,
-                  std::shared_ptr<const ClippedEdgeProfile>* clipped) const;
+                  std::shared_ptr<const ClippedEdgeProfile>* clipped, double* col) const;
   void Commit(const FrameTrack& t);
 
   TrackerOptions options_;

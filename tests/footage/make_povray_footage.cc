@@ -46,6 +46,8 @@ const char* kUsage =
     "  --elevation M       pinhole height above the plate's mean top, m (0: level;\n"
     "                      mirror_plate 0.005)\n"
     "  --horizon-row R     output row of the optical axis (249.5; mirror_plate 224.5)\n"
+    "  --roll-deg A        camera turned about its axis, deg (0; the plate edge descends to\n"
+    "                      the right by tan A px per px)\n"
     "  --plate-depth M     plate extent toward the camera, m (0.04; mirror_plate 0.2)\n"
     "  --aa-depth D        POV-Ray antialiasing depth, 0 (none) .. 7 (4)\n"
     "  --jobs N            POV-Ray processes at once (0: three per core)\n"
@@ -111,6 +113,7 @@ int Run(int argc, char** argv) {
        [&](const std::string& v) { o.scene.plate_depth = ToDouble("--plate-depth", v); }},
       {"--horizon-row",
        [&](const std::string& v) { o.camera.horizon_row = ToDouble("--horizon-row", v); }},
+      {"--roll-deg", [&](const std::string& v) { o.camera.roll_deg = ToDouble("--roll-deg", v); }},
       {"--aa-depth", [&](const std::string& v) { o.aa_depth = int(ToInt("--aa-depth", v)); }},
       {"--jobs", [&](const std::string& v) { o.jobs = int(ToInt("--jobs", v)); }},
       {"--povray", [&](const std::string& v) { o.povray = v; }},

@@ -144,9 +144,11 @@ std::string TruthCsv(const Motion& m, const FootageOptions& o) {
   for (size_t i = 0; i < m.t.size(); ++i) {
     const Instant in = m.at(m.t[i]);
     const Eigen::Vector2d l = cam.Project(in.left), r = cam.Project(in.right);
+    // The plate's row under the dimer: at the column midway between the centres (the same as
+    // anywhere when the camera is level).
     std::snprintf(buf, sizeof buf, "%zu,%s,%.9g,%.6f,%.6f,%.6f,%.6f,%.6f\n", i,
                   FrameName(i).c_str(), m.t[i], l.x(), l.y(), r.x(), r.y(),
-                  cam.PlateRow(in.plate_z));
+                  cam.PlateRowAt(in.plate_z, 0.5 * (l.x() + r.x())));
     s += buf;
   }
   return s;
@@ -189,6 +191,7 @@ std::string Sidecar(const Motion& m, const FootageOptions& o, const std::string&
   add("camera_elevation", Num(c.elevation));
   add("camera_centre_x", Num(c.centre_x));
   add("horizon_row", Num(c.horizon_row));
+  add("camera_roll_deg", Num(c.roll_deg));
   add("focal_px", Num(c.FocalPx()));
   add("render_height", std::to_string(c.RenderHeight()));
   add("render_top", std::to_string(c.RenderTop()));

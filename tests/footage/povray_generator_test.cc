@@ -37,8 +37,9 @@ const char* kGlow = "texture { pigment { rgb 1 } finish { ambient 0 diffuse 0 em
 
 // Glowing 2 mm marker spheres at known lab points, rendered by POV-Ray with heavy antialiasing:
 // each centroid must be the projected centre to 0.02 px, for the default camera (axis low in
-// the frame: top rows of a taller render) and for a camera above the plate with its axis high
-// in the frame (bottom rows), at several depths.
+// the frame: top rows of a taller render), for a camera above the plate with its axis high
+// in the frame (bottom rows), at several depths, and for the default camera turned 2 degrees
+// about its axis (not level).
 TEST(PovrayGenerator, MarkersLandWhereTheCameraModelProjectsThem) {
   dimer::testing::TempDir dir;
   Camera level;
@@ -48,8 +49,10 @@ TEST(PovrayGenerator, MarkersLandWhereTheCameraModelProjectsThem) {
   high.elevation = 0.004;
   high.horizon_row = 60;
   high.centre_x = -0.003;
+  Camera rolled = level;
+  rolled.roll_deg = 2.0;
   int tested = 0;
-  for (const Camera& cam : {level, high}) {
+  for (const Camera& cam : {level, high, rolled}) {
     const double pts[][3] = {{0.01234, 0, 0.00517}, {-0.03517, 0, 0.01233}, {0.05513, 0, -0.00711},
                              {0.05037, 0.01, 0.00213}, {-0.02029, -0.015, -0.01003}};
     std::string scene = "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n" +
@@ -73,7 +76,7 @@ TEST(PovrayGenerator, MarkersLandWhereTheCameraModelProjectsThem) {
       ++tested;
     }
   }
-  EXPECT_EQ(tested, 10);
+  EXPECT_EQ(tested, 15);
 }
 
 // The plate's top edge (camera level with it) is at Camera::PlateRow: a glowing plate's
@@ -81,19 +84,25 @@ TEST(PovrayGenerator, MarkersLandWhereTheCameraModelProjectsThem) {
 // antialiasing quantises a straight edge's coverage to 1 / 2^depth (measured: rounded up), so
 // this test traces to depth 6 (1/64 px); the footage's depth 4 leaves the plate edge up to
 // 1/16 px high.
+// With the camera turned about its axis the edge slopes, and the coverage of a column is the
+// straight edge's row at the column's centre: Camera::PlateRowAt.
 TEST(PovrayGenerator, PlateEdgeLandsOnThePlateRow) {
   dimer::testing::TempDir dir;
   Camera cam;
   cam.centre_x = 0;
   cam.horizon_row = 249;  // odd render height: the axis on a pixel centre
-  const std::string scene = "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n" +
-                            cam.PovCamera() + "background { rgb 0 }\nbox { <-2000, -30, -20>, "
-                            "<2000, 0, 20> " + kGlow + " }\n";
-  const cv::Mat img = RenderPov(scene, cam, 1, 6, dir / "work").at(0);
-  for (int col : {20, 320, 600}) {
-    const double covered = cv::sum(img.col(col))[0];
-    const double edge = cam.height - 0.5 - covered;  // rows below the edge are covered
-    EXPECT_NEAR(edge, cam.PlateRow(0.0), 0.02) << "column " << col;
+  for (double roll : {0.0, 1.5}) {
+    cam.roll_deg = roll;
+    const std::string scene = "#version 3.7;\nglobal_settings { assumed_gamma 1.0 }\n" +
+                              cam.PovCamera() + "background { rgb 0 }\nbox { <-2000, -30, -20>, "
+                              "<2000, 0, 20> " + kGlow + " }\n";
+    const cv::Mat img = RenderPov(scene, cam, 1, 6, dir / "work").at(0);
+    for (int col : {20, 320, 600}) {
+      const double covered = cv::sum(img.col(col))[0];
+      const double edge = cam.height - 0.5 - covered;  // rows below the edge are covered
+      EXPECT_NEAR(edge, cam.PlateRowAt(0.0, col), 0.02) << "column " << col << ", roll " << roll;
+      if (roll == 0) EXPECT_NEAR(edge, cam.PlateRow(0.0), 0.02) << "column " << col;
+    }
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <utility>
 
 #include "common/error.h"
@@ -168,16 +169,32 @@ int Camera::RenderTop() const {
 Eigen::Vector2d Camera::Project(double x, double y, double z) const {
   const double dx = x - centre_x, dy = y + distance, dz = z - elevation;
   const double f = FocalPx();
-  return {0.5 * (width - 1) + f * dx / dy, horizon_row - f * dz / dy};
+  // Offsets from the axis's pixel along the world's right (a) and up (b), then seen along the
+  // rolled camera's right (cos, sin) and up (-sin, cos) axes; rows grow downward.
+  const double a = f * dx / dy, b = f * dz / dy;
+  const double roll = roll_deg * std::numbers::pi / 180.0, c = std::cos(roll), s = std::sin(roll);
+  return {0.5 * (width - 1) + a * c + b * s, horizon_row + a * s - b * c};
+}
+
+double Camera::PlateRowAt(double plate_z, double col) const {
+  // The plate's line in the dimer plane is straight in the image (a pinhole keeps lines): its
+  // row at `col` from two of its points a metre apart either side of the axis.
+  const Eigen::Vector2d p = Project(centre_x - 0.5, 0, plate_z), q = Project(centre_x + 0.5, 0, plate_z);
+  return p.y() + (q.y() - p.y()) * (col - p.x()) / (q.x() - p.x());
 }
 
 std::string Camera::PovCamera() const {
   // Screen of RenderHeight() x width pixels, one unit per pixel at distance f: the ray of pixel
   // (i, j) of the full image is direction + ((i + 0.5) / W - 0.5) right + (0.5 - (j + 0.5) / H) up.
+  // A roll turns right and up about the direction (POV-Ray's x right, y up).
   const int hr = RenderHeight();
+  const double roll = roll_deg * std::numbers::pi / 180.0, c = std::cos(roll), s = std::sin(roll);
+  // (A level camera's statement is written as before the roll existed, so cached footage stays.)
+  const std::string right = roll_deg == 0 ? Vec(width, 0, 0) : Vec(width * c, width * s, 0);
+  const std::string up = roll_deg == 0 ? Vec(0, hr, 0) : Vec(-hr * s, hr * c, 0);
   return "camera { perspective\n  location " + Vec(0, kMm * elevation, -kMm * distance) +
-         "\n  right " + Vec(width, 0, 0) + "\n  up " + Vec(0, hr, 0) + "\n  direction " +
-         Vec(0, 0, FocalPx()) + "\n}\n";
+         "\n  right " + right + "\n  up " + up +
+         "\n  direction " + Vec(0, 0, FocalPx()) + "\n}\n";
 }
 
 std::string Camera::Check() const {
@@ -190,6 +207,7 @@ std::string Camera::Check() const {
   need(m_per_px > 0 && std::isfinite(m_per_px), "--m-per-px must be > 0");
   need(distance > 0.05 && std::isfinite(distance), "--distance must be > 0.05 m");
   need(std::isfinite(elevation), "--elevation must be finite");
+  need(std::isfinite(roll_deg) && std::abs(roll_deg) <= 10, "--roll-deg must be within +-10");
   need(!std::isinf(centre_x), "camera centre x must be finite (NaN: automatic)");
   need(std::isfinite(horizon_row) && horizon_row >= 0 && horizon_row <= height - 1 &&
            std::abs(2 * horizon_row - std::round(2 * horizon_row)) < 1e-9,

@@ -70,6 +70,10 @@ struct Camera {
   double elevation = 0.0;         // pinhole height above z = 0 (level with the plate top), m
   double centre_x = 0.0;          // lab x on the optical axis, m
   double horizon_row = 249.5;     // output row of the optical axis (integer or half-integer)
+  // Rotation of the camera about its optical axis, degrees, counter-clockwise as seen from behind
+  // it: a camera that is not quite level. The image turns clockwise about the axis's pixel, and
+  // the plate's edge descends to the right by tan(roll) px per px.
+  double roll_deg = 0.0;
 
   double FocalPx() const { return distance / m_per_px; }
   int RenderHeight() const;       // rows of the full (unshifted) POV-Ray image
@@ -77,8 +81,10 @@ struct Camera {
   // Pixel (col, row) of the lab point (x, y, z), metres; y = 0 is the dimer plane.
   Eigen::Vector2d Project(double x, double y, double z) const;
   Eigen::Vector2d Project(const Eigen::Vector2d& xz) const { return Project(xz.x(), 0, xz.y()); }
-  // Row of the plate's top surface in the dimer plane for a plate at height plate_z.
+  // Row of the plate's top surface in the dimer plane for a plate at height plate_z, at the
+  // optical axis's column; with a roll, at column `col` (the line through the plate's projection).
   double PlateRow(double plate_z) const { return Project(centre_x, 0, plate_z).y(); }
+  double PlateRowAt(double plate_z, double col) const;
   // The POV-Ray camera statement matching Project().
   std::string PovCamera() const;
   std::string Check() const;      // "" or every invalid field
