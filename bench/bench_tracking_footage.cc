@@ -10,7 +10,8 @@
 // what the template learning's passes trade, tracking/appearance_model.h LearnOptions. Every
 // case tracked by `auto` with each rule; the accuracy, how far the answers move from the first
 // rule's, and the CPU time per frame. --camera: front-lit steel through other cameras,
-// tests/footage/camera_variants.h: another scale, defocus, 16 bit; every method.)
+// tests/footage/camera_variants.h: another scale, defocus, 16 bit, a camera not level; every
+// method.)
 // Defaults: 40 frames of the hop motion, 6 exposure slices (300 us at 2000 frames/s), cache
 // folder bench_footage_cache (footage is reused while its scenes are unchanged), methods
 // "auto,centroid,template" (comma-separated `--method` names of tracking/refiner.h; auto is the

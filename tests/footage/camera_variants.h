@@ -1,6 +1,6 @@
 #pragma once
 // Cameras the tracker was not tuned on: the front-lit steel scene (Lighting::kFrontPoint) filmed
-// at another scale, out of focus, or at 16 bits. Every other POV-Ray case is 0.2 mm/px
+// at another scale, out of focus, at 16 bits, or through a camera not quite level. Every other POV-Ray case is 0.2 mm/px
 // (sphere radius 23.75 px), PSF 0.5 px, 8 bit; a lab's lens and camera give other figures, and
 // the tracker's reaches, bands and thresholds were set there. Used by the tests
 // (tests/tracking/povray_footage_test.cc) and the bench (bench_tracking_footage --camera).
@@ -15,6 +15,7 @@ struct CameraVariant {
   double m_per_px;      // scale at the dimer plane
   double psf_sigma_px;  // Gaussian PSF (defocus)
   int bit_depth;
+  double roll_deg = 0;  // turned about its axis (the plate edge slopes)
 };
 
 inline std::vector<CameraVariant> CameraVariants() {
@@ -24,6 +25,8 @@ inline std::vector<CameraVariant> CameraVariants() {
       {"defocus_1px", 2.0e-4, 1.0, 8},   // the dimer plane slightly out of focus
       {"defocus_2px", 2.0e-4, 2.0, 8},   // a shallow depth of field at full aperture
       {"bit16", 2.0e-4, 0.5, 16},        // a 12-bit sensor saved in 16-bit files
+      // Levelled by eye: the plate's edge falls 5.6 px across the frame.
+      {"rolled_half_degree", 2.0e-4, 0.5, 8, 0.5},
   };
 }
 
@@ -33,6 +36,7 @@ inline FootageOptions FootageFor(const CameraVariant& v) {
   o.camera.m_per_px = v.m_per_px;
   o.psf_sigma_px = v.psf_sigma_px;
   o.bit_depth = v.bit_depth;
+  o.camera.roll_deg = v.roll_deg;
   return o;
 }
 
