@@ -483,3 +483,31 @@ TEST_F(ReportTest, OverlayNeedsACalibratedTrack) {
 
 }  // namespace
 }  // namespace dimer::compare
+
+namespace dimer::compare {
+namespace {
+
+// The overlay draws lab points at the pixels `track` read them from: SampledRun::PixelOf undoes
+// docs/FORMATS.md's metres, level and along a sloping plate (x along it, z along its normal,
+// turned about (col0, row0)).
+TEST(TrackCalibration, PixelOfUndoesTheMetresLevelAndAlongASlopingPlate) {
+  for (double slope : {0.0, 0.0087, -0.035}) {
+    SampledRun r;
+    r.m_per_px = 2e-4;
+    r.row0_px = 250.3;
+    r.plate_slope = slope;
+    r.col0_px = slope == 0 ? 0.0 : 319.5;
+    const double a = std::atan(slope), c = std::cos(a), s = std::sin(a);
+    for (const auto& [col, row] : {std::pair{12.25, 240.5}, {319.5, 250.3}, {600.75, 180.0}}) {
+      const double dc = col - r.col0_px, dr = row - r.row0_px;
+      const double x = r.m_per_px * (r.col0_px + dc * c + dr * s);
+      const double z = r.m_per_px * (dc * s - dr * c);
+      const Eigen::Vector2d p = r.PixelOf(x, z);
+      EXPECT_NEAR(p.x(), col, 1e-9) << "slope " << slope;
+      EXPECT_NEAR(p.y(), row, 1e-9) << "slope " << slope;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace dimer::compare
