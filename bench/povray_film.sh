@@ -5,8 +5,9 @@
 # simulation. Prints the tracker's accuracy against the scene's truth, then the compare table
 # (track against simulation), then Gamma again with the plate edge's own scale given.
 # docs/BENCHMARKS.md, "The whole pipeline on a POV-Ray film".
-#   bench/povray_film.sh [BUILD_DIR] [WORK_DIR] [CYCLES]
-# Defaults: build, povray_film, 30 plate periods (2401 frames at 2000 frames/s). The frames are
+#   bench/povray_film.sh [BUILD_DIR] [WORK_DIR] [CYCLES] [ROLL_DEG]
+# Defaults: build, povray_film, 30 plate periods (2401 frames at 2000 frames/s), a level camera
+# (ROLL_DEG: the camera turned about its axis, the plate's edge sloping). The frames are
 # 320x160 at 0.4 mm/px, one exposure slice, noise 2 grey levels; the footage is kept in
 # WORK_DIR/frames and reused while its scenes are unchanged (POV-Ray: ~6 min on 2 cores).
 set -euo pipefail
@@ -14,6 +15,7 @@ cd "$(dirname "$0")/.."
 build=${1:-build}
 work=${2:-povray_film}
 cycles=${3:-30}
+roll=${4:-0}
 dimerlab="$build/app/dimerlab"
 footage="$build/tests/footage/make_povray_footage"
 scale=4e-4
@@ -22,14 +24,16 @@ mkdir -p "$work"
 "$dimerlab" sim --scene samples/drift_ar3.9.scene --cycles "$cycles" -o "$work/sim.h5" --force -q
 frames=$((cycles * 80 + 1))  # 25 Hz at 2000 samples/s, both ends
 "$footage" --sim "$work/sim.h5" --frames "$frames" --lighting front_point --subframes 1 \
-  --width 320 --height 160 --m-per-px "$scale" --horizon-row 124.5 -o "$work/frames" --reuse -q
+  --width 320 --height 160 --m-per-px "$scale" --horizon-row 124.5 --roll-deg "$roll" \
+  -o "$work/frames" --reuse -q
 start=$(date +%s.%N)
 "$dimerlab" track "$work/frames" -o "$work/track.h5" --m-per-px "$scale" --force -q
 end=$(date +%s.%N)
 "$dimerlab" compare "$work/track.h5" --sim "$work/sim.h5" -o "$work/compare" --force -q
 
-printf 'POV-Ray film: %s frames, 320x160, %s m/px, front_point; %s cores, load average %s;\n' \
-  "$frames" "$scale" "$(nproc)" "$(cut -d' ' -f1 /proc/loadavg)"
+printf 'POV-Ray film: %s frames, 320x160, %s m/px, front_point, camera roll %s deg; %s cores, ' \
+  "$frames" "$scale" "$roll" "$(nproc)"
+printf 'load average %s;\n' "$(cut -d' ' -f1 /proc/loadavg)"
 printf 'dimerlab track: %.1f s (the scene: Gamma 0.9, f 25 Hz)\n' "$(echo "$end - $start" | bc)"
 echo
 # The tracked centres and plate against truth.csv (px): mean and sd of the error per axis.

@@ -40,6 +40,8 @@ const char* kUsage =
     "  --noise S           read noise sigma, grey levels of the 8-bit scale (2)\n"
     "  --bit-depth B       8 or 16 (8)\n"
     "  --seed N            noise seed (1)\n"
+    "  --flicker A         lamps on the mains: each frame's light times 1 + A sin(2 pi F t) (0)\n"
+    "  --flicker-hz F      their flicker frequency, Hz (100: 50 Hz mains)\n"
     "  --width W --height H  frame size, px (640 x 320)\n"
     "  --m-per-px S        scale at the dimer plane, m/px (2e-4)\n"
     "  --distance M        pinhole to dimer plane, m (0.7)\n"
@@ -103,6 +105,8 @@ int Run(int argc, char** argv) {
       {"--noise", [&](const std::string& v) { o.noise = ToDouble("--noise", v); }},
       {"--bit-depth", [&](const std::string& v) { o.bit_depth = int(ToInt("--bit-depth", v)); }},
       {"--seed", [&](const std::string& v) { o.seed = uint64_t(ToInt("--seed", v)); }},
+      {"--flicker", [&](const std::string& v) { o.flicker = ToDouble("--flicker", v); }},
+      {"--flicker-hz", [&](const std::string& v) { o.flicker_hz = ToDouble("--flicker-hz", v); }},
       {"--width", [&](const std::string& v) { o.camera.width = int(ToInt("--width", v)); }},
       {"--height", [&](const std::string& v) { o.camera.height = int(ToInt("--height", v)); }},
       {"--m-per-px", [&](const std::string& v) { o.camera.m_per_px = ToDouble("--m-per-px", v); }},

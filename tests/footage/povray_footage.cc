@@ -98,10 +98,13 @@ std::vector<Instant> Slices(const Motion& m, size_t i, double exposure_s, int n)
 }
 
 // Averaged slices -> gain -> PSF -> noise -> quantisation.
-cv::Mat PostProcess(const std::vector<cv::Mat>& slices, const FootageOptions& o, size_t frame) {
+cv::Mat PostProcess(const std::vector<cv::Mat>& slices, const FootageOptions& o, size_t frame,
+                    double t) {
   cv::Mat sum = cv::Mat::zeros(slices[0].size(), CV_32F);
   for (const cv::Mat& s : slices) sum += s;
-  cv::Mat grey = sum * (255.0 / double(slices.size()));  // 8-bit scale
+  const double flicker =
+      o.flicker == 0 ? 1.0 : 1.0 + o.flicker * std::sin(2 * std::numbers::pi * o.flicker_hz * t);
+  cv::Mat grey = sum * (255.0 * flicker / double(slices.size()));  // 8-bit scale
   for (int col = 0; col < grey.cols; ++col) {
     const double gain = LightingGain(o.lighting, col, grey.cols);
     if (gain != 1.0) grey.col(col) *= gain;
@@ -168,7 +171,8 @@ std::string PostProcessKey(const FootageOptions& o, const std::string& version) 
          std::to_string(o.seed) + "|aa=" + std::to_string(o.aa_depth) + "|size=" +
          std::to_string(o.camera.width) + "x" + std::to_string(o.camera.height) + "|fps=" +
          Num(o.fps) + "|gain=" + Num(LightingGain(o.lighting, 0, o.camera.width)) + "," +
-         Num(LightingGain(o.lighting, o.camera.width - 1, o.camera.width));
+         Num(LightingGain(o.lighting, o.camera.width - 1, o.camera.width)) +
+         (o.flicker == 0 ? "" : "|flicker=" + Num(o.flicker) + "@" + Num(o.flicker_hz));
 }
 
 std::string Sidecar(const Motion& m, const FootageOptions& o, const std::string& version,
@@ -210,6 +214,8 @@ std::string Sidecar(const Motion& m, const FootageOptions& o, const std::string&
   add("noise", Num(o.noise));
   add("bit_depth", std::to_string(o.bit_depth));
   add("seed", std::to_string(o.seed));
+  add("flicker", Num(o.flicker));
+  add("flicker_hz", Num(o.flicker_hz));
   add("aa_depth", std::to_string(o.aa_depth));
   add("gain_left", Num(LightingGain(o.lighting, 0, c.width)));
   add("gain_right", Num(LightingGain(o.lighting, c.width - 1, c.width)));
@@ -221,6 +227,7 @@ std::string Sidecar(const Motion& m, const FootageOptions& o, const std::string&
       "\"px\", \"col_offset\": \"px\", \"diameter\": \"m\", \"rod_diameter\": \"m\", "
       "\"radius_px\": \"px\", \"plate_depth\": \"m\", \"fps\": \"frames/s\", \"exposure\": \"s\", "
       "\"psf_sigma_px\": \"px\", \"noise\": \"grey levels (8-bit scale)\", "
+      "\"camera_roll_deg\": \"deg\", \"flicker\": \"1\", \"flicker_hz\": \"Hz\", "
       "\"povray_cpu_seconds_per_frame\": \"s\"}",
       true);
   return j + "}\n";
@@ -265,6 +272,8 @@ void FootageOptions::Check() const {
   need(bit_depth == 8 || bit_depth == 16, "--bit-depth must be 8 or 16");
   need(jobs >= 0 && jobs <= 64, "--jobs must be 0 (three per core) .. 64");
   need(aa_depth >= 0 && aa_depth <= 7, "--aa-depth must be 0..7");
+  need(flicker >= 0 && flicker < 1, "--flicker must be in [0, 1)");
+  need(flicker_hz > 0 && std::isfinite(flicker_hz), "--flicker-hz must be > 0");
   if (!bad.empty()) throw UsageError(bad);
 }
 
@@ -415,7 +424,9 @@ FootageResult WriteFootage(const Motion& motion, const FootageOptions& options_i
             RenderPov(scenes[i], o.camera, slices, o.aa_depth,
                       out.temp_path() + "/.work_" + std::to_string(i), o.povray);
         const std::string path = out.temp_path() + "/" + FrameName(i);
-        if (!cv::imwrite(path, PostProcess(imgs, o, i))) throw InputError(path + ": cannot write");
+        if (!cv::imwrite(path, PostProcess(imgs, o, i, motion.t[i]))) {
+          throw InputError(path + ": cannot write");
+        }
       } catch (const std::exception& e) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (error.empty()) error = e.what();

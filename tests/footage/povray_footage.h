@@ -38,6 +38,10 @@ struct FootageOptions {
   double noise = 2.0;          // read noise sigma, grey levels of the 8-bit scale
   int bit_depth = 8;           // 8 or 16
   uint64_t seed = 1;           // noise seed
+  // Lamps on the mains: every frame's light scaled by 1 + flicker sin(2 pi flicker_hz t), t the
+  // frame's sample time (a lamp's flicker is slow against the exposure). 0: steady light.
+  double flicker = 0;
+  double flicker_hz = 100;
   int aa_depth = 4;            // POV-Ray adaptive antialiasing depth (+AM2 +R4: up to 17x17
                                // rays per pixel at edges, no jitter); 0: none
   int jobs = 0;                // POV-Ray processes at once (each single-threaded); 0: three

@@ -101,7 +101,9 @@ TEST(PovrayGenerator, PlateEdgeLandsOnThePlateRow) {
       const double covered = cv::sum(img.col(col))[0];
       const double edge = cam.height - 0.5 - covered;  // rows below the edge are covered
       EXPECT_NEAR(edge, cam.PlateRowAt(0.0, col), 0.02) << "column " << col << ", roll " << roll;
-      if (roll == 0) EXPECT_NEAR(edge, cam.PlateRow(0.0), 0.02) << "column " << col;
+      if (roll == 0) {
+        EXPECT_NEAR(edge, cam.PlateRow(0.0), 0.02) << "column " << col;
+      }
     }
   }
 }
