@@ -61,19 +61,32 @@ int DetectPolarity(const cv::Mat& frame) {
   return (hi - med) >= (med - lo) ? 1 : -1;
 }
 
-Detection DetectSpheres(const cv::Mat& frame, int polarity) {
+Detection DetectSpheres(const cv::Mat& frame, int polarity, double slope) {
   Detection out;
-  out.plate_row = FindPlateRowCoarse(frame);
-  // The plate and a guard band above it are left out of the silhouette.
-  int rows = frame.rows;
-  if (std::isfinite(out.plate_row)) rows = std::max(0, int(out.plate_row - kPlateGuardPx));
+  out.plate_row = FindPlateRowCoarse(frame, slope);
+  // The plate and a guard band above it are left out of the silhouette: under the plate's
+  // line, which slopes across the frame by `slope` rows per column.
+  const double centre = 0.5 * (frame.cols - 1), half_drop = std::abs(slope) * centre;
+  int rows = frame.rows, clear_rows = frame.rows;  // above the plate's lowest / highest point
+  if (std::isfinite(out.plate_row)) {
+    rows = std::clamp(int(out.plate_row + half_drop - kPlateGuardPx), 0, frame.rows);
+    clear_rows = std::clamp(int(out.plate_row - half_drop - kPlateGuardPx), 0, frame.rows);
+  }
   if (rows < 2 * kMinRadiusPx) return out;
   cv::Mat region;
   frame.rowRange(0, rows).convertTo(region, CV_32F, polarity);
+  // The threshold from the rows clear of the plate in every column (when there are enough).
+  const cv::Mat clear = clear_rows >= 2 * kMinRadiusPx ? region.rowRange(0, clear_rows) : region;
   cv::Mat silhouette;
-  cv::threshold(region, silhouette, SilhouetteThreshold(region, FullScale(frame)), 255,
+  cv::threshold(region, silhouette, SilhouetteThreshold(clear, FullScale(frame)), 255,
                 cv::THRESH_BINARY);
   silhouette.convertTo(silhouette, CV_8U);
+  if (slope != 0 && std::isfinite(out.plate_row)) {
+    for (int c = 0; c < silhouette.cols; ++c) {
+      const int first = std::max(0, int(out.plate_row + slope * (c - centre) - kPlateGuardPx));
+      for (int r = first; r < silhouette.rows; ++r) silhouette.at<uint8_t>(r, c) = 0;
+    }
+  }
   std::vector<std::vector<cv::Point>> contours;
   cv::findContours(silhouette, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
   silhouette.setTo(0);

@@ -25,6 +25,8 @@ struct Detection {
   std::vector<double> radii_px;         // distance-transform radius of each
 };
 
-Detection DetectSpheres(const cv::Mat& frame, int polarity);
+// `slope`: the plate edge's, rows per column (plate_slope.h): the plate left out is the band
+// under the sloping line, and `plate_row` is the line's row at the frame's centre column.
+Detection DetectSpheres(const cv::Mat& frame, int polarity, double slope = 0);
 
 }  // namespace dimer::tracking

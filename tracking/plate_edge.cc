@@ -168,14 +168,17 @@ double EdgeRowInProfile(const std::vector<double>& profile, int first_row, doubl
   return first_row + (k + b - 1) + 0.5 - covered;
 }
 
-double FindPlateRowCoarse(const cv::Mat& frame) {
+double FindPlateRowCoarse(const cv::Mat& frame, double slope) {
   std::vector<double> profile(frame.rows), column;
   double lo = std::numeric_limits<double>::max(), hi = -lo;
+  const double centre = 0.5 * (frame.cols - 1);
   for (int row = 0; row < frame.rows; ++row) {
     column.clear();
     for (int col = 0; col < frame.cols; col += kCoarseColumnStride) {
-      column.push_back(PixelAt(frame, row, col));
+      const int r = slope == 0 ? row : row + int(std::lround(slope * (col - centre)));
+      if (r >= 0 && r < frame.rows) column.push_back(PixelAt(frame, r, col));
     }
+    if (column.empty()) column.push_back(PixelAt(frame, row, int(centre)));
     std::nth_element(column.begin(), column.begin() + column.size() / 2, column.end());
     profile[row] = column[column.size() / 2];
     lo = std::min(lo, profile[row]);
@@ -354,10 +357,85 @@ double RefinePlateRow(const cv::Mat& frame, double row_guess,
   return fitted - rest;
 }
 
-double PlateEdgeSlope(const cv::Mat& frame, double row_guess,
-                      const std::vector<std::pair<double, double>>& excluded, double* err) {
+namespace {
+
+// A line through (x, y) robust to a few points off it: the Theil-Sen slope (the median of the
+// pairwise slopes) and the median intercept.
+std::pair<double, double> TheilSen(const std::vector<double>& x, const std::vector<double>& y) {
+  std::vector<double> pair_slopes;
+  for (size_t i = 0; i < x.size(); ++i) {
+    for (size_t j = i + 1; j < x.size(); ++j) {
+      if (x[j] != x[i]) pair_slopes.push_back((y[j] - y[i]) / (x[j] - x[i]));
+    }
+  }
+  if (pair_slopes.empty()) return {kNaN, kNaN};
+  std::nth_element(pair_slopes.begin(), pair_slopes.begin() + pair_slopes.size() / 2,
+                   pair_slopes.end());
+  const double b = pair_slopes[pair_slopes.size() / 2];
+  std::vector<double> offsets;
+  for (size_t i = 0; i < x.size(); ++i) offsets.push_back(y[i] - b * x[i]);
+  std::nth_element(offsets.begin(), offsets.begin() + offsets.size() / 2, offsets.end());
+  return {b, offsets[offsets.size() / 2]};
+}
+
+// Each column block's strongest step over the whole frame height (whole rows): where the edge
+// is, however steeply it slopes; blocks of the majority's sign only.
+void CoarseBlockSteps(const cv::Mat& frame, const std::vector<std::pair<double, double>>& excluded,
+                      std::vector<double>* x, std::vector<double>* y) {
+  std::vector<uint8_t> use(frame.cols, 1);
+  for (const auto& [a, b] : excluded) {
+    for (int c = std::max(0, int(std::floor(a))); c <= std::min(frame.cols - 1, int(std::ceil(b)));
+         ++c) {
+      use[c] = 0;
+    }
+  }
+  std::vector<double> xs, ys;
+  std::vector<int> signs;
+  std::vector<double> profile(frame.rows);
+  for (int c = 0; c + kPlateBlockColumns <= frame.cols; c += kPlateBlockColumns) {
+    if (!std::all_of(use.begin() + c, use.begin() + c + kPlateBlockColumns,
+                     [](uint8_t u) { return u != 0; })) {
+      continue;
+    }
+    for (int row = 0; row < frame.rows; ++row) {
+      profile[row] = double(frame.depth() == CV_8U
+                                ? RangeSum<uint8_t>(frame, row, c, c + kPlateBlockColumns - 1)
+                                : RangeSum<uint16_t>(frame, row, c, c + kPlateBlockColumns - 1));
+    }
+    double size = 0;
+    const int k = StrongestStep(profile, &size);
+    if (k < 0) continue;
+    xs.push_back(c + 0.5 * (kPlateBlockColumns - 1));
+    ys.push_back(k + 0.5);
+    signs.push_back(profile[k + 1] > profile[k] ? 1 : -1);
+  }
+  const int positive = int(std::count(signs.begin(), signs.end(), 1));
+  const int sign = 2 * positive >= int(signs.size()) ? 1 : -1;
+  for (size_t i = 0; i < xs.size(); ++i) {
+    if (signs[i] != sign) continue;
+    x->push_back(xs[i]);
+    y->push_back(ys[i]);
+  }
+}
+
+}  // namespace
+
+double PlateEdgeSlope(const cv::Mat& frame, const std::vector<std::pair<double, double>>& excluded,
+                      double* err) {
   *err = kNaN;
-  const PlateBlocks pb = MeasureBlocks(frame, row_guess, excluded, 0, 0);
+  // A first line through each block's strongest step over the whole height (an edge that
+  // slopes by degrees leaves any fixed band of rows).
+  std::vector<double> cx, cy;
+  CoarseBlockSteps(frame, excluded, &cx, &cy);
+  if (cx.size() < size_t(kPlateMinSlopeBlocks)) return kNaN;
+  const auto [coarse_slope, coarse_offset] = TheilSen(cx, cy);
+  if (!std::isfinite(coarse_slope) || std::abs(coarse_slope) > kPlateMaxSlope) return kNaN;
+  // Then each block's sub-pixel row in a band that follows that line, moved along it to the
+  // centre column: what is left is the first line's error, fitted by least squares over the
+  // blocks within kPlateInlierPx of a robust line through them.
+  const double centre = 0.5 * (frame.cols - 1);
+  const PlateBlocks pb = MeasureBlocks(frame, coarse_offset + coarse_slope * centre, excluded,
+                                       coarse_slope, centre);
   if (!pb.ok) return kNaN;
   const int sign = MajoritySign(pb.edges);
   std::vector<double> x, y;
@@ -368,21 +446,7 @@ double PlateEdgeSlope(const cv::Mat& frame, double row_guess,
   }
   const size_t n = x.size();
   if (n < size_t(kPlateMinSlopeBlocks)) return kNaN;
-  // Theil-Sen: robust to the few blocks a reflection or a highlight moved.
-  std::vector<double> pair_slopes;
-  for (size_t i = 0; i < n; ++i) {
-    for (size_t j = i + 1; j < n; ++j) {
-      if (x[j] != x[i]) pair_slopes.push_back((y[j] - y[i]) / (x[j] - x[i]));
-    }
-  }
-  std::nth_element(pair_slopes.begin(), pair_slopes.begin() + pair_slopes.size() / 2,
-                   pair_slopes.end());
-  const double robust = pair_slopes[pair_slopes.size() / 2];
-  std::vector<double> offsets;
-  for (size_t i = 0; i < n; ++i) offsets.push_back(y[i] - robust * x[i]);
-  std::nth_element(offsets.begin(), offsets.begin() + n / 2, offsets.end());
-  const double offset = offsets[n / 2];
-  // Least squares over the blocks within kPlateInlierPx of that line.
+  const auto [robust, offset] = TheilSen(x, y);
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   std::vector<size_t> in;
   for (size_t i = 0; i < n; ++i) {
@@ -403,7 +467,7 @@ double PlateEdgeSlope(const cv::Mat& frame, double row_guess,
   double ss = 0;
   for (size_t i : in) ss += std::pow(y[i] - my - b * (x[i] - mx), 2);
   *err = std::sqrt(ss / double(m - 2) / sxx);
-  return b;
+  return coarse_slope + b;
 }
 
 }  // namespace dimer::tracking

@@ -34,7 +34,9 @@ double EdgeRowInProfile(const std::vector<double>& profile, int first_row, doubl
 // Acquisition: the strongest step of the per-row median over sampled columns (the median
 // ignores the spheres, which cover less than half the width). Whole-pixel accuracy; NaN if no
 // plate edge (no step of kPlateMinStepFraction of the frame's range).
-double FindPlateRowCoarse(const cv::Mat& frame);
+// With `slope` (rows per column, PlateEdgeSlope) each column is read down the slope from the
+// frame's centre column, and the row is the edge's there.
+double FindPlateRowCoarse(const cv::Mat& frame, double slope = 0);
 
 // Sub-pixel plate row near `row_guess` from the columns outside `excluded` (column intervals
 // covered by the spheres, and so by their mirror images below a polished plate). Robust to the
@@ -61,12 +63,14 @@ double RefinePlateRow(const cv::Mat& frame, double row_guess,
                       double ref_col = 0);
 
 // The plate edge's slope, rows per column (> 0: descending to the right), from its column
-// blocks' own rows near `row_guess` (as RefinePlateRow, columns in `excluded` left out): a
-// straight line through them, the blocks more than kPlateInlierPx off a first robust line
-// (Theil-Sen: the median of the pairwise slopes) left out. `err`: the slope's standard error.
-// NaN when fewer than kPlateMinSlopeBlocks blocks agree.
-double PlateEdgeSlope(const cv::Mat& frame, double row_guess,
-                      const std::vector<std::pair<double, double>>& excluded, double* err);
+// blocks (columns in `excluded` left out): a first robust line (Theil-Sen: the median of the
+// pairwise slopes) through each block's strongest step over the whole height, then each block's
+// sub-pixel row (as RefinePlateRow) in a band along that line, and a straight line through
+// those, the blocks more than kPlateInlierPx off a robust line through them left out. `err`:
+// the slope's standard error. NaN when fewer than kPlateMinSlopeBlocks blocks agree, or the
+// edge is steeper than kPlateMaxSlope.
+double PlateEdgeSlope(const cv::Mat& frame, const std::vector<std::pair<double, double>>& excluded,
+                      double* err);
 inline constexpr int kPlateMinSlopeBlocks = 6;
 // Steeper than this (11 degrees) the plate is not the scene's horizontal edge.
 inline constexpr double kPlateMaxSlope = 0.2;

@@ -30,14 +30,13 @@ PlateSlope EstimatePlateSlope(const std::vector<cv::Mat>& frames, int polarity) 
   for (size_t j = 0; j < n; ++j) {
     const cv::Mat& f = frames[j * frames.size() / n];
     const Detection det = DetectSpheres(f, polarity);
-    if (!std::isfinite(det.plate_row)) continue;
     std::vector<std::pair<double, double>> excluded;
     for (size_t k = 0; k < det.centres.size(); ++k) {
       const double r = kSlopeExcludeR * det.radii_px[k] + kPlateSphereClearPx;
       excluded.emplace_back(det.centres[k].x() - r, det.centres[k].x() + r);
     }
     double err = 0;
-    const double s = PlateEdgeSlope(f, det.plate_row, excluded, &err);
+    const double s = PlateEdgeSlope(f, excluded, &err);
     if (!std::isfinite(s) || !std::isfinite(err)) continue;
     slopes.push_back(s);
     errs.push_back(err);

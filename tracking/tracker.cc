@@ -98,7 +98,7 @@ SphereMeasurement SequenceTracker::FollowTemplate(const cv::Mat& frame, int k,
   return Locate(frame, k, predicted[k], &predicted[1 - k], plate_row, kFollowSearchPx);
 }
 
-double SequenceTracker::PlateRow(const cv::Mat& frame, double guess,
+double SequenceTracker::PlateRow(const cv::Mat& frame, double guess, double guess_col,
                                  const std::array<Eigen::Vector2d, 2>& centres, int n,
                                  std::shared_ptr<const ClippedEdgeProfile>* clipped,
                                  double* col) const {
@@ -107,6 +107,7 @@ double SequenceTracker::PlateRow(const cv::Mat& frame, double guess,
   for (int k = 0; k < n; ++k) excluded.emplace_back(centres[k].x() - r, centres[k].x() + r);
   *col = n == 2 ? 0.5 * (centres[0].x() + centres[1].x())
                 : (n == 1 ? centres[0].x() : 0.5 * (frame.cols - 1));
+  if (options_.plate_slope != 0) guess += options_.plate_slope * (*col - guess_col);
   ClippedEdgeProfile profile;
   const double row = RefinePlateRow(frame, guess, excluded, options_.psf_sigma_px, &profile,
                                     options_.plate_slope, *col);
@@ -120,7 +121,8 @@ bool SequenceTracker::Follow(const cv::Mat& frame, FrameTrack* out) {
   const std::array<Eigen::Vector2d, 2> predicted{last_[0] + velocity_[0],
                                                  last_[1] + velocity_[1]};
   out->plate_slope = options_.plate_slope;
-  out->plate_row = PlateRow(frame, plate_row_, predicted, 2, &out->clipped_plate, &out->plate_col);
+  out->plate_row =
+      PlateRow(frame, plate_row_, plate_col_, predicted, 2, &out->clipped_plate, &out->plate_col);
   if (!std::isfinite(out->plate_row)) return false;
   for (int k = 0; k < 2; ++k) {
     const double plate = out->PlateRowAt(predicted[k].x());
@@ -143,13 +145,17 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
   *out = FrameTrack{};
   out->index = index;
   out->acquired = true;
-  Detection det = DetectSpheres(frame, polarity_);
+  Detection det = DetectSpheres(frame, polarity_, options_.plate_slope);
+  // The coarse plate row is the edge's at the frame's centre column; the plate's lowest point
+  // bounds the search for the spheres.
+  const double det_col = 0.5 * (frame.cols - 1);
+  const double plate_low = det.plate_row + std::abs(options_.plate_slope) * det_col;
   if (uses_template()) {
     // The learnt appearance finds the spheres whatever they look like (a silhouette detector
     // can miss a sphere that shows only its highlights).
     det.centres.clear();
     for (const Located& l :
-         FindAppearance(frame, (*options_.appearance)[0], det.plate_row,
+         FindAppearance(frame, (*options_.appearance)[0], plate_low,
                         kTemplateSeparationR * radius_px_, kMinTemplateScore)) {
       det.centres.push_back(l.position);
     }
@@ -168,7 +174,8 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
     int rims = 0;
     for (int k = 0; k < n; ++k) {
       RefineContext ctx =
-          Context(polarity_, det.plate_row, coarse[k], n > 1 ? &coarse[1 - k] : nullptr);
+          Context(polarity_, det.plate_row + options_.plate_slope * (coarse[k].x() - det_col),
+                  coarse[k], n > 1 ? &coarse[1 - k] : nullptr);
       ctx.fit_radius = true;
       ctx.radius_start_px = dt_r;  // a filled silhouette's inscribed radius: close for a mirror
       const SphereMeasurement m = MeasureSphere(frame, coarse[k], kProvisionalRadiusScale * dt_r,
@@ -184,7 +191,8 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
     radius_px_ = rims > 0 ? rim_sum / rims : std::max(dt_r, area_r);
   }
   out->plate_slope = options_.plate_slope;
-  out->plate_row = PlateRow(frame, det.plate_row, coarse, n, &out->clipped_plate, &out->plate_col);
+  out->plate_row = PlateRow(frame, det.plate_row, det_col, coarse, n, &out->clipped_plate,
+                            &out->plate_col);
   std::vector<SphereMeasurement> found;
   for (int k = 0; k < n; ++k) {
     const RefineContext ctx = Context(polarity_, out->PlateRowAt(coarse[k].x()), coarse[k],
@@ -237,7 +245,10 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
 }
 
 void SequenceTracker::Commit(const FrameTrack& t) {
-  if (std::isfinite(t.plate_row)) plate_row_ = t.plate_row;
+  if (std::isfinite(t.plate_row)) {
+    plate_row_ = t.plate_row;
+    plate_col_ = t.plate_col;
+  }
   for (int k = 0; k < 2; ++k) {
     velocity_[k] = (t.found[k] && locked_[k]) ? Eigen::Vector2d(t.centre[k] - last_[k])
                                               : Eigen::Vector2d(0, 0);

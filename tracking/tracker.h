@@ -85,8 +85,9 @@ class SequenceTracker {
   SphereMeasurement FollowTemplate(const cv::Mat& frame, int k,
                                    const std::array<Eigen::Vector2d, 2>& predicted,
                                    double plate_row) const;
-  // The plate's row under the spheres at `centres` (the first n), and the column it is at.
-  double PlateRow(const cv::Mat& frame, double guess,
+  // The plate's row under the spheres at `centres` (the first n), and the column it is at;
+  // `guess` is a row of the edge at column `guess_col`.
+  double PlateRow(const cv::Mat& frame, double guess, double guess_col,
                   const std::array<Eigen::Vector2d, 2>& centres, int n,
                   std::shared_ptr<const ClippedEdgeProfile>* clipped, double* col) const;
   void Commit(const FrameTrack& t);
@@ -95,6 +96,7 @@ class SequenceTracker {
   int polarity_ = 0;
   double radius_px_;
   double plate_row_ = std::numeric_limits<double>::quiet_NaN();
+  double plate_col_ = 0;  // the column plate_row_ is at
   std::array<bool, 2> known_{false, false};    // a last position exists (maybe stale)
   std::array<bool, 2> locked_{false, false};   // found in the previous frame
   std::array<Eigen::Vector2d, 2> last_{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
