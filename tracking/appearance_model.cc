@@ -60,9 +60,23 @@ bool Patch(const cv::Mat& image, const Eigen::Vector2d& pos, int half, cv::Mat* 
   return true;
 }
 
+// Leaves out of `a` every row from `row` down, the cut sloping by `slope` rows per column about
+// the centre column (a plate's reflection tilts with the plate).
+void CutBelow(int row, double slope, Appearance* a) {
+  if (slope == 0) {
+    a->mask.rowRange(std::min(row, a->mask.rows), a->mask.rows).setTo(0);
+    return;
+  }
+  for (int x = 0; x < a->mask.cols; ++x) {
+    const int first = std::clamp(row + int(std::lround(slope * (x - a->half))), 0, a->mask.rows);
+    for (int y = first; y < a->mask.rows; ++y) a->mask.at<uint8_t>(y, x) = 0;
+  }
+}
+
 MaskContext ContextOf(const LearningSample& s, int k) {
   MaskContext ctx;
   ctx.plate_row = s.PlateRowAt(s.centre[k].x());
+  ctx.plate_slope = s.plate_slope;
   const Eigen::Vector2d d = s.centre[1 - k] - s.centre[k];
   if (d.norm() > 0) {
     ctx.rod_dir = d.normalized();
@@ -73,7 +87,8 @@ MaskContext ContextOf(const LearningSample& s, int k) {
 
 }  // namespace
 
-int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, double radius_px) {
+int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, double radius_px,
+                      double slope) {
   cv::Mat gy;
   cv::Sobel(image, gy, CV_32F, 0, 1, 3, 1.0 / 8.0);
   const int x0 = std::max(1, half - int(kHorizonHalfWidthR * radius_px));
@@ -87,10 +102,13 @@ int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, doubl
   for (int y = y0; y <= y1; ++y) {
     column_steps.clear();
     for (int x = x0; x <= x1; ++x) {
-      if (!mask.at<uint8_t>(y - 1, x) || !mask.at<uint8_t>(y, x) || !mask.at<uint8_t>(y + 1, x)) {
+      // (Along a horizon that slopes with the plate: whole rows per column.)
+      const int yy = slope == 0 ? y : y + int(std::lround(slope * (x - half)));
+      if (yy < 1 || yy > image.rows - 2) continue;
+      if (!mask.at<uint8_t>(yy - 1, x) || !mask.at<uint8_t>(yy, x) || !mask.at<uint8_t>(yy + 1, x)) {
         continue;
       }
-      column_steps.push_back(gy.at<float>(y, x));
+      column_steps.push_back(gy.at<float>(yy, x));
     }
     if (int(column_steps.size()) < (x1 - x0 + 1) / 2) continue;
     step.push_back(std::abs(MedianOf(column_steps)));
@@ -114,7 +132,7 @@ namespace {
 // whole appearance.
 bool HorizonMoves(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
                   const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
-                  int half, int horizon, double radius_px) {
+                  int half, int horizon, double radius_px, double plate_slope) {
   const int x0 = std::max(1, half - int(kHorizonHalfWidthR * radius_px));
   const int x1 = std::min(2 * half - 1, half + int(kHorizonHalfWidthR * radius_px));
   std::vector<double> h, z;
@@ -129,8 +147,11 @@ bool HorizonMoves(const std::vector<cv::Mat>& images, const std::vector<Learning
       double across = 0;
       if (y >= 1 && y < patch.rows - 1) {
         column_steps.clear();
-        for (int x = x0; x <= x1; ++x) column_steps.push_back(gy.at<float>(y, x));
-        across = std::abs(MedianOf(column_steps));
+        for (int x = x0; x <= x1; ++x) {
+          const int yy = plate_slope == 0 ? y : y + int(std::lround(plate_slope * (x - half)));
+          if (yy >= 1 && yy < patch.rows - 1) column_steps.push_back(gy.at<float>(yy, x));
+        }
+        if (!column_steps.empty()) across = std::abs(MedianOf(column_steps));
       }
       step.push_back(across);
       peak = std::max(peak, across);
@@ -166,14 +187,16 @@ bool HorizonMoves(const std::vector<cv::Mat>& images, const std::vector<Learning
 }
 
 // Mean of the samples' patches over the pixels that show the sphere; rows from `cut_row` down
-// left out (the plate's reflection, appearance_model.h; -1: none).
+// left out (the plate's reflection, appearance_model.h; -1: none), the cut sloping with the
+// plate by `slope` rows per column.
 Appearance Average(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
                    const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
-                   int k, int half, double radius_px, int cut_row) {
+                   int k, int half, double radius_px, int cut_row, double slope) {
   const int size = 2 * half + 1;
   Appearance all;
   all.half = half;
   all.radius_px = radius_px;
+  all.horizon_slope = slope;
   all.mask = cv::Mat::ones(size, size, CV_8U);
   cv::Mat sum = cv::Mat::zeros(size, size, CV_32F), count = cv::Mat::zeros(size, size, CV_32F);
   cv::Mat patch, mask_f;
@@ -193,7 +216,7 @@ Appearance Average(const std::vector<cv::Mat>& images, const std::vector<Learnin
   if (n < int(kMinSamples) || cv::countNonZero(a.mask) == 0) return Appearance{};
   cv::divide(sum, cv::max(count, 1.0f), a.image);
   if (cut_row >= 0 && cut_row < size) {
-    a.mask.rowRange(cut_row, size).setTo(0);
+    CutBelow(cut_row, slope, &a);
     if (cv::countNonZero(a.mask) == 0) return Appearance{};
   }
   // Unknown pixels hold the mean known level: masked everywhere, but finite and neutral.
@@ -215,7 +238,7 @@ void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSamp
   const int search_px = int(std::lround(Reach(kLearnSearchPx, kLearnSearchR, radius_px)));
   Appearance a;
   for (int pass = 0; pass <= learn.passes; ++pass) {
-    a = Average(images, samples, used, pos, k, half, radius_px, cut_row);
+    a = Average(images, samples, used, pos, k, half, radius_px, cut_row, learn.plate_slope);
     if (!a.valid()) return;
     // Register every sample to the mean (the last pass only to report where they sit); each
     // sample on its own, so any thread count gives the same positions.
@@ -293,8 +316,9 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   for (int k = 0; k < 2; ++k) {
     std::vector<double> g;
     for (size_t i = 0; i < used.size(); ++i) {
-      g.push_back(samples[used[i]].PlateRowAt(out[k].registered[i].x()) - radius_px -
-                  out[k].registered[i].y());
+      const LearningSample& sample = samples[used[i]];
+      g.push_back(sample.PlateRowAt(out[k].registered[i].x()) -
+                  radius_px * std::hypot(1.0, sample.plate_slope) - out[k].registered[i].y());
       if (std::isfinite(g.back())) lowest = std::min(lowest, g.back());
     }
     const size_t support = std::max(kRestShiftMinSupport,
@@ -329,9 +353,10 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   bool moves = false;
   for (int k = 0; k < 2; ++k) {
     const Appearance& a = out[k].appearance;
-    horizon[k] = ReflectionHorizon(a.image, a.mask, a.half, radius_px);
+    horizon[k] = ReflectionHorizon(a.image, a.mask, a.half, radius_px, learn.plate_slope);
     moves = moves || (horizon[k] >= 0 && HorizonMoves(images, samples, used, out[k].registered,
-                                                      a.half, horizon[k], radius_px));
+                                                      a.half, horizon[k], radius_px,
+                                                      learn.plate_slope));
   }
   std::array<LearntSphere, 2> cut = out;
   for (int k = 0; k < 2; ++k) {
@@ -347,7 +372,8 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   // the reflection pulls, it does (POV-Ray defocus_2px).
   for (int k = 0; k < 2 && !moves; ++k) {
     moves = horizon[k] >= 0 && HorizonMoves(images, samples, used, cut[k].registered,
-                                            cut[k].appearance.half, horizon[k], radius_px);
+                                            cut[k].appearance.half, horizon[k], radius_px,
+                                            learn.plate_slope);
   }
   return moves ? cut : out;
 }
@@ -458,11 +484,11 @@ OffsetEstimate SymmetryColumnOffset(const Appearance& a) {
 // is the sphere's own and not a reflection's boundary; itself when it shows no horizon (a cut
 // template, a matte or backlit sphere).
 Appearance UpperPart(const Appearance& a) {
-  const int horizon = ReflectionHorizon(a.image, a.mask, a.half, a.radius_px);
+  const int horizon = ReflectionHorizon(a.image, a.mask, a.half, a.radius_px, a.horizon_slope);
   if (horizon < 0) return a;
   Appearance u = a;
   u.mask = a.mask.clone();
-  u.mask.rowRange(std::max(0, horizon - HorizonGuard(a.radius_px)), u.mask.rows).setTo(0);
+  CutBelow(std::max(0, horizon - HorizonGuard(a.radius_px)), a.horizon_slope, &u);
   return u;
 }
 

@@ -63,6 +63,9 @@ inline constexpr int kLearnPasses = 1;
 struct LearnOptions {
   int passes = kLearnPasses;
   int threads = 1;
+  // The plate edge's slope, rows per column (plate_slope.h): the plate's reflection in a sphere
+  // tilts with it, and is looked for and cut along it.
+  double plate_slope = 0;
 };
 // Frames whose reference row is within this of the lowest (relative to the plate) rest, px.
 inline constexpr double kContactBandPx = 0.3;
@@ -149,7 +152,12 @@ inline int HorizonGuard(double radius_px) {
 // Their mean took a soft box's bright reflection just above the horizon for it (POV-Ray
 // front_softbox), and the cut below it then ran through the lamp, whose cut edge locked the
 // rows to the pixel grid (a row scatter of 0.06-0.08 px; 0.014 px with the real horizon).
-int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, double radius_px);
+// `slope`: the plate's, rows per column: the horizon is looked for along lines of that slope.
+int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, double radius_px,
+                      double slope = 0);
+// The appearance above its plate reflection's horizon, less HorizonGuard (the outline there is
+// the sphere's own), cut along its horizon_slope; itself when it shows no horizon.
+Appearance UpperPart(const Appearance& a);
 
 // Both spheres' appearances (0 left, 1 right); invalid appearance if too few samples.
 // `recentre` (footage without clean silhouettes): the templates are framed again around the

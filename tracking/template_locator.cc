@@ -161,7 +161,12 @@ cv::Mat FrameMask(const Appearance& a, const Eigen::Vector2d& position, const Ma
   for (int y = 0; y < m.rows; ++y) {
     uint8_t* row = m.ptr<uint8_t>(y);
     const double dy = y - a.half;
-    if (position.y() + dy > last_row) {
+    if (ctx.plate_slope != 0 && std::isfinite(last_row)) {
+      // A sloping plate: its rows cut column by column.
+      for (int x = 0; x < m.cols; ++x) {
+        if (position.y() + dy > last_row + ctx.plate_slope * (x - a.half)) row[x] = 0;
+      }
+    } else if (position.y() + dy > last_row) {
       std::fill(row, row + m.cols, uint8_t(0));
       continue;
     }

@@ -30,6 +30,9 @@ struct Appearance {
   cv::Mat mask;          // CV_8U, 1 where the appearance is known (seen, not rod nor plate)
   int half = 0;          // half-size, px
   double radius_px = 0;  // sphere radius the masks are sized for, px
+  // The slope (rows per column) of the plate whose reflection the appearance shows: its horizon
+  // is looked for and cut along it (appearance_model.h); 0: level.
+  double horizon_slope = 0;
   bool valid() const { return !image.empty(); }
 };
 
@@ -37,6 +40,7 @@ struct Appearance {
 struct MaskContext {
   Eigen::Vector2d rod_dir{0, 0};  // unit vector toward the other sphere; zero: no rod cut
   double plate_row = std::numeric_limits<double>::quiet_NaN();  // plate top surface, px
+  double plate_slope = 0;  // its slope, rows per column (plate_row is at the sphere's column)
   // The other sphere's position minus this one's (px; NaN: unknown): spheres in contact
   // (A_r 2.0) reach into each other's templates, and the other's disc widened by
   // kOtherSphereMarginPx is cut, its look changing with the tilt.

@@ -172,7 +172,10 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
       rows.push_back(f.found[k] ? f.centre[k].y() : std::nan(""));
       plate.push_back(f.PlateRowAt(f.centre[k].x()));  // (the plate under this sphere)
     }
-    o.row[k] = ContactRowOffset(rows, plate, contact_radius_px);
+    // On a sloping plate the centre stands R along the plate's normal: R sqrt(1 + slope^2)
+    // above the plate's row at its column (0.23 px at 8 degrees and R = 23.75 px).
+    const double slope = frames.empty() ? 0.0 : frames.front().plate_slope;
+    o.row[k] = ContactRowOffset(rows, plate, contact_radius_px * std::hypot(1.0, slope));
   }
   if (m.choice.silhouettes) return o;
   // The sphere that rests longer (more frames in its contact cluster) sets the contact; the

@@ -203,7 +203,8 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
                                                                        : ref.radius_px;
         prepared = PrepareSequenceMethod(learning, reference, options.tracker.method,
                                          std::isfinite(options.contact_radius_px),
-                                         LearnOptions{options.learn_passes, threads});
+                                         LearnOptions{options.learn_passes, threads,
+                                                      chunk_opts.plate_slope});
         chunk_opts.method = prepared.choice.method;
         chunk_opts.appearance = prepared.appearance;
         // The template's radius (the scale's, or its outline's) is every frame's radius, which

@@ -72,6 +72,7 @@ SphereMeasurement SequenceTracker::Locate(const cv::Mat& frame, int sphere,
                                           int search_px) const {
   MaskContext ctx;
   ctx.plate_row = plate_row;
+  ctx.plate_slope = options_.plate_slope;
   if (other && (*other - guess).norm() > 0) {
     ctx.rod_dir = (*other - guess).normalized();
     ctx.other = *other - guess;

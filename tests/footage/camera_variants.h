@@ -29,6 +29,9 @@ inline std::vector<CameraVariant> CameraVariants() {
       {"bit16", 2.0e-4, 0.5, 16},        // a 12-bit sensor saved in 16-bit files
       // Levelled by eye: the plate's edge falls 5.6 px across the frame.
       {"rolled_half_degree", 2.0e-4, 0.5, 8, 0.5},
+      // Turned 8 degrees: to the tracker, as a plate tilted by the largest tilt of the paper's
+      // Fig. 4b seen by a level camera (the edge falls 90 px across the frame).
+      {"rolled_8_degrees", 2.0e-4, 0.5, 8, 8.0},
       // Lamps on 50 Hz mains, +-30 % at 100 Hz: 20 frames a cycle, the light different in
       // every frame (the camera is the default one).
       {"mains_flicker", 2.0e-4, 0.5, 8, 0.0, 0.3},

@@ -10,7 +10,9 @@
 #include <cstdio>
 #include <random>
 
+#include "tracking/appearance_model.h"
 #include "tracking/plate_edge.h"
+#include "tracking/template_locator.h"
 
 namespace dimer::tracking {
 namespace {
@@ -89,6 +91,62 @@ TEST(PlateSlope, TakenWhereItMovesTheEdgeAndNotOnALevelPlate) {
   EXPECT_FALSE(l.applied) << l.reason;
   EXPECT_EQ(l.value, 0.0);
   EXPECT_LT(std::abs(l.measured), 1e-4);
+}
+
+// A steel sphere mirrors the plate below a horizon that tilts with the plate (8 degrees): it is
+// found at its row through the centre column, and the part kept above it (for the outline fit)
+// is cut along it, 8 rows lower at the right edge of the appearance than at the left.
+TEST(PlateSlope, TheReflectionsHorizonIsFoundAndCutAlongTheSlope) {
+  const int half = 30;
+  const double radius = 23.75, slope = 0.1405, horizon = 38.0;
+  Appearance a;
+  a.half = half;
+  a.radius_px = radius;
+  a.image = cv::Mat(2 * half + 1, 2 * half + 1, CV_32F);
+  a.mask = cv::Mat::ones(a.image.size(), CV_8U);
+  for (int y = 0; y < a.image.rows; ++y) {
+    for (int x = 0; x < a.image.cols; ++x) {
+      const double h = horizon + slope * (x - half);  // below it: the plate's bright reflection
+      a.image.at<float>(y, x) = float(20 + 100 * std::clamp(y + 0.5 - h, 0.0, 1.0));
+    }
+  }
+  EXPECT_NEAR(ReflectionHorizon(a.image, a.mask, half, radius, slope), horizon, 1.0);
+  a.horizon_slope = slope;
+  const Appearance upper = UpperPart(a);
+  auto first_cut = [&](int x) {
+    for (int y = 0; y < upper.mask.rows; ++y) {
+      if (!upper.mask.at<uint8_t>(y, x)) return y;
+    }
+    return upper.mask.rows;
+  };
+  EXPECT_EQ(first_cut(2 * half) - first_cut(0), 8);
+  EXPECT_LE(first_cut(half), int(horizon) - HorizonGuard(radius));
+}
+
+// The plate's rows are cut from a template column by column along the slope: at the template's
+// right edge (30 columns from its centre) the cut starts 4 rows lower at 8 degrees.
+TEST(PlateSlope, TheTemplatesPlateCutFollowsTheSlope) {
+  Appearance a;
+  a.half = 30;
+  a.radius_px = 23.75;
+  a.image = cv::Mat::zeros(61, 61, CV_32F);
+  a.mask = cv::Mat::ones(61, 61, CV_8U);
+  MaskContext ctx;
+  ctx.plate_row = 120.0;  // under the sphere's column; the template's centre at row 100
+  ctx.plate_slope = 0.1405;
+  const cv::Mat m = FrameMask(a, Eigen::Vector2d(300, 100), ctx);
+  auto first_cut = [&](int x) {
+    for (int y = 0; y < m.rows; ++y) {
+      if (!m.at<uint8_t>(y, x)) return y;
+    }
+    return m.rows;
+  };
+  const int centre = first_cut(30), left = first_cut(0), right = first_cut(60);
+  EXPECT_EQ(right - centre, 4);
+  EXPECT_EQ(centre - left, 4);
+  ctx.plate_slope = 0;
+  const cv::Mat level = FrameMask(a, Eigen::Vector2d(300, 100), ctx);
+  EXPECT_EQ(cv::countNonZero(level.col(0) != level.col(60)), 0) << "level: the same rows cut";
 }
 
 }  // namespace

@@ -220,17 +220,15 @@ TEST(PovrayFootageThreads, OverexposedPlateIdenticalForOneAndTwoThreads) {
   ExpectIdentical(r);
 }
 
-// Through a camera turned half a degree about its axis, the track file's metres run along the
-// plate: the resting left sphere's centre stands R above the plate, and the dimer's axis angle
-// is the scene's, both within the 0.1 px bias (read off level axes, the angle is off by
-// the roll, 8.7 mrad, and the left sphere's height by 0.6 px). CTest
-// `povray.metres.rolled_half_degree`.
-TEST(PovrayRolledCamera, MetresRunAlongThePlate) {
-  int camera = -1;
-  for (size_t i = 0; i < CameraVariants().size(); ++i) {
-    if (CameraVariants()[i].roll_deg != 0) camera = int(i);
-  }
-  ASSERT_GE(camera, 0);
+// Through a camera turned about its axis (half a degree, 8 degrees), the track file's metres run
+// along the plate: the resting left sphere's centre stands R above the plate, and the dimer's
+// axis angle is the scene's, both within the 0.1 px bias (read off level axes at half a
+// degree, the angle is off by the roll, 8.7 mrad, and the left sphere's height by 0.6 px).
+// CTest `povray.metres.CASE`.
+class PovrayRolledCamera : public ::testing::TestWithParam<int> {};
+
+TEST_P(PovrayRolledCamera, MetresRunAlongThePlate) {
+  const int camera = GetParam();
   const Case c{CameraVariants()[size_t(camera)].name, Lighting::kFrontPoint, 3.9, camera};
   const std::string dir = Footage(c);
   const FootageOptions o = CaseFootageOptions(c.lighting, c.camera);
@@ -261,6 +259,18 @@ TEST(PovrayRolledCamera, MetresRunAlongThePlate) {
   EXPECT_LE(std::abs(height), kBiasTargetPx) << "left sphere's height above the plate - R, px";
   EXPECT_LE(std::abs(angle) * length_px, kBiasTargetPx) << "axis angle error " << angle << " rad";
 }
+
+std::vector<int> RolledCameras() {
+  std::vector<int> out;
+  for (size_t i = 0; i < CameraVariants().size(); ++i) {
+    if (CameraVariants()[i].roll_deg != 0) out.push_back(int(i));
+  }
+  return out;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cameras, PovrayRolledCamera, ::testing::ValuesIn(RolledCameras()),
+    [](const ::testing::TestParamInfo<int>& p) { return CameraVariants()[size_t(p.param)].name; });
 
 INSTANTIATE_TEST_SUITE_P(
     Lightings, PovrayFootage,
