@@ -272,6 +272,21 @@ INSTANTIATE_TEST_SUITE_P(
     Cameras, PovrayRolledCamera, ::testing::ValuesIn(RolledCameras()),
     [](const ::testing::TestParamInfo<int>& p) { return CameraVariants()[size_t(p.param)].name; });
 
+// And through a camera turned 8 degrees: the plate edge's slope is measured once for the
+// sequence, before any chunk runs, from frames of the first chunk.
+TEST(PovrayFootageThreads, RolledCameraIdenticalForOneAndTwoThreads) {
+  int camera = -1;
+  for (size_t i = 0; i < CameraVariants().size(); ++i) {
+    if (CameraVariants()[i].roll_deg >= 8) camera = int(i);
+  }
+  ASSERT_GE(camera, 0);
+  const auto r = TrackWithOneAndTwoThreads(
+      Case{CameraVariants()[size_t(camera)].name, Lighting::kFrontPoint, 3.9, camera});
+  EXPECT_TRUE(r[0].plate_slope.applied) << r[0].plate_slope.reason;
+  EXPECT_EQ(r[0].plate_slope.value, r[1].plate_slope.value);
+  ExpectIdentical(r);
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Lightings, PovrayFootage,
     ::testing::Values(Case{"front_point", Lighting::kFrontPoint, 3.9},
