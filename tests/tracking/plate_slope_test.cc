@@ -93,17 +93,23 @@ TEST(PlateSlope, TakenWhereItMovesTheEdgeAndNotOnALevelPlate) {
   EXPECT_LT(std::abs(l.measured), 1e-4);
 }
 
+// An appearance of (2 half + 1)^2 pixels, all known, all 0.
+Appearance WholeAppearance(int half, double radius_px) {
+  Appearance a;
+  a.half = half;
+  a.radius_px = radius_px;
+  a.image = cv::Mat::zeros(2 * half + 1, 2 * half + 1, CV_32F);
+  a.mask = cv::Mat::ones(2 * half + 1, 2 * half + 1, CV_8U);
+  return a;
+}
+
 // A steel sphere mirrors the plate below a horizon that tilts with the plate (8 degrees): it is
 // found at its row through the centre column, and the part kept above it (for the outline fit)
 // is cut along it, 8 rows lower at the right edge of the appearance than at the left.
 TEST(PlateSlope, TheReflectionsHorizonIsFoundAndCutAlongTheSlope) {
   const int half = 30;
   const double radius = 23.75, slope = 0.1405, horizon = 38.0;
-  Appearance a;
-  a.half = half;
-  a.radius_px = radius;
-  a.image = cv::Mat(2 * half + 1, 2 * half + 1, CV_32F);
-  a.mask = cv::Mat::ones(a.image.size(), CV_8U);
+  Appearance a = WholeAppearance(half, radius);
   for (int y = 0; y < a.image.rows; ++y) {
     for (int x = 0; x < a.image.cols; ++x) {
       const double h = horizon + slope * (x - half);  // below it: the plate's bright reflection
@@ -126,11 +132,7 @@ TEST(PlateSlope, TheReflectionsHorizonIsFoundAndCutAlongTheSlope) {
 // The plate's rows are cut from a template column by column along the slope: at the template's
 // right edge (30 columns from its centre) the cut starts 4 rows lower at 8 degrees.
 TEST(PlateSlope, TheTemplatesPlateCutFollowsTheSlope) {
-  Appearance a;
-  a.half = 30;
-  a.radius_px = 23.75;
-  a.image = cv::Mat::zeros(61, 61, CV_32F);
-  a.mask = cv::Mat::ones(61, 61, CV_8U);
+  const Appearance a = WholeAppearance(30, 23.75);
   MaskContext ctx;
   ctx.plate_row = 120.0;  // under the sphere's column; the template's centre at row 100
   ctx.plate_slope = 0.1405;
