@@ -105,7 +105,8 @@ int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, doubl
       // (Along a horizon that slopes with the plate: whole rows per column.)
       const int yy = slope == 0 ? y : y + int(std::lround(slope * (x - half)));
       if (yy < 1 || yy > image.rows - 2) continue;
-      if (!mask.at<uint8_t>(yy - 1, x) || !mask.at<uint8_t>(yy, x) || !mask.at<uint8_t>(yy + 1, x)) {
+      if (!mask.at<uint8_t>(yy - 1, x) || !mask.at<uint8_t>(yy, x) ||
+          !mask.at<uint8_t>(yy + 1, x)) {
         continue;
       }
       column_steps.push_back(gy.at<float>(yy, x));

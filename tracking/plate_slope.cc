@@ -60,7 +60,8 @@ PlateSlope EstimatePlateSlope(const std::vector<cv::Mat>& frames, int polarity) 
     std::snprintf(buf, sizeof buf, "level: %.3f px across the frame, under %.2f", effect,
                   kMinSlopeEffectPx);
   } else if (std::abs(out.measured) < kMinSlopeSigmas * out.err) {
-    std::snprintf(buf, sizeof buf, "not taken: %.3g +- %.2g rows per column is within %.0f sigma of level",
+    std::snprintf(buf, sizeof buf,
+                  "not taken: %.3g +- %.2g rows per column is within %.0f sigma of level",
                   out.measured, out.err, kMinSlopeSigmas);
   } else if (std::abs(out.measured) > kPlateMaxSlope) {
     std::snprintf(buf, sizeof buf, "not taken: %.3g rows per column is steeper than %.2g",

@@ -23,7 +23,8 @@ constexpr size_t kMinSeededFrames = 3;
 // dark steel on a dark background, under-exposed): the bright blobs above the plate, split into
 // two groups at the widest gap between their columns (the two spheres, more than a radius
 // apart), each group's mean position. Pixels off vertically (highlights sit above the centre):
-// learning re-centres on the plate contact (appearance_model.h).
+// learning re-centres on the plate contact (appearance_model.h). `plate_row`: the plate's
+// highest row (where it slopes).
 bool HighlightSeed(const cv::Mat& image, double plate_row, double radius_px, LearningSample* s) {
   const int rows = std::isfinite(plate_row) ? std::clamp(int(plate_row) - 2, 1, image.rows)
                                             : image.rows;
@@ -54,10 +55,6 @@ bool HighlightSeed(const cv::Mat& image, double plate_row, double radius_px, Lea
   for (size_t i = 0; i < blobs.size(); ++i) (i < cut ? left : right) += blobs[i];
   s->centre = {left / double(cut), right / double(blobs.size() - cut)};
   s->found = {true, true};
-  if (!std::isfinite(s->plate_row)) {  // the coarse row: the median column's, mid-frame
-    s->plate_row = plate_row;
-    s->plate_col = 0.5 * (image.cols - 1);
-  }
   return true;
 }
 
@@ -113,12 +110,19 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
     size_t from_highlights = 0;
     for (size_t i = 0; i < samples.size(); ++i) {
       LearningSample& s = samples[i];
-      // (Above the plate everywhere: its highest point where it slopes.)
-      const double plate =
-          std::isfinite(s.plate_row)
-              ? std::min(s.PlateRowAt(0), s.PlateRowAt(s.image.cols - 1))
-              : FindPlateRowCoarse(s.image);
-      if (!(s.found[0] && s.found[1])) from_highlights += HighlightSeed(s.image, plate, reference.radius_px, &s);
+      if (s.found[0] && s.found[1]) continue;
+      // Where the probe found no plate, the coarse row at the frame's centre column.
+      LearningSample line = s;
+      if (!std::isfinite(s.plate_row)) {
+        line.plate_row = FindPlateRowCoarse(s.image, s.plate_slope);
+        line.plate_col = 0.5 * (s.image.cols - 1);
+      }
+      // Above the plate everywhere: its highest point where it slopes.
+      const double highest = std::min(line.PlateRowAt(0), line.PlateRowAt(s.image.cols - 1));
+      if (!HighlightSeed(s.image, highest, reference.radius_px, &s)) continue;
+      ++from_highlights;
+      s.plate_row = line.plate_row;
+      s.plate_col = line.plate_col;
     }
     if (from_highlights > 0) {
       m.choice.reason += "; rough centres of " + std::to_string(from_highlights) +

@@ -179,7 +179,8 @@ Eigen::Vector2d Camera::Project(double x, double y, double z) const {
 double Camera::PlateRowAt(double plate_z, double col) const {
   // The plate's line in the dimer plane is straight in the image (a pinhole keeps lines): its
   // row at `col` from two of its points a metre apart either side of the axis.
-  const Eigen::Vector2d p = Project(centre_x - 0.5, 0, plate_z), q = Project(centre_x + 0.5, 0, plate_z);
+  const Eigen::Vector2d p = Project(centre_x - 0.5, 0, plate_z);
+  const Eigen::Vector2d q = Project(centre_x + 0.5, 0, plate_z);
   return p.y() + (q.y() - p.y()) * (col - p.x()) / (q.x() - p.x());
 }
 
