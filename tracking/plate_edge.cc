@@ -210,15 +210,24 @@ struct PlateBlocks {
   bool ok = false;
 };
 
-PlateBlocks MeasureBlocks(const cv::Mat& frame, double row_guess,
-                          const std::vector<std::pair<double, double>>& excluded, double slope,
-                          double ref_col) {
-  PlateBlocks pb;
-  if (!std::isfinite(row_guess)) return pb;
+// Fills `out` (its vectors keep their capacity: this runs for every frame, and the callers keep
+// one per thread).
+void MeasureBlocks(const cv::Mat& frame, double row_guess,
+                   const std::vector<std::pair<double, double>>& excluded, double slope,
+                   double ref_col, PlateBlocks* out) {
+  PlateBlocks& pb = *out;
+  pb.ok = false;
+  pb.r0 = pb.rows = 0;
+  pb.blocks.clear();
+  pb.shift.clear();
+  pb.rest.clear();
+  pb.edges.clear();
+  pb.sigma = 1;
+  if (!std::isfinite(row_guess)) return;
   pb.r0 = std::max(0, int(std::lround(row_guess)) - kPlateBandHalfPx);
   const int r1 = std::min(frame.rows - 1, int(std::lround(row_guess)) + kPlateBandHalfPx);
   pb.rows = r1 - pb.r0 + 1;
-  if (pb.rows < 2 * kBracketRows + 2) return pb;
+  if (pb.rows < 2 * kBracketRows + 2) return;
   pb.use.assign(frame.cols, 1);
   for (const auto& [a, b] : excluded) {
     for (int c = std::max(0, int(std::floor(a))); c <= std::min(frame.cols - 1, int(std::ceil(b)));
@@ -247,7 +256,7 @@ PlateBlocks MeasureBlocks(const cv::Mat& frame, double row_guess,
     }
     c = end + 1;
   }
-  if (pb.blocks.size() < size_t(kPlateMinBlocks)) return pb;
+  if (pb.blocks.size() < size_t(kPlateMinBlocks)) return;
   pb.sigma = BandNoise(frame, pb.r0, r1, pb.use);
   // Block profiles (sums over the block's columns, per row).
   pb.sums.assign(pb.blocks.size() * size_t(pb.rows), 0.0);
@@ -260,7 +269,8 @@ PlateBlocks MeasureBlocks(const cv::Mat& frame, double row_guess,
                      : RangeSum<uint16_t>(frame, row, pb.blocks[b].first, pb.blocks[b].second));
     }
   }
-  std::vector<double> profile(pb.rows);
+  thread_local std::vector<double> profile;
+  profile.assign(pb.rows, 0.0);
   for (size_t b = 0; b < pb.blocks.size(); ++b) {
     const int n = pb.blocks[b].second - pb.blocks[b].first + 1;
     for (int i = 0; i < pb.rows; ++i) profile[i] = pb.sums[b * pb.rows + i] / n;
@@ -272,7 +282,6 @@ PlateBlocks MeasureBlocks(const cv::Mat& frame, double row_guess,
                         profile[k + kBracketRows] > profile[k - kBracketRows] ? 1 : -1});
   }
   pb.ok = true;
-  return pb;
 }
 
 // The plate's edge has one sign across the width: the majority's.
@@ -289,7 +298,8 @@ double RefinePlateRow(const cv::Mat& frame, double row_guess,
                       ClippedEdgeProfile* clipped, double slope, double ref_col) {
   if (clipped) *clipped = ClippedEdgeProfile{};
   if (!(std::isfinite(slope) && std::isfinite(ref_col))) slope = 0;
-  const PlateBlocks pb = MeasureBlocks(frame, row_guess, excluded, slope, ref_col);
+  thread_local PlateBlocks pb;
+  MeasureBlocks(frame, row_guess, excluded, slope, ref_col, &pb);
   if (!pb.ok) return kNaN;
   const int r0 = pb.r0, rows = pb.rows;
   const auto& blocks = pb.blocks;
@@ -434,8 +444,8 @@ double PlateEdgeSlope(const cv::Mat& frame, const std::vector<std::pair<double, 
   // centre column: what is left is the first line's error, fitted by least squares over the
   // blocks within kPlateInlierPx of a robust line through them.
   const double centre = 0.5 * (frame.cols - 1);
-  const PlateBlocks pb = MeasureBlocks(frame, coarse_offset + coarse_slope * centre, excluded,
-                                       coarse_slope, centre);
+  thread_local PlateBlocks pb;
+  MeasureBlocks(frame, coarse_offset + coarse_slope * centre, excluded, coarse_slope, centre, &pb);
   if (!pb.ok) return kNaN;
   const int sign = MajoritySign(pb.edges);
   std::vector<double> x, y;
