@@ -39,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "tracking/plate_edge.h"
 #include "tracking/template_locator.h"
 #include "tracking/tolerances.h"
 
@@ -79,7 +80,7 @@ struct LearningSample {
   double plate_col = 0;
   double plate_slope = 0;
   double PlateRowAt(double col) const {
-    return plate_slope == 0 ? plate_row : plate_row + plate_slope * (col - plate_col);
+    return SlopedRowAt(plate_row, plate_col, plate_slope, col);
   }
   std::array<bool, 2> found{false, false};
   std::array<Eigen::Vector2d, 2> centre{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "tracking/detector.h"
 #include "tracking/median.h"
@@ -26,7 +27,7 @@ PlateSlope EstimatePlateSlope(const std::vector<cv::Mat>& frames, int polarity) 
   }
   const size_t n = std::min(frames.size(), kSlopeFrames);
   std::vector<double> slopes, errs;
-  int width = frames[0].cols;
+  const int width = frames[0].cols;
   for (size_t j = 0; j < n; ++j) {
     const cv::Mat& f = frames[j * frames.size() / n];
     const Detection det = DetectSpheres(f, polarity);
@@ -63,14 +64,11 @@ PlateSlope EstimatePlateSlope(const std::vector<cv::Mat>& frames, int polarity) 
     std::snprintf(buf, sizeof buf,
                   "not taken: %.3g +- %.2g rows per column is within %.0f sigma of level",
                   out.measured, out.err, kMinSlopeSigmas);
-  } else if (std::abs(out.measured) > kPlateMaxSlope) {
-    std::snprintf(buf, sizeof buf, "not taken: %.3g rows per column is steeper than %.2g",
-                  out.measured, kPlateMaxSlope);
-  } else {
+  } else {  // (PlateEdgeSlope gives none steeper than kPlateMaxSlope)
     out.applied = true;
     out.value = out.measured;
     std::snprintf(buf, sizeof buf, "the edge falls %.2f px across the frame (%.3f deg)", effect,
-                  std::atan(out.measured) * 180.0 / M_PI);
+                  std::atan(out.measured) * 180.0 / std::numbers::pi);
   }
   out.reason = buf;
   return out;

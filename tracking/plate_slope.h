@@ -10,6 +10,7 @@
 // (tracker.h, FrameTrack::PlateRowAt), and the track file's metres run along the plate.
 #include <opencv2/core.hpp>
 
+#include <limits>
 #include <string>
 #include <vector>
 

@@ -18,6 +18,7 @@
 #include <memory>
 
 #include "tracking/clipped_edge.h"
+#include "tracking/plate_edge.h"
 #include "tracking/refiner.h"
 #include "tracking/template_locator.h"
 #include "tracking/tolerances.h"
@@ -61,7 +62,7 @@ struct FrameTrack {
   double plate_slope = 0;
   // The plate's row at column `col` (plate_row itself when the plate is level).
   double PlateRowAt(double col) const {
-    return plate_slope == 0 ? plate_row : plate_row + plate_slope * (col - plate_col);
+    return SlopedRowAt(plate_row, plate_col, plate_slope, col);
   }
   // Where the plate's bright side clips: its profile, fitted again once the sequence knows the
   // clipped level (clipped_edge.h); null otherwise, and after that fit.
