@@ -32,6 +32,10 @@ void AddCompareOptions(CLI::App* c, CompareCli* cli) {
       ->capture_default_str();
   c->add_option("--transient", a.transient_periods, "simulated periods before the compared part")
       ->capture_default_str();
+  c->add_option("--tilt-deg", a.scene.tilt_deg,
+                "plate tilt for --simulate and --fit, degrees (> 0 rises toward +x); tracks and simulations are "
+                "compared in the plate's frame")
+      ->capture_default_str();
   c->add_option("--eps", a.scene.eps, "restitution for --simulate, start of --fit")->capture_default_str();
   c->add_option("--mu", a.scene.mu, "sliding friction, persistent contact")->capture_default_str();
   c->add_option("--mu-s", a.scene.mu_s, "static friction, persistent contact")->capture_default_str();

@@ -256,6 +256,8 @@ AttrList Headline(const Analysis& a, const Comparison* c) {
       {"fps", a.run.fps()},
       {"g_fit", a.free_fall.g_fit},
       {"g_fit_err", a.free_fall.g_fit_err},
+      {"tilt_fit_deg", a.free_fall.tilt_deg},
+      {"tilt_fit_deg_err", a.free_fall.tilt_deg_err},
       {"slip_after", a.slip.after},
       {"slip_after_err", a.slip.after_err},
       {"slip_before", a.slip.before},
@@ -265,6 +267,7 @@ AttrList Headline(const Analysis& a, const Comparison* c) {
   if (c) {
     h.push_back({"sim_settled_mode", c->sim.periods.settled.summary.label});
     h.push_back({"sim_drift_speed", c->sim.drift.speed});
+    h.push_back({"sim_tilt_deg", c->sim.run.sim_tilt_deg});
     h.push_back({"modes_agree", int64_t{c->modes_agree}});
     h.push_back({"time_offset", c->time_offset_s});
     h.push_back({"x_offset", c->x_offset_m});
@@ -279,12 +282,13 @@ AttrUnits HeadlineUnits() {
           {"freq", "Hz"}, {"freq_err", "Hz"}, {"gamma", "1"}, {"gamma_err", "1"}, {"gamma_plate", "1"}, {"gamma_plate_err", "1"},
           {"plate_amplitude", "m"},
           {"plate_phase", "rad"}, {"plate_phase_err", "rad"}, {"plate_residual_rms", "m"}, {"ar_measured", "1"},
-          {"diameter", "m"}, {"fps", "1/s"}, {"g_fit", "m/s^2"}, {"g_fit_err", "m/s^2"}, {"slip_after", "m/s"},
+          {"diameter", "m"}, {"fps", "1/s"}, {"g_fit", "m/s^2"}, {"g_fit_err", "m/s^2"}, {"tilt_fit_deg", "deg"},
+          {"tilt_fit_deg_err", "deg"}, {"slip_after", "m/s"},
           {"slip_after_err", "m/s"}, {"slip_before", "m/s"}, {"slip_before_err", "m/s"}, {"outliers", "1"},
-          {"sim_drift_speed", "m/s"}, {"time_offset", "s"}, {"x_offset", "m"},
+          {"sim_drift_speed", "m/s"}, {"sim_tilt_deg", "deg"}, {"time_offset", "s"}, {"x_offset", "m"},
           // parameters (run_compare.cc)
           {"mode_window", "periods"}, {"phase_bins", "1"}, {"option_freq", "Hz"}, {"option_gamma", "1"},
-          {"transient_periods", "periods"}, {"scene_eps", "1"}, {"scene_mu", "1"}, {"scene_mu_s", "1"},
+          {"transient_periods", "periods"}, {"scene_tilt_deg", "deg"}, {"scene_eps", "1"}, {"scene_mu", "1"}, {"scene_mu_s", "1"},
           {"scene_mu_hat", "1"}, {"scene_mu_hat_s", "1"}};
 }
 

@@ -65,9 +65,10 @@ Comparison CompareWithSimulation(const Analysis& track, Analysis sim_analysis) {
   // (Half a frame of slack: the phase is fitted, so the exact end may come out a hair late.)
   shift += std::floor((t_sim_end + 0.5 * tr.dt - t_tr_end - shift) / T) * T;
   c.time_offset_s = shift;
-  // Mirror when the bouncing ends are on opposite sides.
+  // Mirror when the bouncing ends are on opposite sides; never a tilted plate's simulation,
+  // whose mirror image is the opposite tilt, another experiment.
   const int dt = BouncingDirection(track), ds = BouncingDirection(sim);
-  c.mirrored = dt != 0 && ds != 0 && dt != ds;
+  c.mirrored = dt != 0 && ds != 0 && dt != ds && sr.sim_tilt_deg == 0;
   const double mx = c.mirrored ? -1.0 : 1.0;
   // Heights relative to each plate's mean surface.
   const double z_off = track.plate.offset_m - sim.plate.offset_m;

@@ -4,28 +4,37 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <vector>
 
 namespace dimer::compare {
 namespace {
 
-// One flight [a, b): g and its variance from a quadratic fit, the residual giving the noise.
-bool FitFlight(const SampledRun& run, size_t a, size_t b, double* g, double* var) {
+// One flight [a, b): the centre of mass's acceleration, as g along -x and along -z, with their
+// variances from a quadratic fit of each, the residuals giving the noise.
+struct FlightFit {
+  double gx = 0, gz = 0, var_x = 0, var_z = 0;
+};
+
+bool FitFlight(const SampledRun& run, size_t a, size_t b, FlightFit* f) {
   const int n = static_cast<int>(b - a);
   Eigen::MatrixXd m(n, 3);
-  Eigen::VectorXd z(n);
+  Eigen::MatrixXd xz(n, 2);
   const double tm = run.Time((a + b) / 2);
   for (int k = 0; k < n; ++k) {
     const double t = run.Time(a + k) - tm;
     m.row(k) << 1.0, t, t * t;
-    z(k) = 0.5 * (run.z[0][a + k] + run.z[1][a + k]);
+    xz(k, 0) = 0.5 * (run.x[0][a + k] + run.x[1][a + k]);
+    xz(k, 1) = 0.5 * (run.z[0][a + k] + run.z[1][a + k]);
   }
   const Eigen::Matrix3d mtm = m.transpose() * m;
-  const Eigen::Vector3d c = mtm.ldlt().solve(m.transpose() * z);
-  const double rss = (z - m * c).squaredNorm();
-  *g = -2.0 * c(2);
-  *var = 4.0 * rss / std::max(1, n - 3) * mtm.inverse()(2, 2);
-  return std::isfinite(*g);
+  const Eigen::MatrixXd c = mtm.ldlt().solve(m.transpose() * xz);
+  const double scale = 4.0 / std::max(1, n - 3) * mtm.inverse()(2, 2);
+  f->gx = -2.0 * c(2, 0);
+  f->gz = -2.0 * c(2, 1);
+  f->var_x = scale * (xz.col(0) - m * c.col(0)).squaredNorm();
+  f->var_z = scale * (xz.col(1) - m * c.col(1)).squaredNorm();
+  return std::isfinite(f->gx) && std::isfinite(f->gz);
 }
 
 }  // namespace
@@ -49,8 +58,10 @@ FreeFall FitFreeFall(const SampledRun& run, const Contacts& contacts) {
     if (k >= 0 && k < static_cast<long>(run.n)) impact_after[k] = 1;
     if (k >= 1 && static_cast<double>(k) == imp.frame) impact_after[k - 1] = 1;
   }
-  double wsum = 0, gsum = 0;
-  bool exact = false;  // a noise-free flight (simulation): its g is exact, use it alone
+  // Inverse-variance sums of g along -x and -z; a noise-free flight (simulation) is exact, and
+  // is used alone.
+  double wx = 0, sx = 0, wz = 0, sz = 0;
+  bool exact = false;
   size_t i = 0;
   while (i < run.n) {
     if (!airborne(i)) {
@@ -60,14 +71,16 @@ FreeFall FitFreeFall(const SampledRun& run, const Contacts& contacts) {
     size_t j = i + 1;
     while (j < run.n && airborne(j) && !impact_after[j - 1]) ++j;
     const size_t a = i + kFreeFlightTrimFrames, b = j - kFreeFlightTrimFrames;
-    double g = 0, var = 0;
-    if (b > a && b - a >= static_cast<size_t>(kMinFreeFlightFrames) && FitFlight(run, a, b, &g, &var)) {
+    FlightFit f;
+    if (b > a && b - a >= static_cast<size_t>(kMinFreeFlightFrames) && FitFlight(run, a, b, &f)) {
       ++ff.flights;
       ff.frames += static_cast<int>(b - a);
-      if (var <= 0) {
-        exact = true, gsum = g, wsum = 1;
+      if (f.var_z <= 0) {
+        exact = true, sx = f.gx, wx = 1, sz = f.gz, wz = 1;
       } else if (!exact) {
-        gsum += g / var, wsum += 1 / var;
+        // x can be exact where z is not (a flight straight up): its weight is then z's.
+        const double vx = f.var_x > 0 ? f.var_x : f.var_z;
+        sx += f.gx / vx, wx += 1 / vx, sz += f.gz / f.var_z, wz += 1 / f.var_z;
       }
     }
     i = j;
@@ -78,8 +91,13 @@ FreeFall FitFreeFall(const SampledRun& run, const Contacts& contacts) {
               std::to_string(kMinFreeFlightFrames + 2 * kFreeFlightTrimFrames) + " frames";
     return ff;
   }
-  ff.g_fit = gsum / wsum;
-  ff.g_fit_err = exact ? 0.0 : std::sqrt(1.0 / wsum);
+  const double gx = sx / wx, gz = sz / wz;
+  const double var_x = exact ? 0.0 : 1.0 / wx, var_z = exact ? 0.0 : 1.0 / wz;
+  const double g2 = gx * gx + gz * gz;
+  ff.g_fit = std::sqrt(g2);
+  ff.g_fit_err = std::sqrt((gx * gx * var_x + gz * gz * var_z) / g2);
+  ff.tilt_deg = std::atan2(gx, gz) * 180 / std::numbers::pi;
+  ff.tilt_deg_err = std::sqrt((gz * gz * var_x + gx * gx * var_z) / (g2 * g2)) * 180 / std::numbers::pi;
   return ff;
 }
 

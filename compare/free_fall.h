@@ -18,10 +18,15 @@ inline constexpr int kFreeFlightTrimFrames = 1;  // frames dropped at each end (
 // the plate a tracker's error depends on the height (the plate edge, its reflection), which
 // bends short flights; measured: the drift mode's sub-millimetre hops gave g_fit/g 0.97-0.99 on
 // rendered footage whose calibration was exact.
+// The centre of mass's acceleration along x is fitted alike. In the plate's frame (a tilted
+// plate's track or simulation) a flight falls at g (-sin alpha, -cos alpha), so the two give the
+// plate's tilt alpha against gravity, and g_fit is the length of that vector. It tells a plate
+// tilted on purpose from a camera that is not level (whose track, turned to the plate, is level).
 inline constexpr double kFreeFlightMinGapRel = 0.05;
 
 struct FreeFall {
   double g_fit = kNaN, g_fit_err = kNaN;  // m/s^2
+  double tilt_deg = kNaN, tilt_deg_err = kNaN;  // plate tilt against gravity, > 0 rising toward +x
   int flights = 0, frames = 0;
   std::string note;  // why it is NaN, when it is
 };

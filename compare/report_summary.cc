@@ -130,7 +130,10 @@ void DriftAndFall(const Analysis& a, std::ostringstream& o) {
   o << "\n## Free fall (calibration check)\n\n";
   if (std::isfinite(f.g_fit)) {
     o << "g_fit / g = " << Pm(f.g_fit / kGravity, f.g_fit_err / kGravity) << " from "
-      << f.flights << " flights (" << f.frames << " frames).\n\n";
+      << f.flights << " flights (" << f.frames << " frames); the flights fall "
+      << Pm(f.tilt_deg, f.tilt_deg_err) << "° from the normal of the plate as tracked "
+      << "(a plate tilted against gravity, > 0 rising toward +x; 0 for a level plate, whatever "
+         "the camera's roll).\n\n";
   } else {
     o << "g_fit not measured" << (f.note.empty() ? "" : ": " + f.note) << ".\n\n";
   }
@@ -238,6 +241,8 @@ void Comparing(const Analysis& t, const Comparison& c, std::ostringstream& o) {
   row("⟨u⟩ f / g", Pm(t.drift.scaled, t.drift.scaled_err), Pm(s.drift.scaled, s.drift.scaled_err));
   row("g_fit / g", Pm(t.free_fall.g_fit / kGravity, t.free_fall.g_fit_err / kGravity),
       Pm(s.free_fall.g_fit / kGravity, s.free_fall.g_fit_err / kGravity));
+  row("plate tilt from the flights (°)", Pm(t.free_fall.tilt_deg, t.free_fall.tilt_deg_err),
+      Pm(s.free_fall.tilt_deg, s.free_fall.tilt_deg_err));
   row("slip after impact (mm/s)", Pm(t.slip.after, t.slip.after_err, kMm),
       Pm(s.slip.after, s.slip.after_err, kMm));
   row("slip before impact (mm/s)", Pm(t.slip.before, t.slip.before_err, kMm),

@@ -5,6 +5,7 @@
 
 #include "common/error.h"
 #include "common/h5_file.h"
+#include "common/plate_frame.h"
 #include "common/trajectory_io.h"
 
 namespace dimer::compare {
@@ -120,7 +121,9 @@ SampledRun LoadSampledRun(const std::string& path) {
   if (kind != "track" && kind != "sim") {
     throw InputError(path + ": kind is '" + kind + "', expected a trajectory (track or sim)");
   }
-  const Trajectory traj = ReadTrajectory(r);
+  const double tilt_deg = kind == "sim" ? r.AttrDouble("/", "tilt_deg").value_or(0.0) : 0.0;
+  if (!std::isfinite(tilt_deg)) throw InputError(path + ": 'tilt_deg' is not a number");
+  const Trajectory traj = InPlateFrame(ReadTrajectory(r), tilt_deg);
   const double fps = r.AttrDouble("/", "fps").value_or(kNaN);
   const double d = r.AttrDouble("/", "diameter").value_or(kNaN);
   if (!(d > 0)) throw InputError(path + ": no positive 'diameter' attribute (sphere size, m)");
@@ -142,6 +145,7 @@ SampledRun LoadSampledRun(const std::string& path) {
     }
     return run;
   }
+  run.sim_tilt_deg = tilt_deg;
   run.sim_freq_hz = r.AttrDouble("/", "freq").value_or(kNaN);
   run.sim_gamma = r.AttrDouble("/", "gamma").value_or(kNaN);
   run.sim_plate_phase = r.AttrDouble("/", "plate_phase").value_or(0.0);
@@ -154,7 +158,9 @@ SampledRun LoadSampledRun(const std::string& path) {
       run.state.assign(run.n, {kNaN, kNaN, kNaN, kNaN, kNaN, kNaN});
       for (size_t i = 0; i < traj.size(); ++i) {
         const long k = std::lround((traj.t[i] - run.t0) / run.dt);
-        for (int c = 0; c < 6; ++c) run.state[k][c] = flat[6 * i + c];
+        std::array<double, 6> lab;
+        for (int c = 0; c < 6; ++c) lab[c] = flat[6 * i + c];
+        run.state[k] = StateInPlateFrame(lab, tilt_deg);
       }
     }
   }

@@ -44,7 +44,10 @@ struct SampledRun {
   double plate_motion_scale = kNaN;
   std::string plate_scale_source;
   // Sim files only (empty or NaN for tracks).
-  std::vector<std::array<double, 6>> state;  // lab (x, z, theta, u, v, omega) per frame
+  // A simulation of a tilted plate (its `tilt_deg`) is turned into the plate's frame (x along
+  // the plate, z along its normal: common/plate_frame.h), the frame a track of it is in.
+  double sim_tilt_deg = 0;
+  std::vector<std::array<double, 6>> state;  // (x, z, theta, u, v, omega) per frame, lab or plate frame
   double sim_freq_hz = kNaN, sim_gamma = kNaN, sim_plate_phase = kNaN;  // phase: fraction
   double sim_t_start = kNaN;   // start of the sim's first period (its t_start), s
   std::string sim_settled_mode;

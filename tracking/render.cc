@@ -13,6 +13,7 @@
 #include "common/error.h"
 #include "common/h5_file.h"
 #include "common/interrupt.h"
+#include "common/plate_frame.h"
 #include "common/progress.h"
 #include "common/provenance.h"
 #include "common/trajectory_io.h"
@@ -72,7 +73,8 @@ void CheckTrajectory(const std::string& path, const Trajectory& traj, size_t n) 
   }
 }
 
-std::string RenderJson(const RenderArgs& a, const RenderPlan& p, double diameter, size_t n) {
+std::string RenderJson(const RenderArgs& a, const RenderPlan& p, double diameter, size_t n,
+                       double tilt_deg) {
   std::string j = "{\n";
   auto add = [&](const std::string& k, const std::string& v, bool last = false) {
     j += "  \"" + k + "\": " + v + (last ? "\n" : ",\n");
@@ -87,6 +89,8 @@ std::string RenderJson(const RenderArgs& a, const RenderPlan& p, double diameter
   add("row0", Num(p.map.row0));
   add("col_offset", Num(p.map.col_offset));
   add("diameter", Num(diameter));
+  add("tilt_deg", Num(tilt_deg));
+  add("frame", tilt_deg != 0 ? "\"plate\"" : "\"lab\"");
   add("radius_px", Num(p.radius_px));
   add("rod_diameter", Num(a.rod_diameter));
   add("lighting", "\"" + ToString(a.image.lighting) + "\"");
@@ -99,7 +103,7 @@ std::string RenderJson(const RenderArgs& a, const RenderPlan& p, double diameter
   add("seed", std::to_string(a.image.seed));
   add("units",
       "{\"m_per_px\": \"m/px\", \"row0\": \"px\", \"col_offset\": \"px\", "
-      "\"diameter\": \"m\", \"radius_px\": \"px\", \"rod_diameter\": \"m\", "
+      "\"diameter\": \"m\", \"tilt_deg\": \"deg\", \"radius_px\": \"px\", \"rod_diameter\": \"m\", "
       "\"noise\": \"grey levels (8-bit scale)\", \"gradient\": \"1\", "
       "\"exposure\": \"frame intervals\", \"width\": \"px\", \"height\": \"px\"}");
   add("format_doc", "\"docs/FORMATS.md, render folder\"", true);
@@ -181,7 +185,16 @@ void RunRender(const RenderArgs& args) {
   args.Check();
   AtomicOutput out(args.output, args.force, AtomicOutput::Kind::kDirectory);
   H5Reader reader(args.input);
-  const Trajectory traj = ReadTrajectory(reader);
+  // A tilted plate's simulation is drawn in the plate's frame, as a camera turned with the plate
+  // sees it (the renderer's plate is level): the frame `track` measures in.
+  const double tilt_deg =
+      FileKind(reader) == "sim" ? reader.AttrDouble("/", "tilt_deg").value_or(0.0) : 0.0;
+  if (!std::isfinite(tilt_deg)) throw InputError(args.input + ": 'tilt_deg' is not a number");
+  const Trajectory traj = InPlateFrame(ReadTrajectory(reader), tilt_deg);
+  if (tilt_deg != 0 && !args.quiet) {
+    std::fprintf(stderr, "render: %s: plate tilted %s deg: drawn in the plate's frame (a camera turned with "
+                 "the plate; truth.csv likewise)\n", args.input.c_str(), Num(tilt_deg).c_str());
+  }
   const size_t n = args.max_frames > 0 ? std::min(args.max_frames, traj.size()) : traj.size();
   CheckTrajectory(args.input, traj, n);
   const double diameter = std::isnan(args.diameter)
@@ -285,7 +298,7 @@ void RunRender(const RenderArgs& args) {
   }
   progress.Finish(double(n));
   WriteTruth(out.temp_path() + "/truth.csv", args, plan, traj, n);
-  std::ofstream(out.temp_path() + "/render.json") << RenderJson(args, plan, diameter, n);
+  std::ofstream(out.temp_path() + "/render.json") << RenderJson(args, plan, diameter, n, tilt_deg);
   out.Commit();
   // The one-line summary every subcommand ends with (stdout; -q silences progress only).
   std::printf("%s: %zu frames %dx%d, %d-bit %s, %s lighting, %.3g m/px; truth.csv, render.json\n",

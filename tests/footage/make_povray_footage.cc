@@ -13,6 +13,7 @@
 #include "common/error.h"
 #include "common/h5_file.h"
 #include "common/interrupt.h"
+#include "common/plate_frame.h"
 #include "common/trajectory_io.h"
 #include "tests/footage/povray_footage.h"
 
@@ -49,7 +50,8 @@ const char* kUsage =
     "                      mirror_plate 0.005)\n"
     "  --horizon-row R     output row of the optical axis (249.5; mirror_plate 224.5)\n"
     "  --roll-deg A        camera turned about its axis, deg (0; the plate edge descends to\n"
-    "                      the right by tan A px per px)\n"
+    "                      the right by tan A px per px; a --sim of a tilted plate turns it\n"
+    "                      by minus the tilt more: a level camera's view of that plate)\n"
     "  --plate-depth M     plate extent toward the camera, m (0.04; mirror_plate 0.2)\n"
     "  --aa-depth D        POV-Ray antialiasing depth, 0 (none) .. 7 (4)\n"
     "  --jobs N            POV-Ray processes at once (0: three per core)\n"
@@ -147,7 +149,17 @@ int Run(int argc, char** argv) {
   Motion motion;
   if (!sim.empty()) {
     H5Reader reader(sim);
-    const Trajectory traj = ReadTrajectory(reader);
+    // A tilted plate's simulation: the scene is built in the plate's frame (the plate level in
+    // POV-Ray) and the camera turned the other way, so the footage is a level camera's view of
+    // the tilted plate (the edge rising toward +x) and truth.csv that camera's pixels.
+    const double tilt_deg =
+        FileKind(reader) == "sim" ? reader.AttrDouble("/", "tilt_deg").value_or(0.0) : 0.0;
+    const Trajectory traj = InPlateFrame(ReadTrajectory(reader), tilt_deg);
+    if (tilt_deg != 0) {
+      o.camera.roll_deg -= tilt_deg;
+      std::fprintf(stderr, "make_povray_footage: %s: plate tilted %g deg: built in the plate's frame, "
+                   "camera roll %g deg\n", sim.c_str(), tilt_deg, o.camera.roll_deg);
+    }
     if (std::isnan(diameter)) diameter = reader.AttrDouble("/", "diameter").value_or(std::nan(""));
     if (std::isnan(diameter)) throw InputError(sim + ": no root attribute 'diameter'; pass --diameter");
     if (traj.size() >= 2) o.fps = 1.0 / (traj.t[1] - traj.t[0]);
