@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/plate_frame.h"
 
 namespace dimer::footage {
 namespace {
@@ -46,6 +47,12 @@ Motion HopMotion(const DimerShape& shape, size_t frames, double fps, const HopOp
                 hop.freq_hz, hop.amplitude, hop.drift_speed, hop.lift, hop.t_start);
   m.description = buf;
   return m;
+}
+
+Motion TiltedTrajectoryMotion(const Trajectory& lab, double tilt_deg, size_t max_frames,
+                              const std::string& path, double* camera_roll_deg) {
+  if (tilt_deg != 0) *camera_roll_deg -= tilt_deg;
+  return TrajectoryMotion(InPlateFrame(lab, tilt_deg), max_frames, path);
 }
 
 Motion TrajectoryMotion(const Trajectory& traj, size_t max_frames, const std::string& path) {

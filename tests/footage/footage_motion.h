@@ -36,6 +36,14 @@ Motion HopMotion(const DimerShape& shape, size_t frames, double fps, const HopOp
 // for NaN positions.
 Motion TrajectoryMotion(const Trajectory& traj, size_t max_frames, const std::string& path);
 
+// A simulation of a plate tilted by `tilt_deg` (its lab trajectory, x horizontal) as a level
+// camera films it: the scene is built in the plate's frame (POV-Ray's plate is level) and the
+// camera turned by -tilt_deg more (`camera_roll_deg` is updated), so the plate's edge rises
+// toward +x by the tilt in the frames and truth.csv is in that camera's pixels. 0: as
+// TrajectoryMotion.
+Motion TiltedTrajectoryMotion(const Trajectory& lab, double tilt_deg, size_t max_frames,
+                              const std::string& path, double* camera_roll_deg);
+
 struct Pose {
   double t = 0, x = 0, z = 0, theta = 0, plate_z = 0;  // s, m, m, rad, m
 };

@@ -13,7 +13,6 @@
 #include "common/error.h"
 #include "common/h5_file.h"
 #include "common/interrupt.h"
-#include "common/plate_frame.h"
 #include "common/trajectory_io.h"
 #include "tests/footage/povray_footage.h"
 
@@ -149,22 +148,19 @@ int Run(int argc, char** argv) {
   Motion motion;
   if (!sim.empty()) {
     H5Reader reader(sim);
-    // A tilted plate's simulation: the scene is built in the plate's frame (the plate level in
-    // POV-Ray) and the camera turned the other way, so the footage is a level camera's view of
-    // the tilted plate (the edge rising toward +x) and truth.csv that camera's pixels.
+    // A tilted plate's simulation: filmed by a level camera (footage_motion.h).
     const double tilt_deg =
         FileKind(reader) == "sim" ? reader.AttrDouble("/", "tilt_deg").value_or(0.0) : 0.0;
-    const Trajectory traj = InPlateFrame(ReadTrajectory(reader), tilt_deg);
+    const Trajectory traj = ReadTrajectory(reader);
     if (tilt_deg != 0) {
-      o.camera.roll_deg -= tilt_deg;
       std::fprintf(stderr, "make_povray_footage: %s: plate tilted %g deg: built in the plate's frame, "
-                   "camera roll %g deg\n", sim.c_str(), tilt_deg, o.camera.roll_deg);
+                   "camera roll %g deg\n", sim.c_str(), tilt_deg, o.camera.roll_deg - tilt_deg);
     }
     if (std::isnan(diameter)) diameter = reader.AttrDouble("/", "diameter").value_or(std::nan(""));
     if (std::isnan(diameter)) throw InputError(sim + ": no root attribute 'diameter'; pass --diameter");
     if (traj.size() >= 2) o.fps = 1.0 / (traj.t[1] - traj.t[0]);
     o.shape.diameter = diameter;
-    motion = TrajectoryMotion(traj, size_t(std::max(0L, frames)), sim);
+    motion = TiltedTrajectoryMotion(traj, tilt_deg, size_t(std::max(0L, frames)), sim, &o.camera.roll_deg);
   } else {
     if (!std::isnan(diameter)) o.shape.diameter = diameter;
     if (!poses.empty()) {
