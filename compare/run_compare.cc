@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <numbers>
 
 #include "common/atomic_output.h"
 #include "common/error.h"
@@ -12,14 +11,11 @@
 #include "compare/compare_file.h"
 #include "compare/comparison.h"
 #include "compare/report.h"
-#include "compare/text.h"
+#include "compare/tilt_notes.h"
 #include "sim/sim_file.h"
 
 namespace dimer::compare {
 namespace {
-
-// A tilt from the flights this far (deg, and 3 of its sigma) from the simulation's is noted.
-constexpr double kTiltNoteDeg = 0.3;
 
 std::string JoinErrors(const std::vector<std::string>& e) {
   std::string s;
@@ -49,31 +45,6 @@ Analysis SimulationFor(const CompareArgs& args, const Analysis& track, const std
   if (r.interrupted) throw Interrupted();
   sim::WriteSimFile(dir + "/sim.h5", false, o, r);
   return a;
-}
-
-// What the frames and the flights say of the plate's tilt, beside the simulation's
-// (`sim_tilt_deg`, NaN when nothing is compared). A camera that is not level and a plate tilted
-// on purpose both slope the edge, and the track runs along the plate either way; only the
-// flights (free_fall.h) tell them apart, so the simulation's tilt is the user's to give.
-std::vector<std::string> TiltNotes(const Analysis& track, double sim_tilt_deg) {
-  std::vector<std::string> notes;
-  const SampledRun& r = track.run;
-  if (r.kind == "track" && r.plate_slope != 0) {
-    notes.push_back("the plate's edge slopes by " + Num(-std::atan(r.plate_slope) * 180 / std::numbers::pi) +
-                    " deg in the frames (> 0 rising toward +x): x and z run along the plate and its normal. "
-                    "A camera not level looks the same; if the plate itself was tilted, simulate it with "
-                    "--tilt-deg (the flights' tilt, in the summary, tells the two apart)");
-  }
-  const FreeFall& f = track.free_fall;
-  if (std::isfinite(sim_tilt_deg) && std::isfinite(f.tilt_deg)) {
-    const double off = f.tilt_deg - sim_tilt_deg;
-    if (std::abs(off) > kTiltNoteDeg && std::abs(off) > 3 * f.tilt_deg_err) {
-      notes.push_back("the track's flights fall " + Num(f.tilt_deg) + " +- " + Num(f.tilt_deg_err) +
-                      " deg from the plate's normal, the simulation's plate is tilted " + Num(sim_tilt_deg) +
-                      " deg (--tilt-deg)");
-    }
-  }
-  return notes;
 }
 
 AttrList Parameters(const CompareArgs& a) {

@@ -13,6 +13,7 @@
 #include "../common/test_tmpdir.h"
 #include "compare/comparison.h"
 #include "compare/simulate.h"
+#include "compare/tilt_notes.h"
 #include "sim/frames.h"
 #include "sim/sim_file.h"
 #include "sim/state.h"
@@ -146,6 +147,25 @@ TEST(TiltedPlate, ATiltedSimulationIsNeverMirrored) {
     const Comparison c = CompareWithSimulation(track, sim);
     EXPECT_EQ(c.mirrored, tilt == 0) << tilt;
   }
+}
+
+TEST(TiltNotes, TheEdgesSlopeAndAFlightTiltApartFromTheSimulationsAreNoted) {
+  Analysis a;
+  a.run.kind = "track";
+  EXPECT_TRUE(TiltNotes(a, NAN).empty());  // a level edge, no flights
+  a.run.plate_slope = -std::tan(1.0 * std::numbers::pi / 180);  // rising 1 degree toward +x
+  std::vector<std::string> n = TiltNotes(a, NAN);
+  ASSERT_EQ(n.size(), 1u);
+  EXPECT_NE(n[0].find("slopes by 1 deg"), std::string::npos) << n[0];
+  a.free_fall.tilt_deg = 2.2, a.free_fall.tilt_deg_err = 0.12;
+  EXPECT_EQ(TiltNotes(a, 2.0).size(), 1u);  // 0.2 deg off: within 0.3 deg, no note
+  n = TiltNotes(a, 0.0);
+  ASSERT_EQ(n.size(), 2u);
+  EXPECT_NE(n[1].find("flights fall 2.2 +- 0.12 deg"), std::string::npos) << n[1];
+  a.free_fall.tilt_deg_err = 1.0;  // 2.2 deg off but within 3 sigma: no note
+  EXPECT_EQ(TiltNotes(a, 0.0).size(), 1u);
+  a.run.kind = "sim";  // a sim's frame is its own: no slope note
+  EXPECT_TRUE(TiltNotes(a, 0.0).empty());
 }
 
 }  // namespace
