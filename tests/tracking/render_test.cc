@@ -2,10 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include "common/error.h"
+#include "common/h5_file.h"
+#include "common/provenance.h"
+#include "common/trajectory_io.h"
 #include "tests/common/test_tmpdir.h"
 #include "tests/tracking/synthetic.h"
 
@@ -19,6 +23,47 @@ RenderArgs SmallRender(const dimer::testing::TempDir& dir) {
   a.quiet = true;
   a.image.lighting = Lighting::kBacklit;
   return a;
+}
+
+// A sim file of a tilted plate (tilt_deg 3): drawn in the plate's frame (the renderer's plate
+// is level), so a dimer lying on the plate lies level on the drawn plate, R above it.
+TEST(RunRender, ATiltedPlatesSimIsDrawnInThePlatesFrame) {
+  dimer::testing::TempDir dir;
+  const double a = 3.0 * M_PI / 180, c = std::cos(a), s = std::sin(a), r = 0.5 * testing::kDiameterM;
+  const double half = 13.8e-3;
+  Trajectory lab;
+  for (int i = 0; i < 3; ++i) {
+    const double along = 0.002 * i, zp = 1e-4 * i;  // drifting up the plate, which rises
+    const Eigen::Vector2d t(c, s), n(-s, c), cm = along * t + (zp + r) * n;
+    lab.Append(i / 2000.0, cm - half * t, cm + half * t, (zp + cm.x() * s) / c, a);
+  }
+  {
+    H5Writer w(dir / "sim.h5");
+    WriteProvenance(w, "sim", {{"fps", 2000.0}, {"freq", 25.0}, {"diameter", testing::kDiameterM},
+                               {"tilt_deg", 3.0}});
+    WriteTrajectory(w, lab);
+  }
+  RenderArgs args = SmallRender(dir);
+  RunRender(args);
+  std::ifstream truth(args.output + "/truth.csv");
+  std::string line;
+  for (int k = 0; k < 3; ++k) std::getline(truth, line);  // comments and column names
+  double m = 2e-4;
+  for (int i = 0; i < 3; ++i) {
+    ASSERT_TRUE(std::getline(truth, line));
+    double t, lc, lr, rc, rr, pr;
+    int frame;
+    char file[64];
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%63[^,],%lf,%lf,%lf,%lf,%lf,%lf", &frame, file, &t, &lc, &lr,
+                          &rc, &rr, &pr), 8);
+    EXPECT_NEAR(lr, rr, 1e-6) << i;                      // level on the drawn plate
+    EXPECT_NEAR(pr - lr, r / m, 1e-6) << i;              // R above it
+    EXPECT_NEAR(rc - lc, 2 * half / m, 1e-6) << i;       // the full length along the plate
+  }
+  std::ifstream json(args.output + "/render.json");
+  const std::string j((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  EXPECT_NE(j.find("\"frame\": \"plate\""), std::string::npos) << j;
+  EXPECT_NE(j.find("\"tilt_deg\": 3,"), std::string::npos) << j;
 }
 
 TEST(RunRender, WritesFramesTruthAndMapping) {
