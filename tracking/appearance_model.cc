@@ -427,12 +427,23 @@ OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
     sum2 += g * g;
     ++n;
   }
+  // The longest run of consecutive frames in the cluster: a resting sphere stays there.
+  size_t run = 0, longest_run = 0;
+  for (size_t i = 0; i < reference_rows.size(); ++i) {
+    const double g = plate_rows[i] - radius_px - reference_rows[i];
+    run = std::abs(g - centre) <= kContactBandPx ? run + 1 : 0;  // (NaN: not found, ends it)
+    longest_run = std::max(longest_run, run);
+  }
   e.n = n;
   e.value = sum / double(n);
   const double var = n > 1 ? std::max(0.0, (sum2 - sum * sum / double(n)) / double(n - 1)) : 0.0;
   // Standard error of the mean, floored at a tenth of the window (a few frames near the edge of
   // the window can move the mean by that much).
   e.err = std::max(std::sqrt(var / double(n)), kContactBandPx / 10.0);
+  if (longest_run < kMinRestingFrames) {
+    e.source = "plate_contact_bounces";
+    e.err = std::max(e.err, std::sqrt(var));
+  }
   return e;
 }
 

@@ -90,8 +90,8 @@ struct OffsetEstimate {
   double value = 0;                                        // px, reference -> centre
   double err = std::numeric_limits<double>::quiet_NaN();   // standard uncertainty, px
   size_t n = 0;                                            // frames it rests on
-  std::string source;  // silhouette | plate_contact(_of_other(_outline)) | limb | whole_outline |
-                       // symmetry(_and_whole_outline) | none
+  std::string source;  // silhouette | plate_contact(_bounces|_of_other(_outline|_both)) | limb |
+                       // whole_outline | symmetry(_and_whole_outline) | none
 };
 
 struct LearntSphere {
@@ -184,7 +184,13 @@ inline constexpr double kSilhouetteBiasPx = 0.03;
 // Silhouette: median of rough - registered per axis (0 column, 1 row); error from the MAD and
 // kSilhouetteBiasPx.
 OffsetEstimate SilhouetteOffset(const LearntSphere& s, int axis);
-// Plate contact from the whole track: reference rows and plate rows per frame (NaN: not found).
+// Plate contact from the whole track: reference rows and plate rows per frame, in frame order
+// (NaN: not found). A sphere that never rests (no kMinRestingFrames consecutive frames in the
+// cluster: the jump and flutter modes, a bouncing end) touches the plate only between two
+// frames, and the cluster holds the frames next to its impacts, spread over the band above the
+// contact: their mean leans off it by up to half the band (+0.09 to +0.12 px on POV-Ray films
+// of the jump mode, stated +-0.03 before). Its source is then "plate_contact_bounces" and its
+// uncertainty at least the cluster's standard deviation.
 OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
                                 const std::vector<double>& plate_rows, double radius_px);
 // Centre column of the appearance's outline (limb_fit.h), relative to its reference column;
