@@ -19,6 +19,7 @@
 #include "sim/state.h"
 #include "tracking/render.h"
 #include "tracking/track.h"
+#include "tests/compare/exact_slip.h"
 
 namespace dimer::compare {
 namespace {
@@ -126,19 +127,10 @@ TEST_P(Pipeline, TrackedFilmGivesTheSimulationsPhysics) {
     // frame, relative to the plate (the lab's on a level plate).
     const int rs = t.slip.resting_sphere;
     ASSERT_EQ(rs, 1 - r.raw.mode.bouncing_sphere);
-    std::vector<double> exact(t.run.n, NAN), phase(t.run.n);
-    for (size_t i = 0; i < t.run.n && i < r.raw.lab.size(); ++i) {
-      phase[i] = t.plate.PhaseFraction(t.run.Time(i));
-      if (!std::isfinite(t.slip.U[i])) continue;
-      const sim::State q = sim::PlateFromLab(r.raw.model, r.raw.t[i], r.raw.lab[i]);
-      exact[i] = t.slip.sign * sim::SlipU(sim::ContactArm(r.raw.model, q.th, rs), q);
-    }
-    std::vector<double> centres, mean, sem;
-    std::vector<int> count;
-    PhaseAverage(phase, exact, static_cast<int>(t.slip.phase.size()), &centres, &mean, &sem, &count);
-    double peak = 0;
-    for (double v : mean)
-      if (std::isfinite(v)) peak = std::max(peak, std::abs(v));
+    const ExactSlip x = ExactSlipProfile(t, r.raw);
+    const double peak = x.peak;
+    const std::vector<double>& mean = x.mean;
+    const std::vector<int>& count = x.count;
     ASSERT_GT(peak, 0);
     int compared = 0;
     for (size_t b = 0; b < mean.size(); ++b) {

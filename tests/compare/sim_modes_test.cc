@@ -7,6 +7,7 @@
 
 #include "compare/simulate.h"
 #include "sim/state.h"
+#include "tests/compare/exact_slip.h"
 
 namespace dimer::compare {
 namespace {
@@ -80,26 +81,12 @@ TEST(SimSlip, PhaseAveragedSlipFromPositionsFollowsTheExactSlip) {
   ASSERT_EQ(a.periods.settled.summary.label, "drift");
   const int rs = a.slip.resting_sphere;
   ASSERT_EQ(rs, 1 - r.mode.bouncing_sphere);
-  // Exact slip U = u - omega r_z of the resting sphere from the simulated state, on the same
-  // frames (those compare calls resting), same sign and phase bins.
-  const sim::Model& m = r.model;
-  std::vector<double> exact(a.run.n, NAN), phase(a.run.n);
-  for (size_t i = 0; i < a.run.n; ++i) {
-    phase[i] = a.plate.PhaseFraction(a.run.Time(i));
-    if (!std::isfinite(a.slip.U[i])) continue;
-    const sim::State& q = r.lab[i];
-    exact[i] = a.slip.sign * sim::SlipU(sim::ContactArm(m, q.th, rs), q);
-  }
-  std::vector<double> c, mean, err;
-  std::vector<int> count;
-  PhaseAverage(phase, exact, o.fps > 0 ? static_cast<int>(a.slip.phase.size()) : 40, &c, &mean, &err, &count);
-  double peak = 0;
-  for (double v : mean)
-    if (std::isfinite(v)) peak = std::max(peak, std::abs(v));
-  ASSERT_GT(peak, 0);
-  for (size_t b = 0; b < mean.size(); ++b) {
-    if (!std::isfinite(mean[b])) continue;
-    EXPECT_NEAR(a.slip.profile[b], mean[b], 0.02 * peak) << "bin " << b;
+  // The exact slip on the same frames (those compare calls resting), same sign and phase bins.
+  const ExactSlip x = ExactSlipProfile(a, r);
+  ASSERT_GT(x.peak, 0);
+  for (size_t b = 0; b < x.mean.size(); ++b) {
+    if (!std::isfinite(x.mean[b])) continue;
+    EXPECT_NEAR(a.slip.profile[b], x.mean[b], 0.02 * x.peak) << "bin " << b;
   }
   // The paper's mechanism at A_r 3.9: a forward kick after the bouncing end's impact.
   EXPECT_GT(a.slip.after, 0);

@@ -17,6 +17,7 @@
 #include "sim/frames.h"
 #include "sim/sim_file.h"
 #include "sim/state.h"
+#include "tests/compare/exact_slip.h"
 
 namespace dimer::compare {
 namespace {
@@ -58,20 +59,9 @@ TEST(TiltedPlate, SlipIsTheContactsVelocityRelativeToThePlate) {
   sim::SimResult r;
   const Analysis a = SimulateAndAnalyze(Tilted(3.0, sim::InitKind::kDrift, 200), {}, "slip", &r);
   ASSERT_EQ(a.periods.settled.summary.label, "drift");
-  const int rs = a.slip.resting_sphere;
-  std::vector<double> exact(a.run.n, NAN), phase(a.run.n);
-  for (size_t i = 0; i < a.run.n; ++i) {
-    phase[i] = a.plate.PhaseFraction(a.run.Time(i));
-    if (!std::isfinite(a.slip.U[i])) continue;
-    const sim::State q = sim::PlateFromLab(r.model, r.t[i], r.lab[i]);
-    exact[i] = a.slip.sign * sim::SlipU(sim::ContactArm(r.model, q.th, rs), q);
-  }
-  std::vector<double> c, mean, err;
-  std::vector<int> count;
-  PhaseAverage(phase, exact, static_cast<int>(a.slip.phase.size()), &c, &mean, &err, &count);
-  double peak = 0;
-  for (double v : mean)
-    if (std::isfinite(v)) peak = std::max(peak, std::abs(v));
+  const ExactSlip x = ExactSlipProfile(a, r);
+  const double peak = x.peak;
+  const std::vector<double>& mean = x.mean;
   ASSERT_GT(peak, 0);
   // Most bins agree to 1e-4 of the peak. Where the slip sticks (phase 0.5-0.65: a kink in U(t))
   // the positions' slope filter rounds the kink off, up to 3.8 % of the peak here (2.3 % on a

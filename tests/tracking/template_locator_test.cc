@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include "tracking/appearance_model.h"
@@ -135,59 +136,61 @@ TEST(FindAppearance, FindsBothSpheresOfAFrameBestFirst) {
   EXPECT_LT(((left_first ? p1 : p0) - Eigen::Vector2d(170.8, 55.6)).norm(), 0.5);
 }
 
+// Reference rows of a sphere whose bottom is lift(i) px above a plate swinging by 0.5 px, with an
+// offset of 3.2 px above its centre (centre = row + offset) and noise 0.02 px.
+constexpr double kContactR = 23.75, kContactOffset = 3.2;
+struct ContactSeries {
+  std::vector<double> rows, plate;
+};
+ContactSeries RowsAbovePlate(int frames, uint64_t seed, const std::function<double(int)>& lift) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> n(0, 0.02);
+  ContactSeries c;
+  for (int i = 0; i < frames; ++i) {
+    const double p = 200 + 0.5 * std::sin(i * 0.1);
+    c.plate.push_back(p);
+    c.rows.push_back(p - kContactR - lift(i) - kContactOffset + n(rng));
+  }
+  return c;
+}
+
 TEST(AppearanceOffset, ASphereThatNeverRestsStatesItsBouncesSpread) {
   // The jump mode: the sphere bounces once every 80 frames, leaving the plate at 0.6 px a frame
   // and landing at 0.9 px a frame (a V in plate - R - row), the impact at a different fraction
-  // of a frame each time; noise 0.02 px. Offset 3.2 px as above.
-  const double R = 23.75, offset = 3.2;
-  std::mt19937_64 rng(3);
-  std::normal_distribution<double> n(0, 0.02);
-  std::vector<double> rows, plate;
-  for (int i = 0; i < 800; ++i) {
+  // of a frame each time.
+  const ContactSeries c = RowsAbovePlate(800, 3, [](int i) {
     const int bounce = i / 80;
     const double impact = 80.0 * bounce + 40.0 + 0.37 * bounce - std::floor(0.37 * bounce);
     const double dt = i - impact;  // frames from the impact
-    const double lift = std::min(12.0, dt < 0 ? -0.9 * dt : 0.6 * dt);
-    const double p = 200 + 0.5 * std::sin(i * 0.1);
-    plate.push_back(p);
-    rows.push_back(p - R - lift - offset + n(rng));
-  }
-  const OffsetEstimate e = ContactRowOffset(rows, plate, R);
+    return std::min(12.0, dt < 0 ? -0.9 * dt : 0.6 * dt);
+  });
+  const OffsetEstimate e = ContactRowOffset(c.rows, c.plate, kContactR);
   EXPECT_EQ(e.source, "plate_contact_bounces");
   // The frames next to the impacts sit up to 0.3 px above the plate: the mean leans off it, and
   // the stated uncertainty covers that.
-  EXPECT_GT(e.value - offset, 0.03) << "the mean of the frames next to the impacts";
+  EXPECT_GT(e.value - kContactOffset, 0.03) << "the mean of the frames next to the impacts";
   EXPECT_GE(e.err, 0.05);
-  EXPECT_LE(std::abs(e.value - offset), 2 * e.err) << e.value << " +- " << e.err;
+  EXPECT_LE(std::abs(e.value - kContactOffset), 2 * e.err) << e.value << " +- " << e.err;
   // The same sphere resting 5 frames in a row at each landing rests.
-  std::vector<double> rest_rows = rows;
-  for (int b = 0; b < 10; ++b) {
-    for (int k = 0; k < 5; ++k) rest_rows[80 * b + 41 + k] = plate[80 * b + 41 + k] - R - offset + n(rng);
-  }
-  EXPECT_EQ(ContactRowOffset(rest_rows, plate, R).source, "plate_contact");
+  const ContactSeries rest = RowsAbovePlate(800, 3, [](int i) {
+    const int k = i % 80;
+    return k > 40 && k <= 45 ? 0.0 : std::min(12.0, k <= 40 ? 0.9 * (40.5 - k) : 0.6 * (k - 45.5));
+  });
+  EXPECT_EQ(ContactRowOffset(rest.rows, rest.plate, kContactR).source, "plate_contact");
 }
 
 TEST(AppearanceOffset, PlateContactIsTheRestingCluster) {
-  // Reference rows: offset 3.2 px above the centre (centre = row + offset). The sphere rests for
-  // 200 frames (noise 0.02 px) and flies for 300 (up to 15 px above the plate).
-  const double R = 23.75, offset = 3.2;
-  std::mt19937_64 rng(2);
-  std::normal_distribution<double> n(0, 0.02);
-  std::vector<double> rows, plate;
-  for (int i = 0; i < 500; ++i) {
-    const double p = 200 + 0.5 * std::sin(i * 0.1);
-    const double lift = i < 200 ? 0.0 : 15.0 * std::sin((i - 200) * M_PI / 300);
-    plate.push_back(p);
-    rows.push_back(p - R - lift - offset + n(rng));
-  }
-  const OffsetEstimate e = ContactRowOffset(rows, plate, R);
+  // The sphere rests for 200 frames and flies for 300 (up to 15 px above the plate).
+  const ContactSeries c = RowsAbovePlate(
+      500, 2, [](int i) { return i < 200 ? 0.0 : 15.0 * std::sin((i - 200) * M_PI / 300); });
+  const OffsetEstimate e = ContactRowOffset(c.rows, c.plate, kContactR);
   EXPECT_EQ(e.source, "plate_contact");
-  EXPECT_NEAR(e.value, offset, 0.01);
+  EXPECT_NEAR(e.value, kContactOffset, 0.01);
   EXPECT_GT(e.n, 150u);
   EXPECT_TRUE(std::isfinite(e.err));
   EXPECT_LT(e.err, 0.05);
   // No plate: nothing to estimate, said so.
-  const OffsetEstimate none = ContactRowOffset(rows, std::vector<double>(500, NAN), R);
+  const OffsetEstimate none = ContactRowOffset(c.rows, std::vector<double>(500, NAN), kContactR);
   EXPECT_EQ(none.source, "none");
   EXPECT_TRUE(std::isnan(none.err));
 }
