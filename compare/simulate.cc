@@ -34,7 +34,8 @@ sim::SimOptions SceneFromTrack(const Analysis& track, const sim::SimOptions& giv
                      "), init " + sim::ToString(o.init) + " (observed " + mode +
                      "), " + Num(o.cycles) + " periods of which " + std::to_string(transient_periods) +
                      " transient; tilt " + Num(o.tilt_deg) + " deg" +
-                     (o.tilt_deg != 0 ? " (compared in the plate's frame)" : "") + "; eps " + Num(o.eps) + ", mu " + Num(o.mu) + ", mu_s " + Num(o.mu_s) +
+                     (o.tilt_deg != 0 ? " (compared in the plate's frame)" : "") + "; eps " +
+                     Num(o.eps) + ", mu " + Num(o.mu) + ", mu_s " + Num(o.mu_s) +
                      ", mu_hat " + Num(o.mu_hat) + ", mu_hat_s " + Num(o.mu_hat_s));
   }
   return o;
@@ -53,7 +54,9 @@ Analysis SimulateAndAnalyze(const sim::SimOptions& options, const AnalysisOption
     traj.Append(r.t[i], sim::TipLab(m, q, sim::kLeft), sim::TipLab(m, q, sim::kRight),
                 sim::PlateSurfaceZ(m, r.t[i], q.x), q.th);
   }
-  SampledRun run = SampleTrajectory(InPlateFrame(traj, options.tilt_deg), options.fps, options.diameter_m, label, "sim");
+  // A tilted plate's run is analysed in the plate's frame, as its track would be.
+  SampledRun run = SampleTrajectory(InPlateFrame(traj, options.tilt_deg), options.fps,
+                                    options.diameter_m, label, "sim");
   run.sim_tilt_deg = options.tilt_deg;
   run.sim_freq_hz = options.freq_hz;
   run.sim_gamma = options.gamma;
