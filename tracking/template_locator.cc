@@ -187,6 +187,21 @@ cv::Mat FrameMask(const Appearance& a, const Eigen::Vector2d& position, const Ma
   return m;
 }
 
+namespace {
+
+// TM_CCOEFF_NORMED divides by the window's spread. Where the frame is flat, as a background
+// clipped at black or a lossy video's smoothed background is, that spread is 0 and OpenCV gives
+// NaN or +-inf; nearly flat, values past +-1. None of them is a correlation (which lies in
+// [-1, 1]): all read as -1, no match. Before, an inf in a flat corner of H.264 or MJPEG frames
+// outscored both spheres in every frame (docs/BENCHMARKS.md, "Compressed video").
+void KeepCorrelations(cv::Mat* res) {
+  constexpr double kRoundOff = 1e-3;  // float sums can pass 1 by round-off on a perfect match
+  const cv::Mat valid = (*res >= -1.0 - kRoundOff) & (*res <= 1.0 + kRoundOff);  // NaN: false
+  res->setTo(-1.0, ~valid);
+}
+
+}  // namespace
+
 Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
                          int search_px, const MaskContext& ctx, const EccStop& stop) {
   Located out;
@@ -209,7 +224,7 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
                           box.height + 2 * search_px);
     cv::Mat res;
     cv::matchTemplate(ToFloat(frame(window)), a.image(box), res, cv::TM_CCOEFF_NORMED, mask(box));
-    cv::patchNaNs(res, -1.0);  // a flat window has no defined correlation
+    KeepCorrelations(&res);
     double best = 0;
     cv::Point at;
     cv::minMaxLoc(res, nullptr, &best, nullptr, &at);
@@ -269,7 +284,7 @@ std::vector<Located> FindAppearance(const cv::Mat& frame, const Appearance& a, d
   cv::Mat res;
   cv::matchTemplate(ToFloat(frame(cv::Rect(0, 0, frame.cols, rows))), a.image, res,
                     cv::TM_CCOEFF_NORMED, mask);
-  cv::patchNaNs(res, -1.0);
+  KeepCorrelations(&res);
   for (int k = 0; k < 2; ++k) {
     double best = 0;
     cv::Point at;

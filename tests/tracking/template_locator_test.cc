@@ -122,6 +122,23 @@ TEST(LocateAppearance, OutsideTheFrameIsClippedAndAnEmptyWindowIsNotFound) {
   EXPECT_LT(l.score, 0.5);
 }
 
+// A frame flat over more than a template (a background clipped at black with no noise left, or
+// a lossy video's smoothed background): OpenCV's normalised correlation is 0/0 or x/0 there, NaN
+// or inf, and an inf outscored the spheres (H.264 and MJPEG films: no sphere found in any frame).
+TEST(FindAppearance, AFlatRegionOfTheFrameIsNoMatch) {
+  Appearance a = Exact();
+  a.image *= 0.7310585;  // levels of a mean over frames, not whole numbers (scale-free match)
+  cv::Mat img = Render(240, 120, 170.8, 55.6, 2.0, 9);
+  img(cv::Rect(0, 0, 110, 120)).setTo(1);
+  const std::vector<Located> f = FindAppearance(img, a, NAN, 1.5 * kR, 0.5);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_LT((f[0].position - Eigen::Vector2d(170.8, 55.6)).norm(), 0.5);
+  EXPECT_LE(f[0].score, 1.001);
+  // Following into the flat part finds nothing there either.
+  const Located l = LocateAppearance(img, a, {60, 60}, 3, {});
+  EXPECT_LT(l.score, 0.5);
+}
+
 TEST(FindAppearance, FindsBothSpheresOfAFrameBestFirst) {
   const Appearance a = Exact();
   cv::Mat img = Render(240, 120, 60.4, 60.2, 2.0, 7);
