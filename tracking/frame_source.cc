@@ -95,6 +95,23 @@ class ListSource : public FrameSource {
   size_t next_ = 0;
 };
 
+}  // namespace
+
+bool LosslessVideoCodec(const std::string& fourcc) {
+  std::string c;
+  for (char ch : fourcc) c += char(std::toupper(static_cast<unsigned char>(ch)));
+  static const char* const kLossless[] = {"FFV1", "HFYU", "FFVH", "Y800", "GREY", "Y8  ", "RAW ",
+                                          "DIB ", "PNG ", "MPNG", "ULRG", "ULRA", "ULY0", "ULY2",
+                                          "ULY4", "ULH0", "ULH2", "ULH4", "UQY2", "LAGS", "RGBA",
+                                          "BGRA", "RGB ", "BGR "};
+  for (const char* k : kLossless) {
+    if (c == k) return true;
+  }
+  return false;
+}
+
+namespace {
+
 class VideoSource : public FrameSource {
  public:
   explicit VideoSource(const std::string& path) : path_(path), name_(fs::path(path).filename()) {
@@ -106,6 +123,11 @@ class VideoSource : public FrameSource {
   bool random_access() const override { return false; }
   Frame Read(size_t) const override {
     throw std::logic_error("VideoSource is sequential: use Next()");
+  }
+  RecordingInfo recording() const override {
+    RecordingInfo info;
+    info.video_codec = cap_.Fourcc();
+    return info;
   }
   bool Next(Frame* frame) override {
     cv::Mat img;

@@ -37,7 +37,15 @@ struct RecordingInfo {
   int64_t trigger_fraction = 0;   // trigger time: fraction of a second, units of 2^-32 s
   int64_t first_image_no = 0;     // camera number of the source's first frame (0 = trigger)
   int real_bpp = 0;               // bits per pixel the camera delivered
+  // Video files (whatever `known` says): the codec's four characters as the container declares
+  // them (e.g. "h264", "MJPG", "FFV1"); "" for other sources or when not declared.
+  std::string video_codec;
 };
+
+// True for the video codecs that keep every pixel (FFV1, HuffYUV, Ut Video, Lagarith, raw, PNG
+// in a container). Every other codec (H.264, HEVC, MPEG-4, MJPEG, VP9, ...) is taken as lossy:
+// it can be set lossless, but a lab's exports seldom are, and the file does not say.
+bool LosslessVideoCodec(const std::string& fourcc);
 
 class FrameSource {
  public:

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <climits>
+#include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -133,6 +135,18 @@ bool VideoReader::Read(cv::Mat* frame) { return handle_ && Table().video_read(ha
 double VideoReader::FrameCount() const { return handle_ ? Table().video_frame_count(handle_) : 0; }
 
 double VideoReader::Fps() const { return handle_ ? Table().video_fps(handle_) : 0; }
+std::string VideoReader::Fourcc() const {
+  const double v = handle_ ? Table().video_fourcc(handle_) : 0;
+  if (!(v > 0) || !std::isfinite(v)) return "";
+  const auto code = static_cast<uint32_t>(v);
+  std::string s;
+  for (int i = 0; i < 4; ++i) {
+    const char c = static_cast<char>((code >> (8 * i)) & 0xff);
+    if (c < 32 || c > 126) return "";  // not a printable code
+    s += c;
+  }
+  return s;
+}
 
 VideoWriter::~VideoWriter() {
   if (handle_) Table().writer_delete(handle_);

@@ -64,6 +64,8 @@ class VideoReader {
   bool Read(cv::Mat* frame);
   double FrameCount() const;  // CAP_PROP_FRAME_COUNT: what the container declares, or <= 0
   double Fps() const;         // CAP_PROP_FPS
+  // CAP_PROP_FOURCC as its 4 characters (e.g. "h264", "MJPG", "FFV1"); "" when unknown.
+  std::string Fourcc() const;
 
  private:
   void* handle_ = nullptr;

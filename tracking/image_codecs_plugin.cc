@@ -37,6 +37,7 @@ const ImageCodecsTable kTable = {
     [](void* v, cv::Mat* frame) { return Capture(v)->read(*frame); },
     [](void* v) { return Capture(v)->get(cv::CAP_PROP_FRAME_COUNT); },
     [](void* v) { return Capture(v)->get(cv::CAP_PROP_FPS); },
+    [](void* v) { return Capture(v)->get(cv::CAP_PROP_FOURCC); },
     [](void* v) { delete Capture(v); },
     []() -> void* { return new cv::VideoWriter(); },
     [](void* w, const std::string& path, const char* fourcc, double fps, cv::Size size) {

@@ -13,7 +13,7 @@
 
 namespace dimer::tracking {
 
-inline constexpr int kImageCodecsAbi = 1;
+inline constexpr int kImageCodecsAbi = 2;  // 2: video_fourcc
 // The one symbol the library exports: `const ImageCodecsTable* dimer_codecs_table()`.
 inline constexpr char kImageCodecsEntry[] = "dimer_codecs_table";
 inline constexpr char kImageCodecsFile[] = "libdimer_codecs.so";
@@ -34,6 +34,7 @@ struct ImageCodecsTable {
   bool (*video_read)(void* video, cv::Mat* frame);
   double (*video_frame_count)(void* video);  // CAP_PROP_FRAME_COUNT
   double (*video_fps)(void* video);          // CAP_PROP_FPS
+  double (*video_fourcc)(void* video);       // CAP_PROP_FOURCC: the codec's 4 characters
   void (*video_delete)(void* video);
   void* (*writer_new)();                                           // cv::VideoWriter
   bool (*writer_open)(void* writer, const std::string& path, const char* fourcc, double fps,

@@ -506,6 +506,11 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                      {"diameter", "m"},
                      {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
                      {"frames_tracked", "1"}, {"frames_skipped", "1"}};
+  if (!rec.info.video_codec.empty()) {  // a video file's codec, as its container declares it
+    attrs.push_back({"video_codec", rec.info.video_codec});
+    attrs.push_back({"video_codec_lossless", int64_t{LosslessVideoCodec(rec.info.video_codec)}});
+    units["video_codec_lossless"] = "1";
+  }
   if (rec.info.known) {  // the .cine header's values, exactly as stored
     attrs.push_back({"exposure_ns", rec.info.exposure_ns});
     attrs.push_back({"trigger_time", TriggerTimeText(rec.info.trigger_seconds,
@@ -645,6 +650,17 @@ void RunTrack(const TrackArgs& args) {
                              args.input);
   TrackArgs resolved = args;
   const Recording rec = ResolveFps(source->recording(), &resolved);
+  // Lossy compression moves edges and smooths the noise the offsets are measured against: on
+  // POV-Ray footage exported as H.264 the columns came out up to 3 px off while stating 0.2-0.4
+  // px (docs/BENCHMARKS.md, "Compressed video"). Said before the work, and kept in the file.
+  if (!rec.info.video_codec.empty() && !LosslessVideoCodec(rec.info.video_codec)) {
+    std::fprintf(stderr,
+                 "dimerlab: warning: %s: video codec '%s' is taken as lossy: compression moves the "
+                 "spheres' edges by tenths of a pixel to pixels, beyond the offsets' stated "
+                 "uncertainties; track the camera's own files (.cine) or lossless frames where you "
+                 "can\n",
+                 args.input.c_str(), rec.info.video_codec.c_str());
+  }
   const SequenceResult r = TrackWithLibraryMessagesCaptured(resolved, seq, *source);
   if (r.frames.empty()) {
     if (!r.complete) throw Interrupted();

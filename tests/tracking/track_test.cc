@@ -340,10 +340,24 @@ TEST(RunTrack, VideoFileIsTrackedInOrder) {
   EXPECT_EQ(h.ReadInt64("/frame_index"),
             (std::vector<int64_t>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}));
   EXPECT_EQ(h.ReadStrings("/frame_files")[3], "clip.avi#3");
+  // The codec, as the container declares it, and that it is lossy (track warns on stderr too);
+  // a folder of frames has no codec.
+  EXPECT_EQ(h.AttrString("/", "video_codec").value_or(""), "MJPG");
+  EXPECT_EQ(h.AttrDouble("/", "video_codec_lossless").value_or(-1), 0);
+  EXPECT_FALSE(H5Reader(dir / "track.h5").AttrString("/", "video_codec").has_value());
   const auto left = h.ReadDoubles("/pixels/left");
   ASSERT_EQ(left.size(), png_left.size());
   // MJPEG is lossy like JPEG (same bound and reason as above).
   for (size_t i = 0; i < left.size(); ++i) EXPECT_NEAR(left[i], png_left[i], 0.05) << i;
+}
+
+TEST(LosslessVideoCodec, KeepsEveryPixelOnlyForTheLosslessCodecs) {
+  for (const char* c : {"FFV1", "ffv1", "HFYU", "Y800", "ULY0", "LAGS", "PNG "}) {
+    EXPECT_TRUE(LosslessVideoCodec(c)) << c;
+  }
+  for (const char* c : {"h264", "avc1", "hevc", "MJPG", "mp4v", "XVID", "VP90", "", "????"}) {
+    EXPECT_FALSE(LosslessVideoCodec(c)) << c;
+  }
 }
 
 TEST(RunTrack, CtrlCLeavesAValidPartialFileAndNoTemporary) {
