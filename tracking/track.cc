@@ -414,8 +414,8 @@ void WriteTemplateGroup(H5Writer& w, const SequenceResult& r) {
   w.WriteStrings("/template/offset_source", sources);
   w.SetAttr("/template/offset_source", "description",
             "left col, left row, right col, right row: silhouette, plate_contact, "
-            "plate_contact_bounces, plate_contact_of_other(_outline|_both), limb, symmetry(_and_whole_outline) or "
-            "none");
+            "plate_contact_bounces, plate_contact_of_other(_outline|_both), limb, "
+            "symmetry(_and_whole_outline) or none");
   for (int k = 0; k < 2; ++k) {
     const Appearance& a = r.appearance[k];
     std::vector<double> img(a.image.begin<float>(), a.image.end<float>());
