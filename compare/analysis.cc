@@ -134,6 +134,11 @@ Analysis Analyze(const SampledRun& input, const AnalysisOptions& options) {
                          " tip positions rejected as tracking outliers (frame+sphere: " + list +
                          (a.outliers.size() > 10 ? ", ..." : "") + ")");
   }
+  if (run.video_lossy) {
+    a.warnings.push_back("the track comes from a lossy video (codec '" + run.video_codec +
+                         "'): compression moves the spheres' edges by tenths of a pixel to pixels "
+                         "(positions, A_r) and can hide impacts (docs/BENCHMARKS.md, \"Compressed video\")");
+  }
   // 1. Plate drive.
   if (run.kind == "sim" && std::isfinite(run.sim_freq_hz) && std::isfinite(run.sim_gamma)) {
     a.plate = PlateFromSim(run);

@@ -135,6 +135,8 @@ SampledRun LoadSampledRun(const std::string& path) {
     run.col0_px = r.AttrDouble("/", "col0").value_or(0.0);
     run.plate_motion_scale = r.AttrDouble("/", "plate_motion_scale").value_or(kNaN);
     run.plate_scale_source = r.AttrString("/", "plate_motion_scale_source").value_or("");
+    run.video_codec = r.AttrString("/", "video_codec").value_or("");
+    run.video_lossy = !run.video_codec.empty() && r.AttrDouble("/", "video_codec_lossless").value_or(0) == 0;
     if (r.Has("/frame_files") && r.Has("/frame_index")) {
       const std::vector<std::string> files = r.ReadStrings("/frame_files");
       run.frame_files.assign(run.n, "");

@@ -43,6 +43,10 @@ struct SampledRun {
   // plate_motion_scale and its source: "--plate-m-per-px", "fitted" or "none"; "" when older).
   double plate_motion_scale = kNaN;
   std::string plate_scale_source;
+  // Track files of a video: its codec (`track`'s video_codec) and whether it keeps every pixel;
+  // a lossy one moves the spheres' edges (analysis.h warns). "" and false otherwise.
+  std::string video_codec;
+  bool video_lossy = false;
   // Sim files only (empty or NaN for tracks).
   // A simulation of a tilted plate (its `tilt_deg`) is turned into the plate's frame (x along
   // the plate, z along its normal: common/plate_frame.h), the frame a track of it is in.

@@ -11,6 +11,7 @@
 #include "common/h5_file.h"
 #include "common/provenance.h"
 #include "common/trajectory_io.h"
+#include "compare/analysis.h"
 #include "compare/run_compare.h"
 #include "sim/sim_file.h"
 #include "sim/simulator.h"
@@ -143,6 +144,35 @@ TEST_F(BadInput, GapsAreAnalysedAroundAndListed) {
   EXPECT_NE(md.find("2000"), std::string::npos);
   H5Reader r(dir / "report/compare.h5");
   EXPECT_EQ(r.AttrString("/", "settled_mode").value_or(""), "drift");
+}
+
+// A track of a lossy video (track's video_codec attributes) is analysed with a warning in the
+// report; a lossless one and a folder of frames without.
+TEST_F(BadInput, ATrackOfALossyVideoIsWarnedAbout) {
+  const std::string sim = WriteSim(dir, "sim.h5", 3.9, 12);
+  H5Reader r(sim);
+  const Trajectory traj = ReadTrajectory(r);
+  auto analysed = [&](const std::string& codec, int64_t lossless) {
+    const std::string path = dir / ("video_" + codec + ".h5");
+    {
+      H5Writer w(path);
+      WriteProvenance(w, "track", {{"fps", 2000.0}, {"diameter", 9.5e-3}, {"m_per_px", 2e-4}, {"row0", 200.0}});
+      WriteTrajectory(w, traj);
+      if (!codec.empty()) {
+        w.SetAttr("/", "video_codec", codec);
+        w.SetAttr("/", "video_codec_lossless", lossless);
+      }
+    }
+    return Analyze(LoadSampledRun(path), {});
+  };
+  auto warned = [](const Analysis& a) {
+    for (const std::string& w : a.warnings)
+      if (w.find("lossy video (codec 'h264')") != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(warned(analysed("h264", 0)));
+  EXPECT_FALSE(warned(analysed("FFV1", 1)));
+  EXPECT_FALSE(warned(analysed("", 0)));  // a folder of frames
 }
 
 TEST_F(BadInput, ATrackWhoseEndIsLostIsJudgedWhereItIsGood) {
