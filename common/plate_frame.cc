@@ -13,19 +13,19 @@ Eigen::Vector2d Turn(const Eigen::Vector2d& p, double c, double s) {
 
 }  // namespace
 
-Trajectory InPlateFrame(const Trajectory& lab, double tilt_deg) {
+Trajectory InPlateFrame(Trajectory lab, double tilt_deg) {
   if (tilt_deg == 0) return lab;
   const double a = tilt_deg * std::numbers::pi / 180, c = std::cos(a), s = std::sin(a);
-  Trajectory out;
-  out.Reserve(lab.size());
   for (size_t i = 0; i < lab.size(); ++i) {
     // The plate's surface point under the dimer, (x_mid, plate_z), lies on the plate: its
     // normal coordinate is the plate's displacement, whatever x_mid is.
     const double x_mid = 0.5 * (lab.tip_left[i].x() + lab.tip_right[i].x());
-    out.Append(lab.t[i], Turn(lab.tip_left[i], c, s), Turn(lab.tip_right[i], c, s),
-               -s * x_mid + c * lab.plate_z[i], lab.theta[i] - a);
+    lab.plate_z[i] = -s * x_mid + c * lab.plate_z[i];
+    lab.tip_left[i] = Turn(lab.tip_left[i], c, s);
+    lab.tip_right[i] = Turn(lab.tip_right[i], c, s);
+    lab.theta[i] -= a;
   }
-  return out;
+  return lab;
 }
 
 std::array<double, 6> StateInPlateFrame(const std::array<double, 6>& lab, double tilt_deg) {

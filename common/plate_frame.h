@@ -11,9 +11,10 @@
 
 namespace dimer {
 
-// tilt_deg: the plate's inclination (> 0 rising toward +x), as `sim --tilt-deg`. 0 returns `lab`.
+// tilt_deg: the plate's inclination (> 0 rising toward +x), as `sim --tilt-deg`. 0 returns `lab`
+// as it is (taken by value and turned in place: a level file costs no copy when moved in).
 // The lab plate height is taken under the midpoint of the two tips (the centre of mass).
-Trajectory InPlateFrame(const Trajectory& lab, double tilt_deg);
+Trajectory InPlateFrame(Trajectory lab, double tilt_deg);
 
 // A lab state (x, z, theta, u, v, omega) in the same fixed, turned frame (velocities relative to
 // the lab, not to the moving plate).

@@ -1,6 +1,7 @@
 #include "compare/simulate.h"
 
 #include <cmath>
+#include <utility>
 
 #include "common/error.h"
 #include "common/plate_frame.h"
@@ -55,7 +56,7 @@ Analysis SimulateAndAnalyze(const sim::SimOptions& options, const AnalysisOption
                 sim::PlateSurfaceZ(m, r.t[i], q.x), q.th);
   }
   // A tilted plate's run is analysed in the plate's frame, as its track would be.
-  SampledRun run = SampleTrajectory(InPlateFrame(traj, options.tilt_deg), options.fps,
+  SampledRun run = SampleTrajectory(InPlateFrame(std::move(traj), options.tilt_deg), options.fps,
                                     options.diameter_m, label, "sim");
   run.sim_tilt_deg = options.tilt_deg;
   run.sim_freq_hz = options.freq_hz;
