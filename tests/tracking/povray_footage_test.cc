@@ -27,6 +27,7 @@
 #include "common/h5_file.h"
 #include "common/trajectory_io.h"
 #include "tests/common/test_tmpdir.h"
+#include "tests/footage/accuracy_cache.h"
 #include "tests/footage/camera_variants.h"
 #include "tests/footage/povray_footage.h"
 #include "tests/footage/track_accuracy.h"
@@ -38,6 +39,9 @@
 #endif
 #ifndef DIMERLAB_POVRAY_CACHE
 #define DIMERLAB_POVRAY_CACHE "povray_footage_cache"
+#endif
+#ifndef DIMERLAB_POVRAY_ACCURACY_CACHE
+#define DIMERLAB_POVRAY_ACCURACY_CACHE "povray_accuracy_cache"
 #endif
 
 namespace dimer::footage {
@@ -74,23 +78,32 @@ std::string Footage(const Case& c) {
   return dir;
 }
 
+// The case's footage tracked with the method under test on 2 threads, measured once per build
+// of this program and read back by the case's other checks (tests/footage/accuracy_cache.h).
+TrackAccuracy Accuracy(const Case& c) {
+  const std::string method = TestMethod();
+  return CachedTrackAccuracy(Footage(c), method, 2,
+                             std::string(DIMERLAB_POVRAY_ACCURACY_CACHE) + "/" + c.name + "." +
+                                 method);
+}
+
 class PovrayFootage : public ::testing::TestWithParam<Case> {};
 
-// The footage rendered (or found in the cache) with its truth, once per case before the checks
-// that read it (CTest `povray.render.CASE`, their fixture): without it the checks of one case,
-// started together on two cores, would each render the same footage.
-TEST_P(PovrayFootage, RenderedWithItsTruth) {
+// The footage rendered (or found in the cache) with its truth and tracked, once per case before
+// the checks that read it (CTest `povray.render.CASE`, their fixture): without it the checks of
+// one case, started together on two cores, would each render the same footage, and each track it.
+TEST_P(PovrayFootage, RenderedAndTrackedOnce) {
   const std::string dir = Footage(GetParam());
   double radius = 0;
   const auto truth = ReadTruthCsv(dir + "/truth.csv", &radius);
   EXPECT_EQ(truth.size(), kFrames) << dir << "/truth.csv";
   EXPECT_GT(radius, 0) << dir << "/truth.csv";
+  EXPECT_EQ(Accuracy(GetParam()).frames, kFrames);
 }
 
 TEST_P(PovrayFootage, TrackerMeetsTheIssueTargets) {
   const Case& c = GetParam();
-  const std::string dir = Footage(c);
-  const TrackAccuracy a = MeasureTrackAccuracy(dir, TestMethod(), 2);
+  const TrackAccuracy a = Accuracy(c);
   std::printf("%s\n%s%s", c.name, AccuracyHeader().c_str(), AccuracyRow(a).c_str());
   ASSERT_EQ(a.frames, kFrames);
   const char* names[2] = {"left", "right"};
@@ -112,7 +125,7 @@ TEST_P(PovrayFootage, TrackerMeetsTheIssueTargets) {
 // keeps its plate row guarded (CTest `povray.plate.CASE`).
 TEST_P(PovrayFootage, PlateRowWithinTheTargetInEveryFrame) {
   const Case& c = GetParam();
-  const TrackAccuracy a = MeasureTrackAccuracy(Footage(c), TestMethod(), 2);
+  const TrackAccuracy a = Accuracy(c);
   std::printf("[ stats    ] %s plate row: bias %+.3f, max %.3f px, %zu of %zu frames\n", c.name,
               a.plate_bias, a.plate_max_error, a.plate_found, a.frames);
   ASSERT_EQ(a.frames, kFrames);
@@ -127,7 +140,7 @@ TEST_P(PovrayFootage, PlateRowWithinTheTargetInEveryFrame) {
 // `povray.coverage.CASE`); a case with no offset to state (silhouettes, the centroid) skips.
 TEST_P(PovrayFootage, StatedOffsetUncertaintyCoversTheBias) {
   const Case& c = GetParam();
-  const TrackAccuracy a = MeasureTrackAccuracy(Footage(c), TestMethod(), 2);
+  const TrackAccuracy a = Accuracy(c);
   ASSERT_EQ(a.frames, kFrames);
   if (!a.template_run) GTEST_SKIP() << c.name << ": tracked without a template, no offset";
   const char* names[2] = {"left", "right"};
@@ -152,7 +165,7 @@ TEST_P(PovrayFootage, StatedOffsetUncertaintyCoversTheBias) {
 // kScatterBoundFactor of the bound.
 TEST_P(PovrayFootage, ScatterWithinTheTargetOrTheFootagesBound) {
   const Case& c = GetParam();
-  const TrackAccuracy a = MeasureTrackAccuracy(Footage(c), TestMethod(), 2);
+  const TrackAccuracy a = Accuracy(c);
   ASSERT_EQ(a.frames, kFrames);
   const char* names[2] = {"left", "right"};
   for (int k = 0; k < 2; ++k) {
