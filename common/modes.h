@@ -38,7 +38,7 @@ inline constexpr double kSignificantImpactRel = 0.05;
 struct PeriodStats {
   std::array<int, 2> impacts{};       // impacts per sphere (0 left, 1 right) in this period
   std::array<double, 2> rest_time{};  // time each sphere spent on the plate, s
-  double x_start = 0;                 // lab x of the CM at the period start, m
+  double x_start = 0;                 // CM's x along the plate at the period start, m
   int events = 0;                     // simulator events (0 for sampled trajectories)
 };
 
@@ -52,8 +52,8 @@ struct ModeSummary {
   std::array<double, 2> impacts_per_period{}, rest_fraction{};
 };
 
-// Labels the periods [first, first + count) of `periods`. `x_end` is the CM's lab x at the end
-// of the last of them; `bounce_dir[s]` is the sign of (x of sphere s - x of the other) there.
+// Labels the periods [first, first + count) of `periods`. `x_end` is the CM's x along the plate
+// (as `x_start`) at the end of the last of them; `bounce_dir[s]` is the sign of (x of sphere s - x of the other) there.
 ModeSummary ClassifyPeriods(const std::vector<PeriodStats>& periods, int first, int count,
                             double period_s, double x_end, std::array<int, 2> bounce_dir);
 

@@ -280,7 +280,9 @@ void Runner::ContactStage(double t_lim) {
 
 void Runner::StartPeriod() {
   cur_ = PeriodStats{};
-  cur_.x_start = LabFromPlate(m_, t_, q_).x;
+  // Along the plate (the plate frame's x), as the paper measures a drift and as compare reads a
+  // track of a tilted plate; the lab's x on a level plate, to the bit (cos 0 = 1, sin 0 = 0).
+  cur_.x_start = q_.x;
   period_end_ = res_.t_start + m_.period;  // local time: every period starts at t_start
 }
 
@@ -371,7 +373,7 @@ SimResult Runner::Run() {
   }
   const int n = static_cast<int>(res_.periods.size());
   const int w = SettledWindow(n);
-  res_.mode = ClassifyPeriods(res_.periods, n - w, w, m_.period, lab.x, dir);
+  res_.mode = ClassifyPeriods(res_.periods, n - w, w, m_.period, q_.x, dir);
   return std::move(res_);
 }
 
