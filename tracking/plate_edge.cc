@@ -168,17 +168,67 @@ double EdgeRowInProfile(const std::vector<double>& profile, int first_row, doubl
   return first_row + (k + b - 1) + 0.5 - covered;
 }
 
+namespace {
+
+// Other edges across the frame (a ruler, a shelf or the far wall's edge behind the dimer; the
+// shaker under the plate) can be as strong as the plate's, or stronger, and the strongest step
+// alone then lands on one of them: the spheres were searched above a ruler and found in no
+// frame. The plate is the edge the dimer stands on: of the candidate edges, the one with the
+// most of the dimer between it and the next candidate above. The dimer shows as runs of
+// sampled pixels standing out from their row's median, at least kStandOutRun samples wide
+// (a sphere, the rod; not a ruler's ticks or text, which are thin).
+constexpr int kCandidateSeparationRows = 2 * kPlateBandHalfPx;  // closer: the same edge
+constexpr double kStandOutSigmas = 8;                           // a pixel off its row's median
+constexpr double kStandOutMinFraction = 0.02;                   // ... and off by this of the range
+constexpr int kStandOutRun = 3;                                 // samples, kCoarseColumnStride apart
+constexpr int kMinStandOutPixels = 12;                          // (sampled) evidence of a dimer
+
+// Per row, the sampled pixels in runs of kStandOutRun or more that stand out from the row's
+// median; the noise is the median absolute deviation from the row medians (most pixels are
+// backdrop or plate). Row r's samples are samples[start[r] .. start[r + 1]).
+std::vector<int> StandOutPerRow(const std::vector<double>& samples, const std::vector<size_t>& start,
+                                const std::vector<double>& profile, double range) {
+  const size_t rows = profile.size();
+  std::vector<double> dev;
+  dev.reserve(samples.size());
+  for (size_t r = 0; r < rows; ++r) {
+    for (size_t i = start[r]; i < start[r + 1]; ++i) dev.push_back(std::abs(samples[i] - profile[r]));
+  }
+  std::vector<int> out(rows, 0);
+  if (dev.empty()) return out;
+  std::nth_element(dev.begin(), dev.begin() + dev.size() / 2, dev.end());
+  const double sigma = std::max(1.4826 * dev[dev.size() / 2], 1.0 / std::sqrt(12.0));
+  const double limit = std::max(kStandOutSigmas * sigma, kStandOutMinFraction * range);
+  for (size_t r = 0; r < rows; ++r) {
+    int run = 0;
+    for (size_t i = start[r]; i <= start[r + 1]; ++i) {
+      if (i < start[r + 1] && std::abs(samples[i] - profile[r]) > limit) {
+        ++run;
+        continue;
+      }
+      if (run >= kStandOutRun) out[r] += run;
+      run = 0;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 double FindPlateRowCoarse(const cv::Mat& frame, double slope) {
-  std::vector<double> profile(frame.rows), column;
+  std::vector<double> profile(frame.rows), samples, column;
+  std::vector<size_t> start(frame.rows + 1, 0);  // row r's samples: [start[r], start[r + 1])
+  samples.reserve(size_t(frame.rows) * (frame.cols / kCoarseColumnStride + 1));
   double lo = std::numeric_limits<double>::max(), hi = -lo;
   const double centre = 0.5 * (frame.cols - 1);
   for (int row = 0; row < frame.rows; ++row) {
-    column.clear();
     for (int col = 0; col < frame.cols; col += kCoarseColumnStride) {
       const int r = slope == 0 ? row : row + int(std::lround(slope * (col - centre)));
-      if (r >= 0 && r < frame.rows) column.push_back(PixelAt(frame, r, col));
+      if (r >= 0 && r < frame.rows) samples.push_back(PixelAt(frame, r, col));
     }
-    if (column.empty()) column.push_back(PixelAt(frame, row, int(centre)));
+    if (samples.size() == start[row]) samples.push_back(PixelAt(frame, row, int(centre)));
+    start[row + 1] = samples.size();
+    column.assign(samples.begin() + std::ptrdiff_t(start[row]), samples.end());
     std::nth_element(column.begin(), column.begin() + column.size() / 2, column.end());
     profile[row] = column[column.size() / 2];
     lo = std::min(lo, profile[row]);
@@ -187,7 +237,49 @@ double FindPlateRowCoarse(const cv::Mat& frame, double slope) {
   const double min_step = kPlateMinStepFraction * std::max(hi - lo, 0.05 * FullScale(frame));
   double best = 0;
   const int k = StrongestStep(profile, &best);
-  return (k < 0 || best < min_step) ? kNaN : k + 0.5;
+  if (k < 0 || best < min_step) return kNaN;
+  // The candidates: the strongest step and every other local peak step of either sign (a
+  // front-lit plate is brighter than the backdrop, a backlit one darker), at least min_step,
+  // kCandidateSeparationRows from a stronger one (each read as StrongestStep reads its own
+  // neighbourhood: the upper of a top face's two edges).
+  std::vector<std::pair<double, int>> peaks;  // (size, index)
+  const int n = int(profile.size());
+  for (int i = 0; i + 1 < n; ++i) {
+    const double d = profile[i + 1] - profile[i], step = std::abs(d);
+    const bool peak = (i == 0 || d * (profile[i] - profile[i - 1]) <= 0 ||
+                       step >= std::abs(profile[i] - profile[i - 1])) &&
+                      (i + 2 >= n || d * (profile[i + 2] - profile[i + 1]) <= 0 ||
+                       step >= std::abs(profile[i + 2] - profile[i + 1]));
+    if (step >= min_step && peak) peaks.emplace_back(step, i);
+  }
+  std::sort(peaks.begin(), peaks.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
+  std::vector<int> candidates{k};
+  for (const auto& [size, i] : peaks) {
+    bool apart = true;
+    for (int c : candidates) apart = apart && std::abs(i - c) >= kCandidateSeparationRows;
+    if (!apart) continue;
+    double unused = 0;
+    candidates.push_back(UpperComparableStep(profile, i, profile[i + 1] - profile[i], &unused));
+  }
+  if (candidates.size() == 1) return k + 0.5;
+  // The dimer's evidence between each candidate and the next one above it (or the frame's top).
+  const std::vector<int> stand_out = StandOutPerRow(samples, start, profile, hi - lo);
+  std::vector<int> sorted = candidates;
+  std::sort(sorted.begin(), sorted.end());
+  int chosen = k, most = 0;
+  for (size_t j = 0; j < sorted.size(); ++j) {
+    const int top = j == 0 ? 0 : sorted[j - 1] + kPlateBandHalfPx;
+    int evidence = 0;
+    for (int r = top; r <= sorted[j] - kPlateBandHalfPx / 2; ++r) evidence += stand_out[r];
+    // Ties go to the strongest (as before); a frame without a dimer in view keeps it too.
+    if (evidence > most || (evidence == most && sorted[j] == k)) {
+      most = evidence;
+      chosen = sorted[j];
+    }
+  }
+  return most >= kMinStandOutPixels ? chosen + 0.5 : k + 0.5;
 }
 
 namespace {

@@ -34,16 +34,52 @@ bool HighlightSeed(const cv::Mat& image, double plate_row, double radius_px, Lea
   auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
   std::nth_element(v.begin(), mid, v.end());
   const double median = *mid;
-  const double top = *std::max_element(v.begin(), v.end());
   for (float& x : v) x = float(std::abs(x - median));
   std::nth_element(v.begin(), mid, v.end());
   const double sigma = std::max(1.4826 * *mid, 0.5);
-  const double level = std::max(median + kHighlightSigmas * sigma, 0.5 * (median + top));
-  cv::Mat bright = above > level;
+  const double floor_level = median + kHighlightSigmas * sigma;
+  double top = 0;
+  cv::minMaxLoc(above, nullptr, &top);
   cv::Mat labels, stats, centroids;
-  const int n = cv::connectedComponentsWithStats(bright, labels, stats, centroids, 8, CV_32S);
+  // A highlight lies on a sphere: a bright blob wider or taller than a sphere is something else
+  // in the scene (a white ruler or a lamp behind the dimer). When the brightest pixel is in one,
+  // the level it sets is above the highlights: the brightest pixel is then taken outside what
+  // is connected to those blobs at the floor level (the whole ruler), and the level set again.
+  auto larger = [&](int i) {
+    return radius_px > 0 && (stats.at<int>(i, cv::CC_STAT_WIDTH) > 2 * radius_px ||
+                             stats.at<int>(i, cv::CC_STAT_HEIGHT) > 2 * radius_px);
+  };
+  double level = std::max(floor_level, 0.5 * (median + top));
+  int n = cv::connectedComponentsWithStats(above > level, labels, stats, centroids, 8, CV_32S);
+  cv::Mat large = cv::Mat::zeros(above.size(), CV_8U);
+  for (int i = 1; i < n; ++i) {
+    if (larger(i)) large.setTo(255, labels == i);
+  }
+  if (cv::countNonZero(large) > 0) {
+    cv::Mat floor_labels;
+    const int m = cv::connectedComponents(above > floor_level, floor_labels, 8, CV_32S);
+    std::vector<uint8_t> excluded(size_t(m), 0);
+    for (int r = 0; r < large.rows; ++r) {
+      for (int c = 0; c < large.cols; ++c) {
+        if (large.at<uint8_t>(r, c)) excluded[size_t(floor_labels.at<int>(r, c))] = 1;
+      }
+    }
+    cv::Mat rest = above > floor_level;
+    for (int r = 0; r < rest.rows; ++r) {
+      for (int c = 0; c < rest.cols; ++c) {
+        if (excluded[size_t(floor_labels.at<int>(r, c))]) rest.at<uint8_t>(r, c) = 0;
+      }
+    }
+    top = 0;
+    if (cv::countNonZero(rest) > 0) cv::minMaxLoc(above, nullptr, &top, nullptr, nullptr, rest);
+    level = std::max(floor_level, 0.5 * (median + top));
+    n = cv::connectedComponentsWithStats((above > level) & rest, labels, stats, centroids, 8,
+                                         CV_32S);
+  }
   std::vector<Eigen::Vector2d> blobs;
-  for (int i = 1; i < n; ++i) blobs.emplace_back(centroids.at<double>(i, 0), centroids.at<double>(i, 1));
+  for (int i = 1; i < n; ++i) {
+    if (!larger(i)) blobs.emplace_back(centroids.at<double>(i, 0), centroids.at<double>(i, 1));
+  }
   if (blobs.size() < 2) return false;
   std::sort(blobs.begin(), blobs.end(), [](const auto& a, const auto& b) { return a.x() < b.x(); });
   size_t cut = 1;

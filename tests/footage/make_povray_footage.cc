@@ -25,7 +25,7 @@ const char* kUsage =
     "usage: make_povray_footage [options] -o DIR\n"
     "  --lighting NAME     front_point (default), front_softbox, bright_background, matte,\n"
     "                      backlit, one_sided_gain_ramp, underexposed, overexposed, mirror_plate,\n"
-    "                      ring_light\n"
+    "                      ring_light, cluttered_backdrop\n"
     "  --frames N          frames of the hop motion, or the first N samples of --sim (40)\n"
     "  --sim FILE.h5       take the motion from a trajectory file (sim or track)\n"
     "  --poses FILE.csv    take the motion from a pose list (t,x,z,theta,plate_z; SI units)\n"

@@ -21,6 +21,7 @@ constexpr std::pair<Lighting, const char*> kLightingNames[] = {
     {Lighting::kOverexposed, "overexposed"},
     {Lighting::kMirrorPlate, "mirror_plate"},
     {Lighting::kRingLight, "ring_light"},
+    {Lighting::kClutteredBackdrop, "cluttered_backdrop"},
 };
 
 constexpr double kMm = 1000.0;  // scene units per metre
@@ -98,6 +99,24 @@ std::string Lights(Lighting l) {
              "emission 0.85 } } }\n";
     case Lighting::kOneSidedGainRamp:
       return "light_source { <-500, 150, -300> rgb 1.3 }\nbackground { rgb 0 }\n";
+    case Lighting::kClutteredBackdrop:
+      // What stands behind a dimer in a lab: a grey wall 150 mm behind it, lit by the same lamps,
+      // with a white ruler across it above the dimer (black ticks every 5 mm, taller every 10),
+      // its top edge a step of the plate edge's sign and about its size; the steel's rims
+      // mirror the wall. Added 2026-11-27 (ninth session), the tracker not tuned on it.
+      {
+        std::string s = std::string(kFrontLamps) +
+                        "plane { z, 150 texture { pigment { rgb 0.12 } finish { ambient 0 "
+                        "diffuse 1 } } }\n"
+                        "box { <-2000, 26, 148>, <2000, 40, 149.5>\n"
+                        "  texture { pigment { rgb 0.9 } finish { ambient 0 diffuse 1 } } }\n";
+        for (int mm = -150; mm <= 150; mm += 5) {
+          const double top = mm % 10 == 0 ? 34 : 30;
+          s += "box { " + Vec(mm - 0.3, 26, 147.5) + ", " + Vec(mm + 0.3, top, 148) +
+               " texture { pigment { rgb 0.02 } finish { ambient 0 diffuse 1 } } }\n";
+        }
+        return s;
+      }
     case Lighting::kRingLight: {
       // The lighting machine-vision setups use on axis: 16 LEDs on a ring 60 mm in radius
       // around the lens (10 mm in front of the pinhole, 0.7 m away), behind a glowing diffuser

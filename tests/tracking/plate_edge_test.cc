@@ -53,6 +53,43 @@ TEST(PlateEdge, ADefocusedEdgeIsReadWhereItHasLevelledOff) {
   EXPECT_LT(worst, 0.02);
 }
 
+// Edges across the whole frame that are not the plate's: a white ruler behind the dimer (its
+// top edge of the plate's sign and larger, its bottom one larger still and of the other sign,
+// black ticks touching it) and the shaker under the plate (a dark gap, then a bright body).
+// The plate is the edge the dimer stands on: two front-lit spheres (a disc each, brighter than
+// the backdrop) and the rod resting on row 120.5. Before, the strongest step won: the ruler's.
+cv::Mat ClutteredFrame(bool ruler, bool shaker, bool dimer) {
+  cv::Mat frame(180, 400, CV_8U, cv::Scalar(20));
+  frame.rowRange(120, 180).setTo(cv::Scalar(120));  // the plate's front face from row 120
+  if (ruler) {
+    frame.rowRange(40, 60).setTo(cv::Scalar(250));
+    for (int c = 3; c < frame.cols; c += 10) frame(cv::Rect(c, 50, 2, 10)).setTo(cv::Scalar(5));
+  }
+  if (shaker) {
+    frame.rowRange(150, 158).setTo(cv::Scalar(0));
+    frame.rowRange(158, 180).setTo(cv::Scalar(240));
+  }
+  if (dimer) {
+    cv::circle(frame, {150, 100}, 20, cv::Scalar(70), cv::FILLED, cv::LINE_AA);
+    cv::circle(frame, {250, 100}, 20, cv::Scalar(70), cv::FILLED, cv::LINE_AA);
+    frame(cv::Rect(150, 97, 100, 6)).setTo(cv::Scalar(60));
+  }
+  return frame;
+}
+
+TEST(PlateEdge, ThePlateIsTheEdgeTheDimerStandsOnNotARulerOrTheShaker) {
+  for (const auto& [ruler, shaker] : {std::pair{true, false}, {false, true}, {true, true}}) {
+    EXPECT_NEAR(FindPlateRowCoarse(ClutteredFrame(ruler, shaker, true)), 119.5, 1e-9)
+        << "ruler " << ruler << ", shaker " << shaker;
+  }
+  // With nothing standing anywhere the strongest step is kept, as before: the ruler's top (its
+  // bottom is as strong; the first wins).
+  EXPECT_NEAR(FindPlateRowCoarse(ClutteredFrame(true, false, false)), 39.5, 1e-9);
+  // A ruler's ticks are no dimer: counted, they would give the ruler's bottom edge (the ticks
+  // stand just above it); the strongest step, the shaker's, is kept.
+  EXPECT_NEAR(FindPlateRowCoarse(ClutteredFrame(true, true, false)), 157.5, 1e-9);
+}
+
 TEST(PlateEdge, NoStepNoEdge) {
   std::vector<double> p(40, 50.0);
   EXPECT_TRUE(std::isnan(EdgeRowInProfile(p, 0, 5.0)));

@@ -312,6 +312,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"overexposed", Lighting::kOverexposed, 3.9},
                       Case{"mirror_plate", Lighting::kMirrorPlate, 3.9},
                       Case{"ring_light", Lighting::kRingLight, 3.9},
+                      Case{"cluttered_backdrop", Lighting::kClutteredBackdrop, 3.9},
                       Case{"front_point_ar2_0", Lighting::kFrontPoint, 2.0},
                       Case{"front_point_ar2_1", Lighting::kFrontPoint, 2.1},
                       Case{"front_point_ar2_3", Lighting::kFrontPoint, 2.3}),
