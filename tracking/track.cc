@@ -44,7 +44,7 @@ std::string SizeText(int w, int h) { return std::to_string(w) + "x" + std::to_st
 
 ChunkResult TrackChunk(const FrameSource& source, size_t start, size_t count,
                        std::vector<Frame> prefetched, const TrackerOptions& opts,
-                       const Reference& ref) {
+                       const Reference& ref, const DefectPixels& defects) {
   ChunkResult out;
   TrackerOptions o = opts;
   o.polarity = ref.polarity;
@@ -65,7 +65,7 @@ ChunkResult TrackChunk(const FrameSource& source, size_t start, size_t count,
       out.skipped.push_back({f.index, f.name, f.error});
       continue;
     }
-    out.frames.push_back(tracker.Process(f.image, f.index));
+    out.frames.push_back(tracker.Process(RepairDefectPixels(f.image, defects), f.index));
     out.names.push_back(f.name);
   }
   return out;
@@ -166,21 +166,25 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
       return;
     }
     if (!have_ref) {  // the first readable frame fixes size, polarity and radius
-      for (size_t j = 0; j < count && !have_ref; ++j) {
+      cv::Mat first;
+      for (size_t j = 0; j < count && first.empty(); ++j) {
         Frame f = buffer.empty() ? source.Read(next + j) : buffer[j];
-        if (f.error.empty()) ref = MakeReference(f.image, options.tracker), have_ref = true;
+        if (f.error.empty()) first = f.image;
       }
+      have_ref = !first.empty();
       if (have_ref) {
-        // The plate edge's slope, from frames spread over the first chunk (plate_slope.h).
+        // Frames spread over the first chunk: the sensor's stuck pixels (defect_pixels.h), then,
+        // on the frames with those replaced, the plate edge's slope (plate_slope.h).
         std::vector<cv::Mat> probe;
         for (size_t j = 0; j < kSlopeFrames; ++j) {
           const size_t i = j * count / kSlopeFrames;
           if (j > 0 && i == (j - 1) * count / kSlopeFrames) continue;
           Frame f = buffer.empty() ? source.Read(next + i) : buffer[i];
-          if (f.error.empty() && f.image.cols == ref.width && f.image.rows == ref.height) {
-            probe.push_back(f.image);
-          }
+          if (f.error.empty() && f.image.size() == first.size()) probe.push_back(f.image);
         }
+        result.defects = FindDefectPixels(probe);
+        for (cv::Mat& p : probe) p = RepairDefectPixels(p, result.defects);
+        ref = MakeReference(RepairDefectPixels(first, result.defects), options.tracker);
         result.plate_slope = EstimatePlateSlope(probe, ref.polarity);
         chunk_opts.plate_slope = result.plate_slope.value;
       }
@@ -191,6 +195,7 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
         for (size_t i : LearningIndices(buffer.empty() ? source.size() : buffer.size())) {
           Frame f = buffer.empty() ? source.Read(i) : buffer[i];
           if (f.error.empty() && f.image.cols == ref.width && f.image.rows == ref.height) {
+            f.image = RepairDefectPixels(f.image, result.defects);
             learning.push_back(std::move(f));
           }
         }
@@ -218,7 +223,7 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
       }
     }
     inflight.push_back(std::async(std::launch::async, TrackChunk, std::cref(source), next, count,
-                                  std::move(buffer), chunk_opts, ref));
+                                  std::move(buffer), chunk_opts, ref, std::cref(result.defects)));
     next += count;
     if (source.random_access() && next >= source.size()) exhausted = true;
   };
@@ -493,7 +498,10 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                     {"plate_slope", r.plate_slope.value},
                     {"plate_slope_measured", r.plate_slope.measured},
                     {"plate_slope_err", r.plate_slope.err},
-                    {"plate_slope_reason", r.plate_slope.reason}};
+                    {"plate_slope_reason", r.plate_slope.reason},
+                    {"stuck_pixels", int64_t(r.defects.at.size())},
+                    {"stuck_pixels_frames", int64_t(r.defects.frames)},
+                    {"stuck_pixels_reason", r.defects.reason}};
   AttrUnits units = {{"fps", "1/s"}, {"plate_shift", "px"}, {"plate_shift_err", "px"},
                      {"plate_shift_edge_ref", "px"}, {"plate_motion_scale", "1"},
                      {"plate_motion_scale_err", "1"}, {"plate_m_per_px", "m/px"},
@@ -501,7 +509,8 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                      {"plate_clip_level", "grey levels"}, {"plate_clip_level_err", "grey levels"},
                      {"plate_clip_refitted", "1"}, {"plate_psf_sigma", "px"},
                      {"plate_slope", "px/px"}, {"plate_slope_measured", "px/px"},
-                     {"plate_slope_err", "px/px"},
+                     {"plate_slope_err", "px/px"}, {"stuck_pixels", "1"},
+                     {"stuck_pixels_frames", "1"},
                      {"m_per_px", "m/px"}, {"row0", "px"}, {"col0", "px"},
                      {"diameter", "m"},
                      {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
@@ -564,6 +573,14 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
   w.SetAttr("/found", "codes", "0=not found (its tips and pixels are NaN),1=found");
   w.SetAttr("/found", "description", "whether each sphere was found in the frame");
   if (r.method == Method::kTemplate) WriteTemplateGroup(w, r);
+  std::vector<int64_t> stuck;
+  for (const cv::Point& p : r.defects.at) stuck.insert(stuck.end(), {p.x, p.y});
+  w.WriteInt64("/stuck_pixels", stuck, {r.defects.at.size(), 2});
+  w.SetAttr("/stuck_pixels", "columns", "col,row");
+  w.SetAttr("/stuck_pixels", "units", "px");
+  w.SetAttr("/stuck_pixels", "description",
+            "the sensor's stuck (hot or dead) pixels, found on the frames spread over the first "
+            "chunk and replaced in every frame by the median of their neighbours before tracking");
   w.WriteStrings("/skipped/files", skipped_names);
   w.SetAttr("/skipped/files", "description", "frames that could not be used");
   w.WriteStrings("/skipped/reasons", skipped_reasons);
@@ -689,6 +706,18 @@ void RunTrack(const TrackArgs& args) {
                    "covered part of a pixel toward the dark side\n",
                    c.frames, c.level.informative, kClippedLevelMinFrames);
     }
+  }
+  // Stuck pixels of the sensor, replaced before tracking (defect_pixels.h).
+  if (!r.defects.at.empty() && !args.quiet) {
+    std::fprintf(stderr,
+                 "dimerlab track: %zu stuck pixels of the sensor (standing out from all their "
+                 "neighbours in %zu frames or more of %zu) replaced by their neighbours' median in "
+                 "every frame (/stuck_pixels)\n",
+                 r.defects.at.size(),
+                 size_t(std::ceil(kDefectFrameFraction * double(r.defects.frames))),
+                 r.defects.frames);
+  } else if (!r.defects.reason.empty() && !args.quiet) {
+    std::fprintf(stderr, "dimerlab track: note: %s\n", r.defects.reason.c_str());
   }
   // A camera not level (or a tilted plate): the rows are read under each sphere and the metres
   // run along the plate.

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "tracking/defect_pixels.h"
 #include "tracking/frame_source.h"
 #include "tracking/plate_slope.h"
 #include "tracking/template_sequence.h"
@@ -71,6 +72,7 @@ struct SequenceResult {
   PlateMotionScale plate_scale;  // the edge's motion to the contact line's (with plate_shift)
   PlateClip plate_clip;          // an over-exposed plate's level and the rows fitted at it
   PlateSlope plate_slope;        // the plate edge's slope in the image (plate_slope.h)
+  DefectPixels defects;          // the sensor's stuck pixels, replaced in every frame
 };
 
 // Tracks every frame of `source`. `on_progress(done)` is called from the calling thread.
