@@ -100,10 +100,11 @@ std::string Lights(Lighting l) {
     case Lighting::kOneSidedGainRamp:
       return "light_source { <-500, 150, -300> rgb 1.3 }\nbackground { rgb 0 }\n";
     case Lighting::kClutteredBackdrop:
-      // What stands behind a dimer in a lab: a grey wall 150 mm behind it, lit by the same lamps,
-      // with a white ruler across it above the dimer (black ticks every 5 mm, taller every 10),
-      // its top edge a step of the plate edge's sign and about its size; the steel's rims
-      // mirror the wall. Added 2026-11-27 (ninth session), the tracker not tuned on it.
+      // What stands around a dimer in a lab: a grey wall 150 mm behind it, lit by the same
+      // lamps, with a white ruler across it above the dimer (black ticks every 5 mm, taller
+      // every 10), its edges steps larger than the plate's; two steel bolt heads on the plate
+      // beside the dimer; the steel's rims mirror the wall. Added 2026-11-27 (ninth session),
+      // the tracker not tuned on it.
       {
         std::string s = std::string(kFrontLamps) +
                         "plane { z, 150 texture { pigment { rgb 0.12 } finish { ambient 0 "
@@ -115,6 +116,11 @@ std::string Lights(Lighting l) {
           s += "box { " + Vec(mm - 0.3, 26, 147.5) + ", " + Vec(mm + 0.3, top, 148) +
                " texture { pigment { rgb 0.02 } finish { ambient 0 diffuse 1 } } }\n";
         }
+        // Two steel bolt heads on the plate either side of the dimer (they ride with it).
+        s += "cylinder { <-45, PZ[K], 0>, <-45, PZ[K] + 3, 0>, 4.5\n  " + std::string(kSteel) +
+             " }\n";
+        s += "cylinder { <52, PZ[K], 6>, <52, PZ[K] + 3, 6>, 4.5\n  " + std::string(kSteel) +
+             " }\n";
         return s;
       }
     case Lighting::kRingLight: {

@@ -40,7 +40,7 @@ enum class Lighting {
   kOverexposed,       // front_point at four times the exposure (highlights and plate clip)
   kMirrorPlate,       // front_point on a polished plate that mirrors the spheres
   kRingLight,         // polished steel lit by an LED ring around the lens, dark background
-  kClutteredBackdrop, // front_point before a lab's backdrop: a grey wall with a white ruler
+  kClutteredBackdrop, // front_point before a grey wall with a white ruler, bolts on the plate
 };
 std::string ToString(Lighting l);
 // Throws UsageError naming the option and listing the accepted names.
