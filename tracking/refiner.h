@@ -57,6 +57,9 @@ struct SphereMeasurement {
   double area_fraction = 0;      // weighted area / (pi radius_guess^2)
   int iterations = 0;
   bool rim_fit = false;          // non-uniform (mirror) sphere: centre and radius from FitRim
+  // Template method: ECC's correlation coefficient of the learnt appearance there, where ECC
+  // converged (Located::refined; NaN otherwise).
+  double score = std::numeric_limits<double>::quiet_NaN();
   bool found() const { return status == Status::kFound; }
 };
 

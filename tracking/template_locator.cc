@@ -253,6 +253,7 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   const Eigen::Vector2d refined(g2.x - t.x(), g2.y - t.y());
   if ((refined - start).norm() <= kEccMaxMovePx) {
     out.position = refined;
+    out.refined = rho;
     if (search_px == 0) out.ok = true, out.score = rho;
   }
   return out;

@@ -57,6 +57,11 @@ struct Located {
   bool clipped = false;         // the window left the frame
   Eigen::Vector2d position{0, 0};  // reference point in the frame (col, row), px
   double score = 0;             // correlation coefficient at the peak (-1..1)
+  // ECC's correlation coefficient at the refined position, where ECC converged (NaN else):
+  // after a whole-pixel search `score` is the search's, lower by the fraction of a pixel the
+  // peak is off (POV-Ray under-exposed: 0.52 against 0.86 refined), so that only `refined`
+  // compares one frame's match with another's (match_scores.h).
+  double refined = std::numeric_limits<double>::quiet_NaN();
 };
 
 // ECC's stopping rule (cv::findTransformECC's criteria, for each of its two runs): Gauss-Newton

@@ -248,6 +248,8 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
   if (InterruptRequested()) result.complete = false;
   result.method = sequence_level ? prepared.choice.method : options.tracker.method;
   result.method_reason = prepared.choice.reason;
+  // Before anything reads the found spheres (the plate's motion scale, the offsets).
+  result.scores = DropOutlyingMatches(&result.frames);
   result.plate_clip = RefitClippedPlate(options.tracker.psf_sigma_px,
                                         options.tracker.fit_psf_sigma, &result.frames);
   result.plate_shift = prepared.plate_shift;
@@ -501,7 +503,12 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                     {"plate_slope_reason", r.plate_slope.reason},
                     {"stuck_pixels", int64_t(r.defects.at.size())},
                     {"stuck_pixels_frames", int64_t(r.defects.frames)},
-                    {"stuck_pixels_reason", r.defects.reason}};
+                    {"stuck_pixels_reason", r.defects.reason},
+                    {"matches_dropped_score_left", int64_t(r.scores.dropped[0])},
+                    {"matches_dropped_score_right", int64_t(r.scores.dropped[1])},
+                    {"matches_dropped_length_left", int64_t(r.scores.dropped_length[0])},
+                    {"matches_dropped_length_right", int64_t(r.scores.dropped_length[1])},
+                    {"dimer_length_px", r.scores.length_px}};
   AttrUnits units = {{"fps", "1/s"}, {"plate_shift", "px"}, {"plate_shift_err", "px"},
                      {"plate_shift_edge_ref", "px"}, {"plate_motion_scale", "1"},
                      {"plate_motion_scale_err", "1"}, {"plate_m_per_px", "m/px"},
@@ -510,7 +517,9 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                      {"plate_clip_refitted", "1"}, {"plate_psf_sigma", "px"},
                      {"plate_slope", "px/px"}, {"plate_slope_measured", "px/px"},
                      {"plate_slope_err", "px/px"}, {"stuck_pixels", "1"},
-                     {"stuck_pixels_frames", "1"},
+                     {"stuck_pixels_frames", "1"}, {"matches_dropped_score_left", "1"},
+                     {"matches_dropped_score_right", "1"}, {"matches_dropped_length_left", "1"},
+                     {"matches_dropped_length_right", "1"}, {"dimer_length_px", "px"},
                      {"m_per_px", "m/px"}, {"row0", "px"}, {"col0", "px"},
                      {"diameter", "m"},
                      {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
@@ -706,6 +715,17 @@ void RunTrack(const TrackArgs& args) {
                    "covered part of a pixel toward the dark side\n",
                    c.frames, c.level.informative, kClippedLevelMinFrames);
     }
+  }
+  // Matches that were not the sphere (match_scores.h).
+  const size_t by_score = r.scores.dropped[0] + r.scores.dropped[1];
+  const size_t by_length = r.scores.dropped_length[0] + r.scores.dropped_length[1];
+  if (by_score + by_length > 0 && !args.quiet) {
+    std::fprintf(stderr,
+                 "dimerlab track: %zu sphere matches dropped as not the sphere: %zu scoring far "
+                 "below their sphere's median, %zu giving the dimer another length than its "
+                 "%.2f px (a sphere at the frame's edge, or beside itself); those spheres are "
+                 "not found there\n",
+                 by_score + by_length, by_score, by_length, r.scores.length_px);
   }
   // Stuck pixels of the sensor, replaced before tracking (defect_pixels.h).
   if (!r.defects.at.empty() && !args.quiet) {

@@ -18,6 +18,7 @@
 
 #include "tracking/defect_pixels.h"
 #include "tracking/frame_source.h"
+#include "tracking/match_scores.h"
 #include "tracking/plate_slope.h"
 #include "tracking/template_sequence.h"
 #include "tracking/tracker.h"
@@ -73,6 +74,7 @@ struct SequenceResult {
   PlateClip plate_clip;          // an over-exposed plate's level and the rows fitted at it
   PlateSlope plate_slope;        // the plate edge's slope in the image (plate_slope.h)
   DefectPixels defects;          // the sensor's stuck pixels, replaced in every frame
+  MatchScores scores;            // template: matches far below their sphere's scores, dropped
 };
 
 // Tracks every frame of `source`. `on_progress(done)` is called from the calling thread.

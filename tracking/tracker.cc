@@ -85,6 +85,7 @@ SphereMeasurement SequenceTracker::Locate(const cv::Mat& frame, int sphere,
                                                                : SphereMeasurement::Status::kMissing);
   m.centre = l.position;
   m.radius_px = radius_px_;
+  m.score = l.refined;
   return m;
 }
 
@@ -136,6 +137,7 @@ bool SequenceTracker::Follow(const cv::Mat& frame, FrameTrack* out) {
     if (!m.found()) return false;
     out->found[k] = true;
     out->centre[k] = m.centre;
+    out->score[k] = m.score;
     out->radius_px[k] = m.radius_px;
   }
   return true;
@@ -241,6 +243,7 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
     if (!found[i].found()) continue;
     out->found[slot_of[i]] = true;
     out->centre[slot_of[i]] = found[i].centre;
+    out->score[slot_of[i]] = found[i].score;
     out->radius_px[slot_of[i]] = found[i].radius_px;
   }
 }

@@ -55,6 +55,10 @@ struct FrameTrack {
   std::array<bool, 2> found{false, false};
   std::array<Eigen::Vector2d, 2> centre{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};  // px
   std::array<double, 2> radius_px{0, 0};           // measured radius (for calibration), px
+  // Template method: each found sphere's correlation with its learnt appearance, refined by ECC
+  // (NaN where ECC did not converge, and for the other methods).
+  std::array<double, 2> score{std::numeric_limits<double>::quiet_NaN(),
+                              std::numeric_limits<double>::quiet_NaN()};
   // The plate's top surface: its row at column plate_col (under the dimer: midway between the
   // spheres as they were predicted or found), sloping by plate_slope rows per column, px.
   double plate_row = std::numeric_limits<double>::quiet_NaN();
