@@ -3,15 +3,16 @@
 // scene is. A high-speed CMOS sensor has some (more when warm and at long exposures; a black
 // reference removes most, not all). One inside a sphere's template window is an outlier that the
 // registration fits as if it were the sphere: 60 hot pixels on POV-Ray front_point footage (1 in
-// 3,400) put one sphere's scatter at 0.54 px against 0.04 (docs/BENCHMARKS.md, "Stuck pixels").
+// 3,400) put one sphere's scatter at 0.54 px against 0.04 (docs/BENCHMARKS.md, "What stands
+// behind the dimer, and the sensor's stuck pixels").
 //
-// They are found once per sequence, on frames spread over the first chunk (those the plate's
-// slope is measured on), and each is replaced in every frame by an interpolation across it from
-// its neighbours that are not stuck themselves. A pixel is stuck when it stands out from every one of its 8
-// neighbours, the same way (above them all, or below them all), by more than kDefectSigmas of
-// the frame's noise, in nearly every frame examined. A sphere's highlight also stands out so,
-// but moves with the sphere, which a vibrated dimer always does (the plate carries it); a
-// feature of the backdrop one pixel small and fixed is replaced too, which costs nothing.
+// They are found once per sequence, on frames spread over the first chunk (those the plate's slope
+// is measured on), and each is replaced in every frame by an interpolation across it from its
+// neighbours that are not stuck themselves. A pixel is stuck when it stands out from every one of
+// its 8 neighbours, the same way (above them all, or below them all), by more than kDefectSigmas of
+// the frame's noise, in nearly every frame examined. A sphere's highlight also stands out so, but
+// moves with the sphere, which a vibrated dimer always does (the plate carries it); a feature of
+// the backdrop one pixel small and fixed is replaced too, which costs nothing.
 #include <opencv2/core.hpp>
 
 #include <cstddef>

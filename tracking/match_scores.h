@@ -1,18 +1,18 @@
 #pragma once
 // A learnt appearance matched where its sphere is not. The template method accepts a match whose
 // correlation coefficient reaches kMinTemplateScore (0.5, tracker.cc): low, because a sphere in
-// under-exposed footage scores that low in earnest (POV-Ray under-exposed: 0.52 at worst). A
-// sphere leaving the frame cannot be matched whole, and the best match left inside the frame
-// lies beside it: on POV-Ray front_point drifting out of a 220 px wide frame, four frames gave
-// the right sphere 9-10 px short of its centre with scores 0.53-0.63, where the same sphere
-// scored 0.989-0.991 in every frame before. What is low is relative to the sphere's own scores:
-// after the sequence, a match scoring far below its sphere's median is taken for no match.
-// Where ECC did not converge there is no score to compare, and such a match 10 px short of a
-// sphere at the frame's edge stayed; but the dimer is rigid and moves in the image's plane, so
-// the distance between its centres is one length in every frame (its scatter a few hundredths
-// of a pixel): a frame whose two centres are further from the sequence's median length than
-// kLengthTolerancePx has one of them wrong, and the one less like its sphere (lower score
-// against its own median, no score counting lowest) is taken for no match.
+// under-exposed footage scores that low in earnest (POV-Ray under-exposed: 0.52 at worst). A sphere
+// leaving the frame cannot be matched whole, and the best match left inside the frame lies beside
+// it: on POV-Ray front_point drifting out of a narrow frame the right sphere came out 9-10 px short
+// of its centre, scoring 0.53-0.63 where it had scored 0.989-0.991 in every frame before
+// (docs/BENCHMARKS.md, "A sphere leaving the frame"). What is low is relative to the sphere's own
+// scores: after the sequence, a match scoring far below its sphere's median is taken for no match.
+// Where ECC did not converge there is no score to compare, and such a match 10 px short of a sphere
+// at the frame's edge stayed; but the dimer is rigid and moves in the image's plane, so the
+// distance between its centres is one length in every frame (its scatter a few hundredths of a
+// pixel): a frame whose two centres are further from the sequence's median length than
+// kLengthTolerancePx has one of them wrong, and the one less like its sphere (lower score against
+// its own median, no score counting lowest) is taken for no match.
 #include <array>
 #include <cstddef>
 #include <limits>

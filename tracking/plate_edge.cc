@@ -180,19 +180,22 @@ namespace {
 constexpr int kCandidateSeparationRows = 2 * kPlateBandHalfPx;  // closer: the same edge
 constexpr double kStandOutSigmas = 8;                           // a pixel off its row's median
 constexpr double kStandOutMinFraction = 0.02;                   // ... and off by this of the range
-constexpr int kStandOutRun = 3;                                 // samples, kCoarseColumnStride apart
+constexpr int kStandOutRun = 3;                                 // samples, 4 px apart
 constexpr int kMinStandOutPixels = 12;                          // (sampled) evidence of a dimer
 
 // Per row, the sampled pixels in runs of kStandOutRun or more that stand out from the row's
 // median; the noise is the median absolute deviation from the row medians (most pixels are
 // backdrop or plate). Row r's samples are samples[start[r] .. start[r + 1]).
-std::vector<int> StandOutPerRow(const std::vector<double>& samples, const std::vector<size_t>& start,
+std::vector<int> StandOutPerRow(const std::vector<double>& samples,
+                                const std::vector<size_t>& start,
                                 const std::vector<double>& profile, double range) {
   const size_t rows = profile.size();
   std::vector<double> dev;
   dev.reserve(samples.size());
   for (size_t r = 0; r < rows; ++r) {
-    for (size_t i = start[r]; i < start[r + 1]; ++i) dev.push_back(std::abs(samples[i] - profile[r]));
+    for (size_t i = start[r]; i < start[r + 1]; ++i) {
+      dev.push_back(std::abs(samples[i] - profile[r]));
+    }
   }
   std::vector<int> out(rows, 0);
   if (dev.empty()) return out;

@@ -32,7 +32,8 @@ bool ReadDouble(std::istream& in, double* v) {
 
 bool ReadSize(std::istream& in, size_t* v) {
   double d = 0;
-  if (!ReadDouble(in, &d) || d < 0 || d != static_cast<double>(static_cast<size_t>(d))) return false;
+  if (!ReadDouble(in, &d) || d < 0) return false;
+  if (d != static_cast<double>(static_cast<size_t>(d))) return false;
   *v = static_cast<size_t>(d);
   return true;
 }
@@ -56,8 +57,8 @@ bool Stale(const std::string& cache_file, const std::string& folder) {
   std::error_code ec;
   const auto cached = std::filesystem::last_write_time(cache_file, ec);
   if (ec) return true;
-  for (const std::filesystem::path& from :
-       {std::filesystem::path(folder) / "truth.csv", std::filesystem::read_symlink("/proc/self/exe", ec)}) {
+  const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", ec);
+  for (const std::filesystem::path& from : {std::filesystem::path(folder) / "truth.csv", program}) {
     if (ec) return true;
     const auto t = std::filesystem::last_write_time(from, ec);
     if (ec || t >= cached) return true;

@@ -306,7 +306,8 @@ TEST(PovrayFootageThreads, RolledCameraIdenticalForOneAndTwoThreads) {
 
 // A high-speed sensor's hot pixels (tracking/defect_pixels.h): 60 of them (1 in 3,400 pixels,
 // seeded; some in the spheres' path) put on the front_point footage at full scale. Without the
-// repair one sphere's scatter was 0.54 px (docs/BENCHMARKS.md, "Stuck pixels of the sensor").
+// repair one sphere's scatter was 0.54 px (docs/BENCHMARKS.md, "What stands behind the dimer,
+// and the sensor's stuck pixels").
 TEST(PovrayStuckPixels, HotPixelsAreFoundAndReplacedAndTheTargetsStillMet) {
   const std::string src = Footage(Case{"front_point", Lighting::kFrontPoint, 3.9});
   dimer::testing::TempDir tmp;
@@ -343,11 +344,11 @@ TEST(PovrayStuckPixels, HotPixelsAreFoundAndReplacedAndTheTargetsStillMet) {
   EXPECT_TRUE(a.MeetsTargets(&why)) << why;
 }
 
-// A sphere leaving the frame (a drift carries the dimer across the field of view): the
-// front_point footage seen through a 290 px window panning left by 2 px a frame (the spheres
-// move 2.25 px a frame in it), so the right sphere reaches the window's edge at frame 13. A cut sphere cannot
-// be matched whole, and the best match left inside lay 9-10 px short of it (POV-Ray, found
-// when this was added): such a frame must give no right sphere rather than a wrong one
+// A sphere leaving the frame (a drift carries the dimer across the field of view): the front_point
+// footage seen through a 290 px window panning left by 2 px a frame (the spheres move 2.25 px a
+// frame in it), so the right sphere reaches the window's edge at frame 13. A cut sphere cannot be
+// matched whole, and the best match left inside lay 9-10 px short of it (POV-Ray, found when this
+// was added): such a frame must give no right sphere rather than a wrong one
 // (tracking/match_scores.h), and the left sphere, whole in every frame, is found in all.
 TEST(PovrayLeavingTheFrame, ASphereCutByTheFramesEdgeIsNotFoundBesideItself) {
   const std::string src = Footage(Case{"front_point", Lighting::kFrontPoint, 3.9});
