@@ -24,8 +24,8 @@ namespace dimer::tracking {
 
 // A match is dropped when its score is below the sphere's median over the sequence by more than
 // kScoreDropSigmas robust sigmas of those scores, and by at least kMinScoreDrop (a sphere's
-// scores vary a little with its height, the blur, an impact; on the POV-Ray footage the lowest
-// found score is 0.01-0.08 below its median). Fewer than kMinScoredFrames matches: none dropped.
+// scores vary a little with its height, the blur, an impact; no match of the POV-Ray test
+// footage is dropped). Fewer than kMinScoredFrames matches: none dropped.
 inline constexpr double kScoreDropSigmas = 8.0;
 inline constexpr double kMinScoreDrop = 0.15;
 inline constexpr size_t kMinScoredFrames = 10;
