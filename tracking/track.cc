@@ -589,7 +589,8 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
   w.SetAttr("/stuck_pixels", "units", "px");
   w.SetAttr("/stuck_pixels", "description",
             "the sensor's stuck (hot or dead) pixels, found on the frames spread over the first "
-            "chunk and replaced in every frame by the median of their neighbours before tracking");
+            "chunk and replaced in every frame, before tracking, by the mean of their sound "
+            "opposite neighbours");
   w.WriteStrings("/skipped/files", skipped_names);
   w.SetAttr("/skipped/files", "description", "frames that could not be used");
   w.WriteStrings("/skipped/reasons", skipped_reasons);
@@ -731,8 +732,8 @@ void RunTrack(const TrackArgs& args) {
   if (!r.defects.at.empty() && !args.quiet) {
     std::fprintf(stderr,
                  "dimerlab track: %zu stuck pixels of the sensor (standing out from all their "
-                 "neighbours in %zu frames or more of %zu) replaced by their neighbours' median in "
-                 "every frame (/stuck_pixels)\n",
+                 "neighbours in %zu frames or more of %zu) replaced in every frame by the mean of "
+                 "their sound opposite neighbours (/stuck_pixels)\n",
                  r.defects.at.size(),
                  size_t(std::ceil(kDefectFrameFraction * double(r.defects.frames))),
                  r.defects.frames);
