@@ -3,15 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tracking/median.h"
+
 namespace dimer::tracking {
-namespace {
-
-double MedianOf(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
-
-}  // namespace
 
 MatchScores DropOutlyingMatches(std::vector<FrameTrack>* frames) {
   MatchScores out;
