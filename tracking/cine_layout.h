@@ -23,6 +23,8 @@ inline constexpr int kHType = 0, kHHeaderSize = 2, kHCompression = 4, kHVersion 
                      kHImageCount = 20, kHOffImageHeader = 24, kHOffSetup = 28,
                      kHOffImageOffsets = 32, kHTriggerFractions = 36, kHTriggerSeconds = 40;
 inline constexpr uint16_t kCompressionGray = 0;  // CC_RGB: grey (or interpolated colour) pixels
+inline constexpr uint16_t kCompressionJpeg = 1;  // CC_LEAD: (M)JPEG-compressed images
+inline constexpr uint16_t kCompressionRawColour = 2;  // CC_UNINT: a colour sensor's raw mosaic
 
 // BITMAPINFOHEADER
 inline constexpr int kBitmapHeaderSize = 40;
@@ -36,6 +38,9 @@ inline constexpr int kSFrameRate16 = 0, kSShutter16 = 2, kSMark = 140, kSLength 
                      kSImWidth = 737, kSImHeight = 739, kSFrameRate = 768, kSShutterUs = 772,
                      kSCfa = 808, kSRealBpp = 896, kSShutterNs = 1568, kSDescription = 1596;
 inline constexpr uint16_t kSetupMarkST = 0x5453;  // the bytes 'S','T'
+// SETUP.CFA: the colour filter array's code in the low byte (0: grey sensor; 1-6: Bayer layouts,
+// described ambiguously); the high bits mark the grey heads of some multi-head cameras.
+inline constexpr uint32_t kCfaCodeMask = 0xFF;
 // Length of SETUP as written by dimerlab: up to WhiteLevel (software version 671, 2009), the
 // length most files of the cameras in use carry. Readers need only up to ShutterNs.
 inline constexpr uint16_t kSetupLengthWritten = 5740;

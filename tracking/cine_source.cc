@@ -4,6 +4,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
 #include <bit>
 #include <cerrno>
@@ -14,6 +16,7 @@
 #include "common/error.h"
 #include "tracking/cine_layout.h"
 #include "tracking/cine_writer.h"
+#include "tracking/mosaic_grey.h"
 
 namespace dimer::tracking {
 namespace {
@@ -121,13 +124,27 @@ class CineSource : public FrameSource {
     bottom_up_ = hgt > 0;
     const uint16_t bits = Le<uint16_t>(b + kBBitCount);
     const uint32_t bi_compression = Le<uint32_t>(b + kBCompression);
-    if (compression != kCompressionGray) {
-      throw InputError(path_ + ": compressed or raw-colour .cine (Compression " +
-                       std::to_string(compression) + ") is not supported; export it uncompressed");
+    if (compression == kCompressionJpeg) {
+      throw InputError(path_ + ": JPEG-compressed .cine (Compression 1) is not supported; "
+                       "export it uncompressed");
     }
+    if (compression > kCompressionRawColour) {
+      throw InputError(path_ + ": .cine with Compression " + std::to_string(compression) +
+                       " is not supported; export it uncompressed");
+    }
+    // A colour camera's raw mosaic (Compression 2) is single-channel: its pixels are read as
+    // grey ones are and turned grey by mosaic_grey.h; interpolated colour (Compression 0, 24 or
+    // 48 bits a pixel) is BGR, turned grey as colour image files are (frame_source.cc).
+    mosaic_ = compression == kCompressionRawColour;
+    cfa_ = Le<uint32_t>(s.data() + kSCfa);
     const size_t pixels = size_t(width_) * size_t(height_);
     if (bi_compression == kBiRgb && (bits == 8 || bits == 16)) {
       pixels_ = bits == 8 ? Pixels::k8 : Pixels::k16;
+      row_bytes_ = size_t(width_) * (bits / 8);
+      image_bytes_ = row_bytes_ * size_t(height_);
+    } else if (bi_compression == kBiRgb && (bits == 24 || bits == 48) && !mosaic_) {
+      pixels_ = bits == 24 ? Pixels::k8 : Pixels::k16;
+      channels_ = 3;
       row_bytes_ = size_t(width_) * (bits / 8);
       image_bytes_ = row_bytes_ * size_t(height_);
     } else if (bi_compression == kBiPacked10) {
@@ -138,8 +155,9 @@ class CineSource : public FrameSource {
       image_bytes_ = pixels / 4 * 5;
     } else {
       throw InputError(path_ + ": .cine with " + std::to_string(bits) + "-bit pixels (bitmap " +
-                       "compression " + std::to_string(bi_compression) +
-                       ") is not supported: only 8-bit, 16-bit and 10-bit packed grey");
+                       "compression " + std::to_string(bi_compression) + (mosaic_ ? ", raw colour" : "") +
+                       ") is not supported: only 8-bit, 16-bit and 10-bit packed grey or raw "
+                       "colour, and 24- or 48-bit colour");
     }
     if (image_count == 0) throw InputError(path_ + ": the .cine file holds no images");
     // Every image needs at least its 8-byte table entry: a larger count is not a cine's.
@@ -173,7 +191,9 @@ class CineSource : public FrameSource {
     const uint32_t real_bpp = Le<uint32_t>(s.data() + kSRealBpp);
     info_.real_bpp = real_bpp > 0 && real_bpp <= 16 ? int(real_bpp)
                      : pixels_ == Pixels::kPacked10  ? 10
-                                                     : bits;
+                                                     : bits / channels_;
+    info_.colour = mosaic_ ? "mosaic" : channels_ == 3 ? "bgr" : "grey";
+    info_.cfa = int64_t(cfa_);
   }
 
   std::string PastEnd(const std::string& what) const {
@@ -211,12 +231,12 @@ class CineSource : public FrameSource {
       return "image data past the end of the file (" + std::to_string(present) + " of " +
              std::to_string(bytes) + " bytes present: truncated)";
     }
-    const int type = pixels_ == Pixels::k8 ? CV_8UC1 : CV_16UC1;
+    const int type = CV_MAKETYPE(pixels_ == Pixels::k8 ? CV_8U : CV_16U, channels_);
     cv::Mat img(height_, width_, type);
     const bool direct = pixels_ != Pixels::kPacked10 && !bottom_up_ && stride == row_bytes_;
     if (direct) {  // the file's bytes are the frame's: one read, no copy
       if (!ReadAt(data, img.data, bytes)) return "read error";
-      *out = img;
+      *out = Grey(img);
       return "";
     }
     thread_local std::vector<uint8_t> raw;
@@ -230,8 +250,19 @@ class CineSource : public FrameSource {
         std::memcpy(img.ptr(r), raw.data() + size_t(src) * stride, row_bytes_);
       }
     }
-    *out = img;
+    *out = Grey(img);
     return "";
+  }
+
+  // The frame the tracker sees: grey pixels as they are, colour ones made grey.
+  cv::Mat Grey(const cv::Mat& img) const {
+    if (mosaic_) return MosaicToGrey(img);
+    if (channels_ == 3) {
+      cv::Mat grey;
+      cv::cvtColor(img, grey, cv::COLOR_BGR2GRAY);
+      return grey;
+    }
+    return img;
   }
 
   std::string path_, name_;
@@ -240,6 +271,9 @@ class CineSource : public FrameSource {
   int width_ = 0, height_ = 0;
   bool bottom_up_ = true;
   Pixels pixels_ = Pixels::k8;
+  int channels_ = 1;      // 3: interpolated colour (BGR)
+  bool mosaic_ = false;   // a colour sensor's raw mosaic
+  uint32_t cfa_ = 0;      // SETUP.CFA as stored
   size_t row_bytes_ = 0, image_bytes_ = 0, count_ = 0, next_ = 0;
   std::vector<int64_t> offsets_;
   RecordingInfo info_;

@@ -14,8 +14,8 @@ void Set(std::vector<uint8_t>* b, size_t at, T value) {  // little-endian, any h
   for (size_t k = 0; k < sizeof(T); ++k) (*b)[at + k] = uint8_t(uint64_t(value) >> (8 * k));
 }
 
-size_t BytesPerImage(CinePixels p, int w, int h) {
-  const size_t n = size_t(w) * size_t(h);
+size_t BytesPerImage(CinePixels p, int channels, int w, int h) {
+  const size_t n = size_t(w) * size_t(h) * size_t(channels);
   return p == CinePixels::k8Bit ? n : p == CinePixels::k16Bit ? 2 * n : n / 4 * 5;
 }
 
@@ -50,6 +50,10 @@ CineWriter::CineWriter(const std::string& path, int width, int height, size_t fr
   if (options.pixels == CinePixels::k10BitPacked && (size_t(width) * height) % 4 != 0) {
     throw std::invalid_argument("cine writer: 10-bit packed needs width*height a multiple of 4");
   }
+  if (options.channels != 1 &&
+      (options.channels != 3 || options.pixels == CinePixels::k10BitPacked)) {
+    throw std::invalid_argument("cine writer: 1 channel, or 3 (BGR) with 8 or 16 bits");
+  }
   if (options.annotation_size < 8 || options.annotation_size % 4 != 0) {
     throw std::invalid_argument("cine writer: AnnotationSize must be >= 8 and a multiple of 4");
   }
@@ -57,11 +61,12 @@ CineWriter::CineWriter(const std::string& path, int width, int height, size_t fr
   if (!file_) throw InputError(path + ": cannot create the .cine file");
   const uint32_t off_bitmap = kFileHeaderSize, off_setup = off_bitmap + kBitmapHeaderSize,
                  off_offsets = off_setup + kSetupLengthWritten;
-  const size_t image_bytes = BytesPerImage(options.pixels, width, height);
+  const size_t image_bytes = BytesPerImage(options.pixels, options.channels, width, height);
   std::vector<uint8_t> h(off_offsets, 0);
   Set<uint16_t>(&h, kHType, kTypeCI);
   Set<uint16_t>(&h, kHHeaderSize, kFileHeaderSize);
-  Set<uint16_t>(&h, kHCompression, kCompressionGray);
+  const bool mosaic = options.cfa != 0 && options.channels == 1;
+  Set<uint16_t>(&h, kHCompression, mosaic ? kCompressionRawColour : kCompressionGray);
   Set<uint16_t>(&h, kHVersion, 1);
   Set<int32_t>(&h, kHFirstMovieImage, options.first_image_no);
   Set<uint32_t>(&h, kHTotalImageCount, uint32_t(frames));
@@ -78,7 +83,8 @@ CineWriter::CineWriter(const std::string& path, int width, int height, size_t fr
   Set<int32_t>(&h, off_bitmap + kBWidth, width);
   Set<int32_t>(&h, off_bitmap + kBHeight, options.top_down && !packed ? -height : height);
   Set<uint16_t>(&h, off_bitmap + kBPlanes, 1);
-  Set<uint16_t>(&h, off_bitmap + kBBitCount, options.pixels == CinePixels::k8Bit ? 8 : 16);
+  Set<uint16_t>(&h, off_bitmap + kBBitCount,
+                uint16_t((options.pixels == CinePixels::k8Bit ? 8 : 16) * options.channels));
   Set<uint32_t>(&h, off_bitmap + kBCompression, packed ? kBiPacked10 : kBiRgb);
   Set<uint32_t>(&h, off_bitmap + kBSizeImage, uint32_t(image_bytes));
 
@@ -96,6 +102,7 @@ CineWriter::CineWriter(const std::string& path, int width, int height, size_t fr
   Set<uint32_t>(&h, off_setup + kSFrameRate, options.frame_rate);
   Set<uint32_t>(&h, off_setup + kSShutterUs, us);
   Set<uint32_t>(&h, off_setup + kSRealBpp, bpp);
+  Set<uint32_t>(&h, off_setup + kSCfa, options.cfa);
   Set<uint32_t>(&h, off_setup + kSShutterNs, options.exposure_ns);
   const char kDescription[] = "written by dimerlab (tracking/cine_writer.cc)";
   std::memcpy(h.data() + off_setup + kSDescription, kDescription, sizeof kDescription);
@@ -117,14 +124,14 @@ void CineWriter::Put(const void* data, size_t n) {
 
 void CineWriter::Add(const cv::Mat& frame) {
   const CinePixels p = options_.pixels;
-  const int want = p == CinePixels::k8Bit ? CV_8UC1 : CV_16UC1;
+  const int want = CV_MAKETYPE(p == CinePixels::k8Bit ? CV_8U : CV_16U, options_.channels);
   if (frame.type() != want || frame.cols != width_ || frame.rows != height_) {
     throw std::invalid_argument("cine writer: frame of the wrong size or pixel type");
   }
   if (offsets_.size() >= frames_) throw std::logic_error("cine writer: more frames than declared");
   offsets_.push_back(position_);
   std::vector<uint8_t> annotation(options_.annotation_size, 0);
-  const size_t bytes = BytesPerImage(p, width_, height_);
+  const size_t bytes = BytesPerImage(p, options_.channels, width_, height_);
   Set<uint32_t>(&annotation, 0, options_.annotation_size);
   for (size_t k = 4; k + 4 < annotation.size(); ++k) annotation[k] = uint8_t('a' + k % 26);
   Set<uint32_t>(&annotation, annotation.size() - 4, uint32_t(bytes));

@@ -1,7 +1,9 @@
 #pragma once
 // Writes Phantom .cine files (layout: cine_layout.h) for the tests and the benchmarks: grey
 // frames stored as 8-bit, 16-bit or 10-bit packed pixels, with a frame rate, an exposure and a
-// trigger time in the header. Frames are streamed: memory does not grow with the sequence.
+// trigger time in the header; as a colour camera stores them, a raw colour mosaic (the same
+// pixels, Compression 2 and a CFA code) or interpolated colour (BGR, 24 or 48 bits a pixel).
+// Frames are streamed: memory does not grow with the sequence.
 #include <opencv2/core.hpp>
 
 #include <cstdint>
@@ -23,6 +25,13 @@ struct CineWriteOptions {
   uint32_t real_bpp = 0;            // SETUP.RealBPP; 0: 8, 16 or 10 from `pixels`
   bool top_down = false;            // 8/16-bit: rows top first with a negative biHeight
   uint32_t annotation_size = 8;     // AnnotationSize of each image (>= 8, a multiple of 4)
+  // SETUP.CFA. Not 0 with single-channel frames: a colour camera's raw mosaic (the header's
+  // Compression 2, uninterpolated); the frames are the sensor's pixels as given.
+  uint32_t cfa = 0;
+  // 3: interpolated colour, frames CV_8UC3 / CV_16UC3 in OpenCV's BGR order, stored as 24- or
+  // 48-bit pixels (blue first); `cfa` is then the camera's code (the file says so; the pixels
+  // are already colour). 10-bit packed files are single-channel.
+  int channels = 1;
 };
 
 class CineWriter {
@@ -36,7 +45,7 @@ class CineWriter {
   CineWriter& operator=(const CineWriter&) = delete;
 
   // Appends one frame: CV_8U for 8-bit files, CV_16U for 16-bit and 10-bit packed ones (values
-  // above 1023 are an error for packed files). Throws std::invalid_argument on a wrong frame.
+  // above 1023 are an error for packed files), with options.channels channels. Throws std::invalid_argument on a wrong frame.
   void Add(const cv::Mat& frame);
   // Writes the image offset table; throws std::logic_error when fewer frames were added.
   void Close();

@@ -36,7 +36,11 @@ struct RecordingInfo {
   int64_t trigger_seconds = 0;    // trigger time: seconds since 1970-01-01 UTC
   int64_t trigger_fraction = 0;   // trigger time: fraction of a second, units of 2^-32 s
   int64_t first_image_no = 0;     // camera number of the source's first frame (0 = trigger)
-  int real_bpp = 0;               // bits per pixel the camera delivered
+  int real_bpp = 0;               // bits per pixel the camera delivered (per colour in colour)
+  // What the pixels are: "grey"; "bgr", interpolated colour made grey (OpenCV's BGR2GRAY); or
+  // "mosaic", a colour sensor's raw Bayer mosaic made grey (tracking/mosaic_grey.h).
+  std::string colour = "grey";
+  int64_t cfa = 0;                // the colour filter array code as stored (SETUP.CFA)
   // Video files (whatever `known` says): the codec's four characters as the container declares
   // them (e.g. "h264", "MJPG", "FFV1"); "" for other sources or when not declared.
   std::string video_codec;

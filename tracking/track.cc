@@ -135,10 +135,37 @@ void SequenceOptions::Check() const {
   }
 }
 
+namespace {
+
+SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& options,
+                               const std::function<void(size_t)>& on_progress,
+                               const std::function<void(const SkippedFrame&)>& on_skip);
+
+}  // namespace
+
 SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options,
                              const std::function<void(size_t)>& on_progress,
                              const std::function<void(const SkippedFrame&)>& on_skip) {
   options.Check();
+  // A 10- or 12-bit camera's 16-bit frames, scaled to the range the levels are fractions of
+  // (level_scale.h); positions do not change with a gain.
+  const LevelScale scale = ChooseLevelScale(source);
+  SequenceResult result;
+  if (scale.factor != 1) {
+    const auto scaled = ScaledLevels(source, scale.factor);
+    result = TrackSequenceOf(*scaled, options, on_progress, on_skip);
+  } else {
+    result = TrackSequenceOf(source, options, on_progress, on_skip);
+  }
+  result.level_scale = scale;
+  return result;
+}
+
+namespace {
+
+SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& options,
+                               const std::function<void(size_t)>& on_progress,
+                               const std::function<void(const SkippedFrame&)>& on_skip) {
   const int threads = options.threads > 0 ? options.threads
                                           : int(std::max(1u, std::thread::hardware_concurrency()));
   SequenceResult result;
@@ -282,6 +309,8 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
   result.height = ref.height;
   return result;
 }
+
+}  // namespace
 
 // ---------------------------------------------------------------------------------------------
 
@@ -537,11 +566,18 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
     attrs.push_back({"trigger_time_fraction", rec.info.trigger_fraction});
     attrs.push_back({"first_image_no", rec.info.first_image_no});
     attrs.push_back({"real_bpp", int64_t(rec.info.real_bpp)});
+    attrs.push_back({"cine_colour", rec.info.colour});
+    attrs.push_back({"cine_cfa", rec.info.cfa});
+    attrs.push_back({"level_scale", r.level_scale.factor});
+    attrs.push_back({"level_scale_bits", int64_t(r.level_scale.bits)});
     units["exposure_ns"] = "ns";
     units["trigger_time_seconds"] = "s";
     units["trigger_time_fraction"] = "2^-32 s";
     units["first_image_no"] = "1";
     units["real_bpp"] = "bit";
+    units["cine_cfa"] = "1";
+    units["level_scale"] = "1";
+    units["level_scale_bits"] = "bit";
   }
   H5Writer w(path);
   const AttrList rest = {
@@ -693,6 +729,19 @@ void RunTrack(const TrackArgs& args) {
     if (!r.complete) throw Interrupted();
     throw InputError(args.input + ": no readable frame (all " +
                      std::to_string(r.skipped.size()) + " were skipped)");
+  }
+  // A colour camera's film is tracked grey: said, as the file's cine_colour keeps it.
+  if (rec.info.known && rec.info.colour != "grey" && !args.quiet) {
+    std::fprintf(stderr, "dimerlab track: %s: %s, tracked in grey (%s)\n", args.input.c_str(),
+                 rec.info.colour == "mosaic"
+                     ? ("a colour sensor's raw Bayer mosaic (CFA " +
+                        std::to_string(rec.info.cfa) + ")").c_str()
+                     : "interpolated colour (BGR)",
+                 rec.info.colour == "mosaic" ? "(R + 2G + B) / 4 over each 3x3 neighbourhood"
+                                             : "OpenCV's BGR to grey");
+  }
+  if (!r.level_scale.reason.empty() && !args.quiet) {
+    std::fprintf(stderr, "dimerlab track: levels: %s\n", r.level_scale.reason.c_str());
   }
   // The choice and its evidence (also in the file); -q keeps stderr empty on success.
   if (!r.method_reason.empty() && !args.quiet) {

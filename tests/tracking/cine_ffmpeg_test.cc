@@ -13,6 +13,8 @@
 // where `./dimerlab.sh setup` installs it and a skip would hide a lost check.
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -23,6 +25,7 @@
 #include "tests/common/test_tmpdir.h"
 #include "tracking/cine_source.h"
 #include "tracking/cine_writer.h"
+#include "tracking/mosaic_grey.h"
 
 namespace dimer::tracking {
 namespace {
@@ -172,6 +175,87 @@ INSTANTIATE_TEST_SUITE_P(Pixels, CineAgainstFfmpeg,
                                            Case{"gray12_in_16", CinePixels::k16Bit, 12},
                                            Case{"packed10", CinePixels::k10BitPacked, 10}),
                          [](const ::testing::TestParamInfo<Case>& tp) {
+                           return std::string(tp.param.name);
+                         });
+
+// A colour camera's files: the raw Bayer mosaic (Compression 2) and interpolated colour (24 and
+// 48 bits). FFmpeg must read back the pixels written, in the pixel format it names for them
+// (a Bayer format for the mosaic, BGR for colour), decoded without conversion; and our grey
+// frame must be the grey of what FFmpeg read (the mosaic filter of mosaic_grey.h, OpenCV's
+// BGR2GRAY). Full-range values: FFmpeg's scaling of fewer bits is checked above.
+struct ColourCase {
+  const char* name;
+  CinePixels pixels;
+  int channels;
+  const char* pix_fmt_prefix;  // what ffprobe must call the pixels
+};
+
+class CineColourAgainstFfmpeg : public ::testing::TestWithParam<ColourCase> {};
+
+TEST_P(CineColourAgainstFfmpeg, PixelsReadAsWrittenAndGreyOfThem) {
+  REQUIRE_FFMPEG();
+  const ColourCase c = GetParam();
+  TempDir dir;
+  const std::string path = dir / "colour.cine";
+  const int w = 18, h = 10, n = 3;
+  const bool eight = c.pixels == CinePixels::k8Bit;
+  const int depth = eight ? CV_8U : CV_16U;
+  std::vector<cv::Mat> frames;
+  for (const cv::Mat& g : FramesWithRampAndExtremes(n * c.channels, w, h, depth,
+                                                    eight ? 255 : 65535, 77)) {
+    frames.push_back(g);
+  }
+  if (c.channels == 3) {  // three planes merged into BGR frames
+    std::vector<cv::Mat> merged;
+    for (int i = 0; i < n; ++i) {
+      cv::Mat bgr;
+      cv::merge(std::vector<cv::Mat>{frames[3 * i], frames[3 * i + 1], frames[3 * i + 2]}, bgr);
+      merged.push_back(bgr);
+    }
+    frames = merged;
+  }
+  CineWriteOptions o;
+  o.pixels = c.pixels;
+  o.channels = c.channels;
+  o.cfa = 3;  // CFA_BAYER
+  WriteCine(path, frames, o);
+
+  auto kv = Probe(path);
+  ASSERT_FALSE(kv.empty()) << "ffprobe could not read " << path;
+  const std::string fmt = kv["pix_fmt"];
+  EXPECT_EQ(fmt.rfind(c.pix_fmt_prefix, 0), 0u) << fmt;
+  const std::string raw_path = dir / "colour.raw";
+  ASSERT_EQ(std::system(("ffmpeg -nostdin -v error -y -i '" + path + "' -f rawvideo -pix_fmt " +
+                         fmt + " '" + raw_path + "'").c_str()),
+            0);
+  std::ifstream in(raw_path, std::ios::binary);
+  const std::string raw((std::istreambuf_iterator<char>(in)), {});
+  const size_t frame_bytes = frames[0].total() * frames[0].elemSize();
+  ASSERT_EQ(raw.size(), frame_bytes * n) << "ffmpeg decoded a different number of frames";
+
+  auto src = FrameSource::Open(path);
+  ASSERT_EQ(src->size(), size_t(n));
+  for (int i = 0; i < n; ++i) {
+    const cv::Mat ffmpeg(h, w, frames[i].type(), const_cast<char*>(raw.data()) + i * frame_bytes);
+    EXPECT_EQ(cv::norm(ffmpeg, frames[i], cv::NORM_INF), 0) << "frame " << i << " as ffmpeg reads it";
+    cv::Mat grey;
+    if (c.channels == 3) {
+      cv::cvtColor(ffmpeg, grey, cv::COLOR_BGR2GRAY);
+    } else {
+      grey = MosaicToGrey(ffmpeg);
+    }
+    const Frame fr = src->Read(size_t(i));
+    ASSERT_TRUE(fr.error.empty()) << fr.error;
+    EXPECT_EQ(cv::norm(fr.image, grey, cv::NORM_INF), 0) << "frame " << i;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Colour, CineColourAgainstFfmpeg,
+                         ::testing::Values(ColourCase{"bayer8", CinePixels::k8Bit, 1, "bayer_"},
+                                           ColourCase{"bayer16", CinePixels::k16Bit, 1, "bayer_"},
+                                           ColourCase{"bgr24", CinePixels::k8Bit, 3, "bgr24"},
+                                           ColourCase{"bgr48", CinePixels::k16Bit, 3, "bgr48"}),
+                         [](const ::testing::TestParamInfo<ColourCase>& tp) {
                            return std::string(tp.param.name);
                          });
 

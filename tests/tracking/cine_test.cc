@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -16,6 +18,7 @@
 #include "tests/common/test_tmpdir.h"
 #include "tracking/cine_layout.h"
 #include "tracking/cine_writer.h"
+#include "tracking/mosaic_grey.h"
 
 namespace dimer::tracking {
 namespace {
@@ -111,6 +114,66 @@ TEST(Cine, UppercaseExtensionOpens) {
   TempDir dir;
   ExpectRoundTrip(dir / "F.CINE", RandomFrames(1, 8, 4, CV_8UC1, 255, 6),
                   Recording(CinePixels::k8Bit), 8);
+}
+
+// A colour camera's raw mosaic (Compression 2, a CFA code): the pixels are read as grey ones
+// are and made grey by the layout-free filter; the header says what they were.
+TEST(Cine, RawColourMosaicIsReadGrey) {
+  TempDir dir;
+  struct Case {
+    CinePixels pixels;
+    int type, max_value, real_bpp;
+  };
+  for (const Case c : {Case{CinePixels::k8Bit, CV_8UC1, 255, 8},
+                       Case{CinePixels::k16Bit, CV_16UC1, 4095, 12},
+                       Case{CinePixels::k10BitPacked, CV_16UC1, 1023, 10}}) {
+    CineWriteOptions o = Recording(c.pixels);
+    o.cfa = 3;
+    if (c.pixels == CinePixels::k16Bit) o.real_bpp = 12;
+    const auto frames = RandomFrames(2, 24, 9, c.type, c.max_value, 21 + c.real_bpp);
+    const std::string path = dir / ("raw" + std::to_string(c.real_bpp) + ".cine");
+    WriteCine(path, frames, o);
+    auto src = FrameSource::Open(path);
+    ASSERT_EQ(src->size(), frames.size());
+    for (size_t i = 0; i < frames.size(); ++i) {
+      const Frame f = src->Read(i);
+      ASSERT_TRUE(f.error.empty()) << f.error;
+      EXPECT_TRUE(Same(f.image, MosaicToGrey(frames[i]))) << path << " frame " << i;
+    }
+    EXPECT_EQ(src->recording().colour, "mosaic");
+    EXPECT_EQ(src->recording().cfa, 3);
+    EXPECT_EQ(src->recording().real_bpp, c.real_bpp);
+  }
+}
+
+// Interpolated colour (24 or 48 bits a pixel, BGR): grey as OpenCV makes colour image files
+// grey; odd widths (rows not a multiple of 4 bytes), both row orders.
+TEST(Cine, InterpolatedColourIsReadGrey) {
+  TempDir dir;
+  for (const bool sixteen : {false, true}) {
+    for (const bool top_down : {false, true}) {
+      CineWriteOptions o = Recording(sixteen ? CinePixels::k16Bit : CinePixels::k8Bit);
+      o.channels = 3;
+      o.cfa = 3;
+      o.top_down = top_down;
+      const auto frames = RandomFrames(2, 13, 7, sixteen ? CV_16UC3 : CV_8UC3,
+                                       sixteen ? 65535 : 255, 30 + sixteen + 2 * top_down);
+      const std::string path = dir / ("bgr" + std::to_string(sixteen) +
+                                      std::to_string(top_down) + ".cine");
+      WriteCine(path, frames, o);
+      auto src = FrameSource::Open(path);
+      ASSERT_EQ(src->size(), frames.size());
+      for (size_t i = 0; i < frames.size(); ++i) {
+        const Frame f = src->Read(i);
+        ASSERT_TRUE(f.error.empty()) << f.error;
+        cv::Mat grey;
+        cv::cvtColor(frames[i], grey, cv::COLOR_BGR2GRAY);
+        EXPECT_TRUE(Same(f.image, grey)) << path << " frame " << i;
+      }
+      EXPECT_EQ(src->recording().colour, "bgr");
+      EXPECT_EQ(src->recording().real_bpp, sixteen ? 16 : 8);
+    }
+  }
 }
 
 // The packing order of the public description, worked by hand: the 40 bits of 4 pixels are
@@ -250,15 +313,26 @@ TEST(Cine, UnsupportedPixelFormatsAreOneLineInputErrors) {
   TempDir dir;
   WriteCine(dir / "ok.cine", RandomFrames(1, 16, 8, CV_8UC1, 255, 11),
             Recording(CinePixels::k8Bit));
-  auto b = Bytes(dir / "ok.cine");
-  SetLe(&b, Le(b, cine::kHOffImageHeader, 4) + cine::kBBitCount, 24, 2);
-  Put(dir / "rgb.cine", b);
-  try {
-    FrameSource::Open(dir / "rgb.cine");
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("24-bit pixels"), std::string::npos) << e.what();
-  }
+  const auto good = Bytes(dir / "ok.cine");
+  auto expect_refused = [&](const std::string& name, size_t at, uint64_t v, int n,
+                            const std::string& why) {
+    auto b = good;
+    SetLe(&b, at, v, n);
+    Put(dir / name, b);
+    try {
+      FrameSource::Open(dir / name);
+      FAIL() << name;
+    } catch (const InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_EQ(msg.rfind(dir / name, 0), 0u) << msg;
+      EXPECT_NE(msg.find(why), std::string::npos) << msg;
+      EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    }
+  };
+  const size_t bitmap = Le(good, cine::kHOffImageHeader, 4);
+  expect_refused("rgba.cine", bitmap + cine::kBBitCount, 32, 2, "32-bit pixels");
+  expect_refused("jpeg.cine", cine::kHCompression, cine::kCompressionJpeg, 2, "JPEG-compressed");
+  expect_refused("future.cine", cine::kHCompression, 7, 2, "Compression 7");
 }
 
 // Random bytes, with and without a valid-looking start: never a crash or an out-of-file read

@@ -1,0 +1,35 @@
+#pragma once
+// 16-bit frames from a camera of fewer bits, scaled to the 16-bit range before tracking.
+//
+// Why. A 10- or 12-bit Phantom's .cine holds its levels as stored, 0..1023 or 0..4095 in 16-bit
+// pixels (and 10-bit packed files are delivered so, cine_source.h), while the tracker's levels
+// are fractions of the container's full scale (the plate edge's least step, a silhouette's
+// threshold, a clipped plate's level: 65535 for 16-bit frames). POV-Ray front_point written as
+// such a file lost the plate and the rows (4.9 px off, scatter 0.49 px) at 10 bits; at 12 bits
+// it passed, with little margin for a dimmer scene. A gain moves no edge, so the frames are
+// multiplied by 65535 / (2^bits - 1): the camera's saturation becomes the container's, and the
+// thresholds mean what they were set for.
+//
+// The bits are the .cine header's RealBPP, and only when the first readable frame stays within
+// them (a file whose software already scaled its levels, or a header that does not say, is
+// tracked as it is). Other 16-bit sources carry no such header and are tracked as they are.
+#include <memory>
+#include <string>
+
+#include "tracking/frame_source.h"
+
+namespace dimer::tracking {
+
+struct LevelScale {
+  double factor = 1;   // levels are multiplied by this (1: tracked as stored)
+  int bits = 0;        // the camera's bits per pixel it rests on (0: none)
+  std::string reason;  // why, or why not (empty when the source has nothing to scale)
+};
+
+LevelScale ChooseLevelScale(const FrameSource& source);
+
+// `inner` with every readable 16-bit frame multiplied by `factor` (rounded, saturated); other
+// frames as they are. Same size, order, names and errors.
+std::unique_ptr<FrameSource> ScaledLevels(FrameSource& inner, double factor);
+
+}  // namespace dimer::tracking
