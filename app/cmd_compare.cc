@@ -86,6 +86,9 @@ void RegisterAnalyze(CLI::App& app) {
                 "metres per pixel at the plate edge seen; needs --m-per-px [the dimer plane's]");
   c->add_option("--method", t.method, "tracking method: auto | centroid | discfit | template")->capture_default_str();
   c->add_option("--polarity", t.polarity, "auto | bright | dark")->capture_default_str();
+  c->add_option("--bits", t.sequence.camera_bits,
+                "the camera's bits per pixel in 16-bit frames (8-16; 16: as stored) "
+                "[a .cine's RealBPP, else as stored]");
   c->add_option("--threads", t.sequence.threads, "tracking threads (0: all cores)");
   c->add_flag("--no-simulate", cli->no_simulate, "analyse the track only, no simulation beside it");
   AddCompareOptions(c, cli.get());

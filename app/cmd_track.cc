@@ -28,6 +28,9 @@ void AddTrackOptions(CLI::App* sub, tracking::TrackArgs* a) {
   sub->add_option("--psf-sigma", a->sequence.tracker.psf_sigma_px,
                   "camera blur, Gaussian sigma px (places a clipped plate edge) [fitted]")
       ->each([a](const std::string&) { a->sequence.tracker.fit_psf_sigma = false; });
+  sub->add_option("--bits", a->sequence.camera_bits,
+                  "the camera's bits per pixel in 16-bit frames (8-16; 16: as stored) "
+                  "[a .cine's RealBPP, else as stored]");
   sub->add_option("--threads", a->sequence.threads, "worker threads (0: all cores)");
   sub->add_option("--chunk-frames", a->sequence.chunk_frames, "frames per parallel chunk")
       ->capture_default_str();

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <bit>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <vector>
@@ -63,6 +64,7 @@ class CineSource : public FrameSource {
     f.index = index;
     f.name = name_ + "#" + std::to_string(index);
     f.error = ReadPixels(index, &f.image);
+    if (f.error.empty()) f.image = Grey(f.image);
     if (!f.error.empty()) f.image = cv::Mat();
     return f;
   }
@@ -194,6 +196,7 @@ class CineSource : public FrameSource {
                                                      : bits / channels_;
     info_.colour = mosaic_ ? "mosaic" : channels_ == 3 ? "bgr" : "grey";
     info_.cfa = int64_t(cfa_);
+    if (mosaic_) FindMosaicBalance();
   }
 
   std::string PastEnd(const std::string& what) const {
@@ -201,7 +204,8 @@ class CineSource : public FrameSource {
            " bytes: truncated or corrupt)";
   }
 
-  // Decodes image `index` into *out; returns the reason when it cannot.
+  // Decodes image `index` into *out as stored (a mosaic or BGR for colour files); returns the
+  // reason when it cannot.
   std::string ReadPixels(size_t index, cv::Mat* out) const {
     if (index >= count_) return "frame index past the last image";
     if (index >= offsets_.size()) return PastEnd("image offset table entry");
@@ -236,7 +240,7 @@ class CineSource : public FrameSource {
     const bool direct = pixels_ != Pixels::kPacked10 && !bottom_up_ && stride == row_bytes_;
     if (direct) {  // the file's bytes are the frame's: one read, no copy
       if (!ReadAt(data, img.data, bytes)) return "read error";
-      *out = Grey(img);
+      *out = img;
       return "";
     }
     thread_local std::vector<uint8_t> raw;
@@ -250,13 +254,34 @@ class CineSource : public FrameSource {
         std::memcpy(img.ptr(r), raw.data() + size_t(src) * stride, row_bytes_);
       }
     }
-    *out = Grey(img);
+    *out = img;
     return "";
+  }
+
+  // The four mosaic phases' white balance, once per file, from the first readable frame (of the
+  // first kBalanceFramesTried) with enough bright unsaturated cells (mosaic_grey.h).
+  void FindMosaicBalance() {
+    const double saturation =
+        pixels_ == Pixels::kPacked10 ? 1023.0
+        : pixels_ == Pixels::k8     ? 255.0
+                                    : double((1u << std::clamp(info_.real_bpp, 9, 16)) - 1u);
+    constexpr size_t kBalanceFramesTried = 16;
+    for (size_t i = 0; i < std::min(count_, kBalanceFramesTried); ++i) {
+      cv::Mat raw;
+      if (!ReadPixels(i, &raw).empty()) continue;
+      balance_ = EstimateMosaicBalance(raw, saturation);
+      if (balance_.found()) break;
+    }
+    char text[160];
+    std::snprintf(text, sizeof text, "%.4f %.4f %.4f %.4f (phases 00 01 10 11, %zu cells)",
+                  balance_.ratio[0], balance_.ratio[1], balance_.ratio[2], balance_.ratio[3],
+                  balance_.cells);
+    info_.mosaic_balance = text;
   }
 
   // The frame the tracker sees: grey pixels as they are, colour ones made grey.
   cv::Mat Grey(const cv::Mat& img) const {
-    if (mosaic_) return MosaicToGrey(img);
+    if (mosaic_) return MosaicToGrey(img, balance_);
     if (channels_ == 3) {
       cv::Mat grey;
       cv::cvtColor(img, grey, cv::COLOR_BGR2GRAY);
@@ -274,6 +299,7 @@ class CineSource : public FrameSource {
   int channels_ = 1;      // 3: interpolated colour (BGR)
   bool mosaic_ = false;   // a colour sensor's raw mosaic
   uint32_t cfa_ = 0;      // SETUP.CFA as stored
+  MosaicBalance balance_; // the mosaic's phases' white balance (mosaic_grey.h)
   size_t row_bytes_ = 0, image_bytes_ = 0, count_ = 0, next_ = 0;
   std::vector<int64_t> offsets_;
   RecordingInfo info_;

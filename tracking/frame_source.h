@@ -41,6 +41,8 @@ struct RecordingInfo {
   // "mosaic", a colour sensor's raw Bayer mosaic made grey (tracking/mosaic_grey.h).
   std::string colour = "grey";
   int64_t cfa = 0;                // the colour filter array code as stored (SETUP.CFA)
+  // "mosaic" only: each phase's level over its cell's mean (mosaic_grey.h) and the cells found.
+  std::string mosaic_balance;
   // Video files (whatever `known` says): the codec's four characters as the container declares
   // them (e.g. "h264", "MJPG", "FFV1"); "" for other sources or when not declared.
   std::string video_codec;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "common/error.h"
+
 namespace dimer::tracking {
 namespace {
 
@@ -36,27 +38,43 @@ class ScaledSource : public FrameSource {
 
 }  // namespace
 
-LevelScale ChooseLevelScale(const FrameSource& source) {
+LevelScale ChooseLevelScale(const FrameSource& source, int bits) {
   LevelScale s;
   const RecordingInfo rec = source.recording();
-  if (!rec.known || rec.real_bpp <= 8 || rec.real_bpp >= 16 || !source.random_access()) return s;
+  const bool header = rec.known && rec.real_bpp > 8 && rec.real_bpp < 16;
+  if (bits == 16 || (bits == 0 && !source.random_access())) return s;
   for (size_t i = 0; i < std::min(source.size(), kFirstFramesTried); ++i) {
     const Frame f = source.Read(i);
     if (!f.error.empty()) continue;
     if (f.image.depth() != CV_16U) return s;
     double lo = 0, hi = 0;
     cv::minMaxLoc(f.image, &lo, &hi);
-    const double top = double((1 << rec.real_bpp) - 1);
+    const int b = bits > 0 ? bits : header ? rec.real_bpp : 0;
+    if (b == 0) {
+      if (hi < double(1 << kLevelWarnBits)) {
+        s.warn = true;
+        s.reason = f.name + ": 16-bit frames with levels up to " + std::to_string(int(hi)) +
+                   " of 65535, and the tracker's levels are fractions of 65535: if the camera " +
+                   "delivers fewer bits, give them with --bits (e.g. 10 or 12)";
+      }
+      return s;
+    }
+    const double top = double((1u << unsigned(b)) - 1u);
     if (hi > top) {
+      if (bits > 0) {
+        throw InputError(f.name + ": levels up to " + std::to_string(int(hi)) + ", above --bits " +
+                         std::to_string(bits) + " (0.." + std::to_string(int(top)) + ")");
+      }
       s.reason = "levels up to " + std::to_string(int(hi)) + " in " + f.name + ", above the " +
-                 std::to_string(rec.real_bpp) + "-bit range the header states: tracked as stored";
+                 std::to_string(b) + "-bit range the header states: tracked as stored";
       return s;
     }
     s.factor = 65535.0 / top;
-    s.bits = rec.real_bpp;
-    s.reason = std::to_string(rec.real_bpp) + "-bit levels (the header's RealBPP) scaled by " +
-               "65535/" + std::to_string(int(top)) + " to the 16-bit range the tracker's levels "
-               "are fractions of";
+    s.bits = b;
+    s.reason = std::to_string(b) + "-bit levels (" +
+               (bits > 0 ? std::string("--bits") : std::string("the header's RealBPP")) +
+               ") scaled by 65535/" + std::to_string(int(top)) +
+               " to the 16-bit range the tracker's levels are fractions of";
     return s;
   }
   return s;

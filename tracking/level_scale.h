@@ -10,9 +10,11 @@
 // multiplied by 65535 / (2^bits - 1): the camera's saturation becomes the container's, and the
 // thresholds mean what they were set for.
 //
-// The bits are the .cine header's RealBPP, and only when the first readable frame stays within
-// them (a file whose software already scaled its levels, or a header that does not say, is
-// tracked as it is). Other 16-bit sources carry no such header and are tracked as they are.
+// The bits are the user's (`dimerlab track --bits B`), else the .cine header's RealBPP when the
+// first readable frame stays within them (a file whose software already scaled its levels is
+// tracked as it is). Other 16-bit sources (TIFF, PNG) carry no such header: they are tracked as
+// stored, with a warning when their first readable frame's levels fit in 12 bits (a 10- or
+// 12-bit camera's unscaled levels, or a very dark film: the file cannot tell which).
 #include <memory>
 #include <string>
 
@@ -24,9 +26,16 @@ struct LevelScale {
   double factor = 1;   // levels are multiplied by this (1: tracked as stored)
   int bits = 0;        // the camera's bits per pixel it rests on (0: none)
   std::string reason;  // why, or why not (empty when the source has nothing to scale)
+  bool warn = false;   // `reason` is a warning (16-bit levels that may be a camera's fewer bits)
 };
 
-LevelScale ChooseLevelScale(const FrameSource& source);
+// Levels of 16-bit frames that fit in this many bits, with no header to say the camera's, are
+// warned about.
+inline constexpr int kLevelWarnBits = 12;
+
+// `bits`: the camera's bits per pixel as the user gives them (8..16; 16: never scale), 0: the
+// header's. Throws InputError naming the frame when the given bits cannot hold its levels.
+LevelScale ChooseLevelScale(const FrameSource& source, int bits = 0);
 
 // `inner` with every readable 16-bit frame multiplied by `factor` (rounded, saturated); other
 // frames as they are. Same size, order, names and errors.

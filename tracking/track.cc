@@ -129,6 +129,9 @@ void SequenceOptions::Check() const {
   if (threads < 0 || threads > 256) throw UsageError("--threads must be 0 (all cores) .. 256");
   if (chunk_frames < 1) throw UsageError("--chunk-frames must be >= 1");
   if (learn_passes < 0 || learn_passes > 20) throw UsageError("learning passes must be 0 .. 20");
+  if (camera_bits != 0 && (camera_bits < 8 || camera_bits > 16)) {
+    throw UsageError("--bits must be 8 .. 16 (the camera's bits per pixel)");
+  }
   if (!std::isnan(plate_motion_scale) &&
       !(plate_motion_scale > 0 && std::isfinite(plate_motion_scale))) {
     throw UsageError("the plate's motion scale must be > 0");
@@ -149,7 +152,7 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
   options.Check();
   // A 10- or 12-bit camera's 16-bit frames, scaled to the range the levels are fractions of
   // (level_scale.h); positions do not change with a gain.
-  const LevelScale scale = ChooseLevelScale(source);
+  const LevelScale scale = ChooseLevelScale(source, options.camera_bits);
   SequenceResult result;
   if (scale.factor != 1) {
     const auto scaled = ScaledLevels(source, scale.factor);
@@ -558,6 +561,10 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
     attrs.push_back({"video_codec_lossless", int64_t{LosslessVideoCodec(rec.info.video_codec)}});
     units["video_codec_lossless"] = "1";
   }
+  attrs.push_back({"level_scale", r.level_scale.factor});
+  attrs.push_back({"level_scale_bits", int64_t(r.level_scale.bits)});
+  units["level_scale"] = "1";
+  units["level_scale_bits"] = "bit";
   if (rec.info.known) {  // the .cine header's values, exactly as stored
     attrs.push_back({"exposure_ns", rec.info.exposure_ns});
     attrs.push_back({"trigger_time", TriggerTimeText(rec.info.trigger_seconds,
@@ -568,16 +575,13 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
     attrs.push_back({"real_bpp", int64_t(rec.info.real_bpp)});
     attrs.push_back({"cine_colour", rec.info.colour});
     attrs.push_back({"cine_cfa", rec.info.cfa});
-    attrs.push_back({"level_scale", r.level_scale.factor});
-    attrs.push_back({"level_scale_bits", int64_t(r.level_scale.bits)});
+    attrs.push_back({"cine_mosaic_balance", rec.info.mosaic_balance});
     units["exposure_ns"] = "ns";
     units["trigger_time_seconds"] = "s";
     units["trigger_time_fraction"] = "2^-32 s";
     units["first_image_no"] = "1";
     units["real_bpp"] = "bit";
     units["cine_cfa"] = "1";
-    units["level_scale"] = "1";
-    units["level_scale_bits"] = "bit";
   }
   H5Writer w(path);
   const AttrList rest = {
@@ -737,10 +741,14 @@ void RunTrack(const TrackArgs& args) {
                      ? ("a colour sensor's raw Bayer mosaic (CFA " +
                         std::to_string(rec.info.cfa) + ")").c_str()
                      : "interpolated colour (BGR)",
-                 rec.info.colour == "mosaic" ? "(R + 2G + B) / 4 over each 3x3 neighbourhood"
-                                             : "OpenCV's BGR to grey");
+                 rec.info.colour == "mosaic"
+                     ? ("the four phases balanced to one grey, " + rec.info.mosaic_balance +
+                        "; cells still coloured filtered to (R + 2G + B) / 4 over 3x3").c_str()
+                     : "OpenCV's BGR to grey");
   }
-  if (!r.level_scale.reason.empty() && !args.quiet) {
+  if (r.level_scale.warn) {
+    std::fprintf(stderr, "dimerlab: warning: %s\n", r.level_scale.reason.c_str());
+  } else if (!r.level_scale.reason.empty() && !args.quiet) {
     std::fprintf(stderr, "dimerlab track: levels: %s\n", r.level_scale.reason.c_str());
   }
   // The choice and its evidence (also in the file); -q keeps stderr empty on success.

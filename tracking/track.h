@@ -38,6 +38,9 @@ struct SequenceOptions {
   // The plate edge's motion per px in the dimer plane's px (plate_contact.h,
   // GivenPlateMotionScale); NaN: 1, or fitted on a polished plate.
   double plate_motion_scale = std::numeric_limits<double>::quiet_NaN();
+  // The camera's bits per pixel for 16-bit frames (level_scale.h): 0, the .cine header's;
+  // 8..15 scale such levels to the 16-bit range; 16, never scaled.
+  int camera_bits = 0;
   void Check() const;
 };
 

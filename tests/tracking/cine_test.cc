@@ -130,16 +130,20 @@ TEST(Cine, RawColourMosaicIsReadGrey) {
     CineWriteOptions o = Recording(c.pixels);
     o.cfa = 3;
     if (c.pixels == CinePixels::k16Bit) o.real_bpp = 12;
-    const auto frames = RandomFrames(2, 24, 9, c.type, c.max_value, 21 + c.real_bpp);
+    const auto frames = RandomFrames(2, 40, 24, c.type, c.max_value, 21 + c.real_bpp);
     const std::string path = dir / ("raw" + std::to_string(c.real_bpp) + ".cine");
     WriteCine(path, frames, o);
     auto src = FrameSource::Open(path);
     ASSERT_EQ(src->size(), frames.size());
+    // The balance is the first frame's, for every frame.
+    const MosaicBalance balance = EstimateMosaicBalance(frames[0], c.max_value);
+    EXPECT_TRUE(balance.found());
     for (size_t i = 0; i < frames.size(); ++i) {
       const Frame f = src->Read(i);
       ASSERT_TRUE(f.error.empty()) << f.error;
-      EXPECT_TRUE(Same(f.image, MosaicToGrey(frames[i]))) << path << " frame " << i;
+      EXPECT_TRUE(Same(f.image, MosaicToGrey(frames[i], balance))) << path << " frame " << i;
     }
+    EXPECT_NE(src->recording().mosaic_balance.find("cells)"), std::string::npos);
     EXPECT_EQ(src->recording().colour, "mosaic");
     EXPECT_EQ(src->recording().cfa, 3);
     EXPECT_EQ(src->recording().real_bpp, c.real_bpp);

@@ -1,0 +1,76 @@
+// 16-bit frames of a camera with fewer bits scaled to the 16-bit range (tracking/level_scale.h):
+// from the .cine header's RealBPP, from --bits, or not at all (with a warning when the levels
+// would fit a 10- or 12-bit camera's); levels beyond the bits given are an error.
+#include "tracking/level_scale.h"
+
+#include <gtest/gtest.h>
+
+#include "common/error.h"
+#include "tests/common/test_tmpdir.h"
+#include "tracking/cine_writer.h"
+
+namespace dimer::tracking {
+namespace {
+
+using dimer::testing::TempDir;
+
+std::vector<cv::Mat> Frames(int type, int top, int n = 3) {
+  std::vector<cv::Mat> f;
+  for (int i = 0; i < n; ++i) {
+    cv::Mat m(8, 12, type, cv::Scalar(10 + i));
+    if (type == CV_16UC1) m.at<uint16_t>(2, 3) = uint16_t(top);  // the frame's brightest level
+    f.push_back(m);
+  }
+  return f;
+}
+
+TEST(LevelScale, ATenBitCinesLevelsAreScaledToSixteenBits) {
+  TempDir dir;
+  CineWriteOptions o;
+  o.pixels = CinePixels::k10BitPacked;
+  WriteCine(dir / "ten.cine", Frames(CV_16UC1, 1023), o);
+  auto src = FrameSource::Open(dir / "ten.cine");
+  const LevelScale s = ChooseLevelScale(*src);
+  EXPECT_DOUBLE_EQ(s.factor, 65535.0 / 1023.0);
+  EXPECT_EQ(s.bits, 10);
+  EXPECT_FALSE(s.warn);
+  const auto scaled = ScaledLevels(*src, s.factor);
+  const Frame f = scaled->Read(1);
+  ASSERT_TRUE(f.error.empty());
+  EXPECT_EQ(f.image.at<uint16_t>(2, 3), 65535);  // the camera's top is the container's
+  EXPECT_EQ(f.image.at<uint16_t>(0, 0), 705);    // 11 x 64.06, rounded
+  EXPECT_EQ(f.name, src->Read(1).name);
+  EXPECT_EQ(ChooseLevelScale(*src, 16).factor, 1.0);  // --bits 16: as stored
+}
+
+TEST(LevelScale, AHeaderBelowTheLevelsIsNotTrusted) {
+  TempDir dir;
+  CineWriteOptions o;
+  o.pixels = CinePixels::k16Bit;
+  o.real_bpp = 12;
+  WriteCine(dir / "scaled.cine", Frames(CV_16UC1, 60000), o);  // software already scaled them
+  auto src = FrameSource::Open(dir / "scaled.cine");
+  const LevelScale s = ChooseLevelScale(*src);
+  EXPECT_EQ(s.factor, 1.0);
+  EXPECT_NE(s.reason.find("above the 12-bit range"), std::string::npos) << s.reason;
+}
+
+TEST(LevelScale, WithoutAHeaderTheBitsAreTheUsersAndLowLevelsAreWarnedAbout) {
+  MemorySource low(Frames(CV_16UC1, 4000));
+  const LevelScale none = ChooseLevelScale(low);
+  EXPECT_EQ(none.factor, 1.0);
+  EXPECT_TRUE(none.warn);
+  EXPECT_NE(none.reason.find("--bits"), std::string::npos) << none.reason;
+  const LevelScale given = ChooseLevelScale(low, 12);
+  EXPECT_DOUBLE_EQ(given.factor, 65535.0 / 4095.0);
+  EXPECT_FALSE(given.warn);
+  EXPECT_THROW(ChooseLevelScale(low, 10), InputError);  // 4000 does not fit 10 bits
+
+  MemorySource full(Frames(CV_16UC1, 50000));
+  EXPECT_FALSE(ChooseLevelScale(full).warn);
+  MemorySource eight(Frames(CV_8UC1, 0));
+  EXPECT_EQ(ChooseLevelScale(eight, 12).factor, 1.0);  // 8-bit frames: nothing to scale
+}
+
+}  // namespace
+}  // namespace dimer::tracking
