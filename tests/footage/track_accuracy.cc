@@ -127,7 +127,8 @@ bool TrackAccuracy::MeetsTargets(std::string* why) const {
 
 TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string& method,
                                    int threads, bool scale_given,
-                                   const tracking::EccStop* ecc, int learn_passes) {
+                                   const tracking::EccStop* ecc, int learn_passes,
+                                   const std::string& input) {
   double radius = kNaN;
   const std::vector<TruthRow> truth = ReadTruthCsv(folder + "/truth.csv", &radius);
   std::map<std::string, const TruthRow*> by_file;
@@ -139,7 +140,7 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
   if (ecc) opt.tracker.ecc = *ecc;
   opt.learn_passes = learn_passes;
   if (scale_given) opt.contact_radius_px = radius;
-  auto source = tracking::FrameSource::Open(folder);
+  auto source = tracking::FrameSource::Open(input.empty() ? folder : input);
   const auto start = std::chrono::steady_clock::now();
   const tracking::SequenceResult res = tracking::TrackSequence(*source, opt);
   TrackAccuracy a;
@@ -157,6 +158,14 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
   };
   std::map<std::string, const tracking::FrameTrack*> tracked;
   for (size_t i = 0; i < res.frames.size(); ++i) tracked[res.names[i]] = &res.frames[i];
+  if (!input.empty()) {  // truth row k is the input's frame k: named as the input names it
+    std::map<std::string, const tracking::FrameTrack*> by_truth;
+    for (size_t k = 0; k < truth.size(); ++k) {
+      const auto it = tracked.find(source->Read(k).name);
+      if (it != tracked.end()) by_truth[truth[k].file] = it->second;
+    }
+    tracked = by_truth;
+  }
   for (const TruthRow& row : truth) {
     const bool is_good = inside(row.centre[0]) && inside(row.centre[1]);
     good[0] += is_good;

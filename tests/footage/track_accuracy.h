@@ -94,10 +94,13 @@ inline constexpr double kScatterBoundFactor = 1.5;
 // from the spheres' look, which is what a front-lit steel sphere does not show.
 // `ecc`: the template method's ECC stopping rule (tracking/template_locator.h); null: the
 // tracker's default. `learn_passes`: the template's learning passes (appearance_model.h).
+// `input`: track this instead of the folder's images (the same frames in another form, e.g. a
+// .cine), truth.csv's rows taken in order as its frames 0, 1, ...; empty: the folder.
 TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string& method,
                                    int threads = 0, bool scale_given = true,
                                    const tracking::EccStop* ecc = nullptr,
-                                   int learn_passes = tracking::kLearnPasses);
+                                   int learn_passes = tracking::kLearnPasses,
+                                   const std::string& input = "");
 
 // One table row: "| method | found L/R | bias L/R | scatter L/R | bound L/R | bias/stated L/R |
 // swaps | plate | meets |", bias/stated the larger component of bias_sigmas.
