@@ -11,6 +11,7 @@
 #include "common/h5_file.h"
 #include "tests/common/schema_check.h"
 #include "tests/common/test_tmpdir.h"
+#include "tests/common/warm_bayer.h"
 #include "tests/tracking/synthetic.h"
 #include "tracking/cine_writer.h"
 #include "tracking/render.h"
@@ -173,16 +174,7 @@ TEST(TrackCine, TenBitPackedAndRawColourFilesTrackAsTheGreyFolder) {
     cv::Mat t;
     f.convertTo(t, CV_16U, 4);
     ten.push_back(t);
-    // A colour sensor (RGGB) under a warm lamp: red, green and blue see 1, 0.8 and 0.55 of it.
-    cv::Mat m(f.size(), CV_8UC1);
-    for (int r = 0; r < f.rows; ++r) {
-      for (int c = 0; c < f.cols; ++c) {
-        const int phase = 2 * (r % 2) + c % 2;
-        const double gain = phase == 0 ? 1.0 : phase == 3 ? 0.55 : 0.8;
-        m.at<uint8_t>(r, c) = cv::saturate_cast<uint8_t>(gain * f.at<uint8_t>(r, c));
-      }
-    }
-    mosaic.push_back(m);
+    mosaic.push_back(dimer::testing::WarmBayerMosaic(f));  // a colour sensor under a warm lamp
   }
   CineWriteOptions o;
   o.pixels = CinePixels::k10BitPacked;

@@ -31,6 +31,7 @@
 #include "common/h5_file.h"
 #include "common/trajectory_io.h"
 #include "tests/common/test_tmpdir.h"
+#include "tests/common/warm_bayer.h"
 #include "tests/footage/accuracy_cache.h"
 #include "tests/footage/camera_variants.h"
 #include "tests/footage/povray_footage.h"
@@ -358,17 +359,10 @@ TEST(PovrayCine, TenBitAndColourPhantomFilesMeetTheTargets) {
   for (const auto& row : ReadTruthCsv(src + "/truth.csv")) {
     const cv::Mat img = cv::imread(src + "/" + row.file, cv::IMREAD_UNCHANGED);
     ASSERT_EQ(img.type(), CV_8UC1) << row.file;
-    cv::Mat t, m(img.size(), CV_8UC1);
+    cv::Mat t;
     img.convertTo(t, CV_16U, 4);
-    for (int r = 0; r < img.rows; ++r) {
-      for (int c = 0; c < img.cols; ++c) {
-        const int phase = 2 * (r % 2) + c % 2;
-        const double gain = phase == 0 ? 1.0 : phase == 3 ? 0.55 : 0.8;
-        m.at<uint8_t>(r, c) = cv::saturate_cast<uint8_t>(gain * img.at<uint8_t>(r, c));
-      }
-    }
     ten.push_back(t);
-    bayer.push_back(m);
+    bayer.push_back(dimer::testing::WarmBayerMosaic(img));
   }
   tracking::CineWriteOptions o;
   o.pixels = tracking::CinePixels::k10BitPacked;
