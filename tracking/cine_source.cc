@@ -157,7 +157,8 @@ class CineSource : public FrameSource {
       image_bytes_ = pixels / 4 * 5;
     } else {
       throw InputError(path_ + ": .cine with " + std::to_string(bits) + "-bit pixels (bitmap " +
-                       "compression " + std::to_string(bi_compression) + (mosaic_ ? ", raw colour" : "") +
+                       "compression " + std::to_string(bi_compression) +
+                       (mosaic_ ? ", raw colour" : "") +
                        ") is not supported: only 8-bit, 16-bit and 10-bit packed grey or raw "
                        "colour, and 24- or 48-bit colour");
     }

@@ -10,7 +10,8 @@
 // depths: its raw Bayer mosaic (Compression 2, CC_UNINT; 8, 16 or 10-bit packed) balanced and,
 // where colour is left, filtered, without its layout (mosaic_grey.h; the balance once per file,
 // from the first readable frame), its interpolated colour (24 or 48 bits, BGR) through
-// OpenCV's BGR2GRAY; RecordingInfo::colour says which. JPEG-compressed files are refused. Rows of 8/16-bit images are stored bottom row first when
+// OpenCV's BGR2GRAY; RecordingInfo::colour says which. JPEG-compressed files are refused.
+// Rows of 8/16-bit images are stored bottom row first when
 // biHeight > 0 (the BMP convention), top row first when it is negative; 10-bit packed images are
 // read top row first. Frames are numbered by position in the file (0-based) and named
 // "FILE#i".

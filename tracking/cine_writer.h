@@ -45,7 +45,8 @@ class CineWriter {
   CineWriter& operator=(const CineWriter&) = delete;
 
   // Appends one frame: CV_8U for 8-bit files, CV_16U for 16-bit and 10-bit packed ones (values
-  // above 1023 are an error for packed files), with options.channels channels. Throws std::invalid_argument on a wrong frame.
+  // above 1023 are an error for packed files), with options.channels channels. Throws
+  // std::invalid_argument on a wrong frame.
   void Add(const cv::Mat& frame);
   // Writes the image offset table; throws std::logic_error when fewer frames were added.
   void Close();

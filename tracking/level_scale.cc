@@ -43,6 +43,13 @@ LevelScale ChooseLevelScale(const FrameSource& source, int bits) {
   const RecordingInfo rec = source.recording();
   const bool header = rec.known && rec.real_bpp > 8 && rec.real_bpp < 16;
   if (bits == 16 || (bits == 0 && !source.random_access())) return s;
+  if (!source.random_access()) {  // a video, read once in order: the given bits, unchecked
+    s.factor = 65535.0 / double((1u << unsigned(bits)) - 1u);
+    s.bits = bits;
+    s.reason = "--bits " + std::to_string(bits) + ": 16-bit levels scaled by " +
+               std::to_string(s.factor) + " (not checked against the frames)";
+    return s;
+  }
   for (size_t i = 0; i < std::min(source.size(), kFirstFramesTried); ++i) {
     const Frame f = source.Read(i);
     if (!f.error.empty()) continue;

@@ -28,10 +28,6 @@ double At(const cv::Mat& m, int r, int c) {
   return m.depth() == CV_8U ? double(m.at<uint8_t>(r, c)) : double(m.at<uint16_t>(r, c));
 }
 
-}  // namespace
-
-namespace {
-
 // The raw levels as float, each divided by its phase's ratio (float: the sums below must not
 // round twice).
 cv::Mat Balanced(const cv::Mat& raw, const std::array<double, 4>& ratio) {

@@ -3,6 +3,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <numeric>
 #include <cmath>
 
 #include "tracking/parallel_for.h"
@@ -25,6 +26,20 @@ constexpr size_t kMinSeededFrames = 3;
 // apart), each group's mean position. Pixels off vertically (highlights sit above the centre):
 // learning re-centres on the plate contact (appearance_model.h). `plate_row`: the plate's
 // highest row (where it slopes).
+// The frame's level step: the greatest common divisor of its levels (1 for most frames; 257 for
+// 8-bit data widened to 16 bits, 64 for a 10-bit camera's levels shifted to the top).
+double LevelStep(const cv::Mat& image) {
+  unsigned step = 0;
+  for (int r = 0; r < image.rows && step != 1; ++r) {
+    for (int c = 0; c < image.cols && step != 1; ++c) {
+      const unsigned v =
+          image.depth() == CV_8U ? image.at<uint8_t>(r, c) : image.at<uint16_t>(r, c);
+      step = std::gcd(step, v);
+    }
+  }
+  return step == 0 ? 1.0 : double(step);
+}
+
 bool HighlightSeed(const cv::Mat& image, double plate_row, double radius_px, LearningSample* s) {
   const int rows = std::isfinite(plate_row) ? std::clamp(int(plate_row) - 2, 1, image.rows)
                                             : image.rows;
@@ -36,7 +51,13 @@ bool HighlightSeed(const cv::Mat& image, double plate_row, double radius_px, Lea
   const double median = *mid;
   for (float& x : v) x = float(std::abs(x - median));
   std::nth_element(v.begin(), mid, v.end());
-  const double sigma = std::max(1.4826 * *mid, 0.5);
+  // At least half the data's level step: a backdrop whose noise the quantisation hides (MAD 0)
+  // must not make every level above its median a highlight. The step is the frame's own (the
+  // greatest common divisor of its levels): 16-bit frames of coarser data (8-bit levels x 257,
+  // a 10-bit camera's x 64) with a floor of half a 16-bit level made every noisy pixel a
+  // highlight, and the learning followed noise (a warm-lit POV-Ray film 30 px off;
+  // docs/BENCHMARKS.md); a floor of half an 8-bit level was too high for x 64 data.
+  const double sigma = std::max(1.4826 * *mid, 0.5 * LevelStep(image));
   const double floor_level = median + kHighlightSigmas * sigma;
   double top = 0;
   cv::minMaxLoc(above, nullptr, &top);

@@ -79,7 +79,7 @@ struct SequenceResult {
   PlateSlope plate_slope;        // the plate edge's slope in the image (plate_slope.h)
   DefectPixels defects;          // the sensor's stuck pixels, replaced in every frame
   MatchScores scores;            // template: matches far below their sphere's scores, dropped
-  LevelScale level_scale;        // a 10- or 12-bit camera's levels scaled to 16 bits (level_scale.h)
+  LevelScale level_scale;        // a 10- or 12-bit camera's levels, scaled (level_scale.h)
 };
 
 // Tracks every frame of `source`. `on_progress(done)` is called from the calling thread.

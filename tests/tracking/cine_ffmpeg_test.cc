@@ -237,7 +237,8 @@ TEST_P(CineColourAgainstFfmpeg, PixelsReadAsWrittenAndGreyOfThem) {
   ASSERT_EQ(src->size(), size_t(n));
   for (int i = 0; i < n; ++i) {
     const cv::Mat ffmpeg(h, w, frames[i].type(), const_cast<char*>(raw.data()) + i * frame_bytes);
-    EXPECT_EQ(cv::norm(ffmpeg, frames[i], cv::NORM_INF), 0) << "frame " << i << " as ffmpeg reads it";
+    EXPECT_EQ(cv::norm(ffmpeg, frames[i], cv::NORM_INF), 0)
+        << "frame " << i << " as ffmpeg reads it";
     cv::Mat grey;
     if (c.channels == 3) {
       cv::cvtColor(ffmpeg, grey, cv::COLOR_BGR2GRAY);

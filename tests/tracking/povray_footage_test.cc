@@ -38,6 +38,7 @@
 #include "tests/footage/track_accuracy.h"
 #include "tracking/cine_writer.h"
 #include "tracking/frame_source.h"
+#include "tracking/mosaic_grey.h"
 #include "tracking/track.h"
 
 #ifndef DIMERLAB_POVRAY_TEST_METHOD
@@ -355,7 +356,7 @@ TEST(PovrayStuckPixels, HotPixelsAreFoundAndReplacedAndTheTargetsStillMet) {
 TEST(PovrayCine, TenBitAndColourPhantomFilesMeetTheTargets) {
   const std::string src = Footage(Case{"front_point", Lighting::kFrontPoint, 3.9});
   dimer::testing::TempDir tmp;
-  std::vector<cv::Mat> ten, bayer;
+  std::vector<cv::Mat> ten, bayer, narrow, wide;
   for (const auto& row : ReadTruthCsv(src + "/truth.csv")) {
     const cv::Mat img = cv::imread(src + "/" + row.file, cv::IMREAD_UNCHANGED);
     ASSERT_EQ(img.type(), CV_8UC1) << row.file;
@@ -363,6 +364,15 @@ TEST(PovrayCine, TenBitAndColourPhantomFilesMeetTheTargets) {
     img.convertTo(t, CV_16U, 4);
     ten.push_back(t);
     bayer.push_back(dimer::testing::WarmBayerMosaic(img));
+    // The colour camera's film made grey by its own software (a 3x3 filter) and exported as 16-bit
+    // frames of 8-bit levels (x 257): a dark backdrop whose noise the filter and the 8-bit step
+    // hide. The highlights' floor was half a 16-bit level there, every noisy pixel a highlight,
+    // and the spheres 30 px off (now the frame's own level step, template_sequence.cc).
+    cv::Mat g8, g16;
+    tracking::MosaicFilterToGrey(bayer.back()).convertTo(g8, CV_8U);
+    g8.convertTo(g16, CV_16U, 257);
+    narrow.push_back(g8);
+    wide.push_back(g16);
   }
   tracking::CineWriteOptions o;
   o.pixels = tracking::CinePixels::k10BitPacked;
@@ -370,13 +380,30 @@ TEST(PovrayCine, TenBitAndColourPhantomFilesMeetTheTargets) {
   o.pixels = tracking::CinePixels::k8Bit;
   o.cfa = 3;
   tracking::WriteCine(tmp / "bayer.cine", bayer, o);
-  for (const char* name : {"ten.cine", "bayer.cine"}) {
+  o.cfa = 0;
+  tracking::WriteCine(tmp / "narrow.cine", narrow, o);
+  o.pixels = tracking::CinePixels::k16Bit;
+  tracking::WriteCine(tmp / "wide.cine", wide, o);
+  auto measure = [&](const char* name) {
     const TrackAccuracy a = MeasureTrackAccuracy(src, TestMethod(), 2, true, nullptr,
                                                  tracking::kLearnPasses, tmp / name);
     std::printf("front_point as %s\n%s%s", name, AccuracyHeader().c_str(), AccuracyRow(a).c_str());
+    return a;
+  };
+  for (const char* name : {"ten.cine", "bayer.cine"}) {
     std::string why;
-    EXPECT_TRUE(a.MeetsTargets(&why)) << name << ": " << why;
+    EXPECT_TRUE(measure(name).MeetsTargets(&why)) << name << ": " << why;
   }
+  // The filtered film misses the scatter target in 8 bits too (the filter's leak at the
+  // highlights, docs/BENCHMARKS.md): its 16-bit export must track as its 8-bit frames do.
+  const TrackAccuracy a8 = measure("narrow.cine"), a16 = measure("wide.cine");
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(a16.sphere[k].found, a8.sphere[k].found) << k;
+    EXPECT_NEAR(a16.sphere[k].bias.x(), a8.sphere[k].bias.x(), 0.01) << k;
+    EXPECT_NEAR(a16.sphere[k].bias.y(), a8.sphere[k].bias.y(), 0.01) << k;
+    EXPECT_NEAR(a16.sphere[k].scatter, a8.sphere[k].scatter, 0.01) << k;
+  }
+  EXPECT_EQ(a16.identity_swaps, 0u);
 }
 
 // A sphere leaving the frame (a drift carries the dimer across the field of view): the front_point
