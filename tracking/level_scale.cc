@@ -56,16 +56,12 @@ LevelScale ChooseLevelScale(const FrameSource& source, int bits) {
     if (f.image.depth() != CV_16U) return s;
     double lo = 0, hi = 0;
     cv::minMaxLoc(f.image, &lo, &hi);
-    const int b = bits > 0 ? bits : header ? rec.real_bpp : 0;
-    if (b == 0) {
-      if (hi < double(1 << kLevelWarnBits)) {
-        s.warn = true;
-        s.reason = f.name + ": 16-bit frames with levels up to " + std::to_string(int(hi)) +
-                   " of 65535, and the tracker's levels are fractions of 65535: if the camera " +
-                   "delivers fewer bits, give them with --bits (e.g. 10 or 12)";
-      }
-      return s;
-    }
+    // Without a header or --bits, levels that fit in 12 bits are taken as a 10- or 12-bit
+    // camera's (a warning says so: a dark film of a 16-bit camera would clip, past 2^bits, the
+    // frames brighter than its first).
+    const bool guessed = bits == 0 && !header && hi < double(1 << kGuessBitsUpTo);
+    const int b = bits > 0 ? bits : header ? rec.real_bpp : guessed ? (hi < 1024 ? 10 : 12) : 0;
+    if (b == 0) return s;
     const double top = double((1u << unsigned(b)) - 1u);
     if (hi > top) {
       if (bits > 0) {
@@ -78,6 +74,14 @@ LevelScale ChooseLevelScale(const FrameSource& source, int bits) {
     }
     s.factor = 65535.0 / top;
     s.bits = b;
+    if (guessed) {
+      s.warn = true;
+      s.reason = f.name + ": 16-bit frames with levels up to " + std::to_string(int(hi)) +
+                 ", taken as a " + std::to_string(b) + "-bit camera's and scaled by 65535/" +
+                 std::to_string(int(top)) + " (the tracker's levels are fractions of the full " +
+                 "scale); give the camera's bits with --bits (16: as stored)";
+      return s;
+    }
     s.reason = std::to_string(b) + "-bit levels (" +
                (bits > 0 ? std::string("--bits") : std::string("the header's RealBPP")) +
                ") scaled by 65535/" + std::to_string(int(top)) +

@@ -12,9 +12,10 @@
 //
 // The bits are the user's (`dimerlab track --bits B`), else the .cine header's RealBPP when the
 // first readable frame stays within them (a file whose software already scaled its levels is
-// tracked as it is). Other 16-bit sources (TIFF, PNG) carry no such header: they are tracked as
-// stored, with a warning when their first readable frame's levels fit in 12 bits (a 10- or
-// 12-bit camera's unscaled levels, or a very dark film: the file cannot tell which).
+// tracked as it is). Other 16-bit sources (TIFF, PNG) carry no such header: when their first
+// readable frame's levels fit in 12 bits they are taken as a 10-bit camera's (up to 1023) or a
+// 12-bit one's, with a warning, since a very dark film of a 16-bit camera looks the same (its
+// later frames, if brighter than 2^bits, would clip); else tracked as stored.
 #include <memory>
 #include <string>
 
@@ -29,9 +30,9 @@ struct LevelScale {
   bool warn = false;   // `reason` is a warning (16-bit levels that may be a camera's fewer bits)
 };
 
-// Levels of 16-bit frames that fit in this many bits, with no header to say the camera's, are
-// warned about.
-inline constexpr int kLevelWarnBits = 12;
+// Levels of 16-bit frames that fit in this many bits, with no header or --bits to say the
+// camera's, are taken as a 10- or 12-bit camera's.
+inline constexpr int kGuessBitsUpTo = 12;
 
 // `bits`: the camera's bits per pixel as the user gives them (8..16; 16: never scale), 0: the
 // header's. Throws InputError naming the frame when the given bits cannot hold its levels.

@@ -55,12 +55,16 @@ TEST(LevelScale, AHeaderBelowTheLevelsIsNotTrusted) {
   EXPECT_NE(s.reason.find("above the 12-bit range"), std::string::npos) << s.reason;
 }
 
-TEST(LevelScale, WithoutAHeaderTheBitsAreTheUsersAndLowLevelsAreWarnedAbout) {
+TEST(LevelScale, WithoutAHeaderTheBitsAreTheUsersOrGuessedWithAWarning) {
   MemorySource low(Frames(CV_16UC1, 4000));
-  const LevelScale none = ChooseLevelScale(low);
-  EXPECT_EQ(none.factor, 1.0);
-  EXPECT_TRUE(none.warn);
-  EXPECT_NE(none.reason.find("--bits"), std::string::npos) << none.reason;
+  const LevelScale guess = ChooseLevelScale(low);
+  EXPECT_DOUBLE_EQ(guess.factor, 65535.0 / 4095.0);
+  EXPECT_EQ(guess.bits, 12);
+  EXPECT_TRUE(guess.warn);
+  EXPECT_NE(guess.reason.find("--bits"), std::string::npos) << guess.reason;
+  MemorySource ten(Frames(CV_16UC1, 1000));
+  EXPECT_EQ(ChooseLevelScale(ten).bits, 10);
+  EXPECT_EQ(ChooseLevelScale(low, 16).factor, 1.0);  // --bits 16: as stored
   const LevelScale given = ChooseLevelScale(low, 12);
   EXPECT_DOUBLE_EQ(given.factor, 65535.0 / 4095.0);
   EXPECT_FALSE(given.warn);
