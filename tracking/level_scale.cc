@@ -58,8 +58,8 @@ LevelScale ChooseLevelScale(const FrameSource& source, int bits) {
     cv::minMaxLoc(f.image, &lo, &hi);
     // Without a header or --bits, levels that fit in 12 bits are taken as a 10- or 12-bit
     // camera's (a warning says so: a dark film of a 16-bit camera would clip, past 2^bits, the
-    // frames brighter than its first).
-    const bool guessed = bits == 0 && !header && hi < double(1 << kGuessBitsUpTo);
+    // frames brighter than its first). A header that says 16 bits is believed.
+    const bool guessed = bits == 0 && !rec.known && hi < double(1 << kGuessBitsUpTo);
     const int b = bits > 0 ? bits : header ? rec.real_bpp : guessed ? (hi < 1024 ? 10 : 12) : 0;
     if (b == 0) return s;
     const double top = double((1u << unsigned(b)) - 1u);

@@ -3,8 +3,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
-#include <numeric>
 #include <cmath>
+#include <numeric>
 
 #include "tracking/parallel_for.h"
 #include "tracking/plate_edge.h"

@@ -158,13 +158,11 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
   };
   std::map<std::string, const tracking::FrameTrack*> tracked;
   for (size_t i = 0; i < res.frames.size(); ++i) tracked[res.names[i]] = &res.frames[i];
-  if (!input.empty()) {  // truth row k is the input's frame k: named as the input names it
-    std::map<std::string, const tracking::FrameTrack*> by_truth;
-    for (size_t k = 0; k < truth.size(); ++k) {
-      const auto it = tracked.find(source->Read(k).name);
-      if (it != tracked.end()) by_truth[truth[k].file] = it->second;
+  if (!input.empty()) {  // truth row k is the input's frame k
+    tracked.clear();
+    for (const tracking::FrameTrack& f : res.frames) {
+      if (f.index < truth.size()) tracked[truth[f.index].file] = &f;
     }
-    tracked = by_truth;
   }
   for (const TruthRow& row : truth) {
     const bool is_good = inside(row.centre[0]) && inside(row.centre[1]);

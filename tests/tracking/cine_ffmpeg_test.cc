@@ -70,10 +70,12 @@ std::map<std::string, std::string> Probe(const std::string& path) {
   return kv;
 }
 
-// Every frame decoded by ffmpeg to raw grey (8-bit: gray, else gray16le), concatenated.
-std::string DecodeRaw(const std::string& path, bool eight_bit, const std::string& raw_path) {
+// Every frame decoded by ffmpeg to raw pixels of `pix_fmt` (gray, gray16le, a Bayer format,
+// bgr24, ...), concatenated; empty when ffmpeg fails.
+std::string DecodeRaw(const std::string& path, const std::string& pix_fmt,
+                      const std::string& raw_path) {
   const std::string cmd = "ffmpeg -nostdin -v error -y -i '" + path + "' -f rawvideo -pix_fmt " +
-                          (eight_bit ? "gray" : "gray16le") + " '" + raw_path + "'";
+                          pix_fmt + " '" + raw_path + "'";
   if (std::system(cmd.c_str()) != 0) return {};
   std::ifstream in(raw_path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), {});
@@ -134,7 +136,7 @@ TEST_P(CineAgainstFfmpeg, HeaderAndPixelsReadAsWritten) {
   EXPECT_EQ(kv["duration_ts"], std::to_string(n));
   EXPECT_EQ(kv["TAG:shutter_ns"], "300000");
 
-  const std::string raw = DecodeRaw(path, eight, dir / "film.raw");
+  const std::string raw = DecodeRaw(path, eight ? "gray" : "gray16le", dir / "film.raw");
   const size_t bytes_per_frame = size_t(w) * h * (eight ? 1 : 2);
   ASSERT_EQ(raw.size(), bytes_per_frame * n) << "ffmpeg decoded a different number of frames";
   int mismatches = 0, low_bits_wrong = 0;
@@ -224,12 +226,7 @@ TEST_P(CineColourAgainstFfmpeg, PixelsReadAsWrittenAndGreyOfThem) {
   ASSERT_FALSE(kv.empty()) << "ffprobe could not read " << path;
   const std::string fmt = kv["pix_fmt"];
   EXPECT_EQ(fmt.rfind(c.pix_fmt_prefix, 0), 0u) << fmt;
-  const std::string raw_path = dir / "colour.raw";
-  ASSERT_EQ(std::system(("ffmpeg -nostdin -v error -y -i '" + path + "' -f rawvideo -pix_fmt " +
-                         fmt + " '" + raw_path + "'").c_str()),
-            0);
-  std::ifstream in(raw_path, std::ios::binary);
-  const std::string raw((std::istreambuf_iterator<char>(in)), {});
+  const std::string raw = DecodeRaw(path, fmt, dir / "colour.raw");
   const size_t frame_bytes = frames[0].total() * frames[0].elemSize();
   ASSERT_EQ(raw.size(), frame_bytes * n) << "ffmpeg decoded a different number of frames";
 

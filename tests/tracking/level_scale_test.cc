@@ -55,6 +55,18 @@ TEST(LevelScale, AHeaderBelowTheLevelsIsNotTrusted) {
   EXPECT_NE(s.reason.find("above the 12-bit range"), std::string::npos) << s.reason;
 }
 
+// A .cine whose header says 16 bits is tracked as stored, however dark (no guess).
+TEST(LevelScale, AHeaderSayingSixteenBitsIsBelieved) {
+  TempDir dir;
+  CineWriteOptions o;
+  o.pixels = CinePixels::k16Bit;  // RealBPP 16
+  WriteCine(dir / "dark.cine", Frames(CV_16UC1, 4000), o);
+  auto src = FrameSource::Open(dir / "dark.cine");
+  const LevelScale s = ChooseLevelScale(*src);
+  EXPECT_EQ(s.factor, 1.0);
+  EXPECT_FALSE(s.warn);
+}
+
 TEST(LevelScale, WithoutAHeaderTheBitsAreTheUsersOrGuessedWithAWarning) {
   MemorySource low(Frames(CV_16UC1, 4000));
   const LevelScale guess = ChooseLevelScale(low);
