@@ -6,12 +6,14 @@
 //   bench_tracking_footage --ecc [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --learn-passes [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --camera [frames] [subframes] [cache_dir]
+//   bench_tracking_footage --jackknife [frames] [subframes] [cache_dir] [seeds]
 // (--ecc: what ECC's stopping rule trades, tracking/template_locator.h EccStop; --learn-passes:
 // what the template learning's passes trade, tracking/appearance_model.h LearnOptions. Every
 // case tracked by `auto` with each rule; the accuracy, how far the answers move from the first
 // rule's, and the CPU time per frame. --camera: front-lit steel through other cameras,
 // tests/footage/camera_variants.h: another scale, defocus, 16 bit, a camera not level; every
-// method.)
+// method. --jackknife: the column offset's stated uncertainty over noise seeds, by the
+// jackknife's groups; defaults 20 frames, 2 slices, 9 seeds.)
 // Defaults: 40 frames of the hop motion, 6 exposure slices (300 us at 2000 frames/s), cache
 // folder bench_footage_cache (footage is reused while its scenes are unchanged), methods
 // "auto,centroid,template" (comma-separated `--method` names of tracking/refiner.h; auto is the
@@ -43,6 +45,7 @@ struct Case {
   Lighting lighting;
   double aspect_ratio;
   int camera = -1;  // index into CameraVariants(); -1: the lighting's own camera
+  uint64_t seed = 1;  // the frames' noise seed
 };
 
 std::vector<std::string> SplitList(const std::string& s) {
@@ -98,6 +101,7 @@ std::string Footage(const Case& c, size_t frames, int slices, const std::string&
                     double* povray_cpu) {
   FootageOptions o = CaseFootageOptions(c.lighting, c.camera);
   o.shape.aspect_ratio = c.aspect_ratio;
+  o.seed = c.seed;
   o.subframes = slices;
   o.reuse = true;
   std::string dir = cache + "/" + c.name;
@@ -129,7 +133,10 @@ RuleResult RunRule(const std::vector<std::string>& dirs, const dimer::tracking::
   size_t tracked = 0;
   for (const std::string& dir : dirs) {
     const std::clock_t t0 = std::clock();
-    const TrackAccuracy a = MeasureTrackAccuracy(dir, "auto", 1, true, ecc, learn_passes);
+    TrackerKnobs knobs;
+    knobs.ecc = ecc;
+    knobs.learn_passes = learn_passes;
+    const TrackAccuracy a = MeasureTrackAccuracy(dir, "auto", 1, true, knobs);
     cpu += double(std::clock() - t0) / CLOCKS_PER_SEC;
     tracked += a.frames;
     r.met += a.MeetsTargets();
@@ -210,6 +217,69 @@ int LearnPassesTrade(size_t frames, int slices, const std::string& cache) {
   return 0;
 }
 
+// --jackknife: the column offset's stated uncertainty against the spread it states, by the
+// number of jackknife groups (tracking/appearance_model.h, kJackknifeGroups; 0: the outline
+// pairs' scatter alone). front_point at A_r 3.9 and 5.5, each rendered with noise seeds
+// 1..`seeds` (one draw each: the scene and its truth are the same), tracked by `auto` on one
+// thread. Per footage and setting, over its spheres: the column bias in units of the stated
+// uncertainty (with the bias's sampling error) as RMS (1 when the uncertainty is right),
+// largest and how many beyond 2; the RMS stated uncertainty and the RMS bias; the CPU time per
+// sequence (the jackknife runs once per sequence, on the learning frames).
+int JackknifeTrade(size_t frames, int slices, const std::string& cache, int seeds) {
+  struct Family {
+    const char* name;
+    double aspect_ratio;
+    std::vector<std::string> dirs;
+  };
+  std::vector<Family> families = {{"front_point", 3.9, {}}, {"front_point A_r 5.5", 5.5, {}}};
+  for (Family& f : families) {
+    for (int seed = 1; seed <= seeds; ++seed) {
+      const std::string name = std::string(f.name) + " seed " + std::to_string(seed);
+      f.dirs.push_back(Footage({name, Lighting::kFrontPoint, f.aspect_ratio, -1, uint64_t(seed)},
+                               frames, slices, cache, nullptr));
+    }
+  }
+  std::printf("Jackknife groups against the column uncertainty's truth: front_point, %zu frames, "
+              "%d noise seeds, `auto`, 1 thread, load average %.1f at start\n\n| footage | "
+              "jackknife groups | spheres | bias / stated: RMS | largest | beyond 2 | stated "
+              "column RMS (px) | column bias RMS (px) | CPU per sequence (ms) |\n"
+              "|---|---|---|---|---|---|---|---|---|\n",
+              frames, seeds, LoadAverage());
+  std::vector<int> groups_list = {dimer::tracking::kJackknifeGroups};
+  for (int g : {0, 4, 8, 24}) {
+    if (g != dimer::tracking::kJackknifeGroups) groups_list.push_back(g);
+  }
+  for (const Family& f : families) {
+    for (int groups : groups_list) {
+      double z2 = 0, worst = 0, stated2 = 0, bias2 = 0, cpu = 0;
+      int n = 0, beyond = 0;
+      for (const std::string& dir : f.dirs) {
+        TrackerKnobs knobs;
+        knobs.jackknife_groups = groups;
+        const std::clock_t t0 = std::clock();
+        const TrackAccuracy a = MeasureTrackAccuracy(dir, "auto", 1, true, knobs);
+        cpu += double(std::clock() - t0) / CLOCKS_PER_SEC;
+        for (const SphereAccuracy& s : a.sphere) {
+          const double z = s.bias_sigmas.x();
+          z2 += z * z;
+          worst = std::max(worst, z);
+          beyond += z > 2;
+          stated2 += s.stated_err.x() * s.stated_err.x();
+          bias2 += s.bias.x() * s.bias.x();
+          ++n;
+        }
+      }
+      std::printf("| %s | %d%s | %d | %.2f | %.2f | %d | %.3f | %.3f | %.0f |\n", f.name, groups,
+                  groups == dimer::tracking::kJackknifeGroups ? " (default)" : "", n,
+                  std::sqrt(z2 / n), worst, beyond, std::sqrt(stated2 / n), std::sqrt(bias2 / n),
+                  1e3 * cpu / double(f.dirs.size()));
+      std::fflush(stdout);
+    }
+  }
+  std::printf("\nload average at the end %.1f\n", LoadAverage());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -217,6 +287,14 @@ int main(int argc, char** argv) {
   if (camera) {
     --argc;
     ++argv;
+  }
+  if (argc > 1 && std::string(argv[1]) == "--jackknife") {
+    const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 20;
+    const int slices = argc > 3 ? std::atoi(argv[3]) : 2;
+    const std::string cache = argc > 4 ? argv[4] : "bench_footage_cache";
+    const int seeds = argc > 5 ? std::atoi(argv[5]) : 9;
+    std::filesystem::create_directories(cache);
+    return JackknifeTrade(frames, slices, cache, seeds);
   }
   if (argc > 1 && (std::string(argv[1]) == "--ecc" || std::string(argv[1]) == "--learn-passes")) {
     const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 40;

@@ -1,3 +1,4 @@
+#include <cstdio>
 #include "tracking/appearance_model.h"
 
 #include "tracking/limb_fit.h"
@@ -187,43 +188,103 @@ bool HorizonMoves(const std::vector<cv::Mat>& images, const std::vector<Learning
   return std::abs(slope) > kHorizonMovesPerPx && std::abs(slope) > 3 * se;
 }
 
-// Mean of the samples' patches over the pixels that show the sphere; rows from `cut_row` down
-// left out (the plate's reflection, appearance_model.h; -1: none), the cut sloping with the
-// plate by `slope` rows per column.
-Appearance Average(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
-                   const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
-                   int k, int half, double radius_px, int cut_row, double slope) {
-  const int size = 2 * half + 1;
+// Sums of the samples' patches (times their masks) and of their masks, and how many samples.
+struct PatchSums {
+  cv::Mat sum, count;
+  int n = 0;
+};
+
+// Sample i's patch and its mask (CV_32F) at pos[i]; false where the patch leaves the frame.
+bool MaskedPatch(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
+                 const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
+                 size_t i, int k, const Appearance& frame, cv::Mat* patch, cv::Mat* mask_f) {
+  if (!Patch(images[used[i]], pos[i], frame.half, patch)) return false;
+  FrameMask(frame, pos[i], ContextOf(samples[used[i]], k)).convertTo(*mask_f, CV_32F);
+  *patch = patch->mul(*mask_f);
+  return true;
+}
+
+// An appearance framed by `half`, with nothing yet cut: the frame FrameMask cuts from.
+Appearance Framing(int half, double radius_px, double slope) {
   Appearance all;
   all.half = half;
   all.radius_px = radius_px;
   all.horizon_slope = slope;
-  all.mask = cv::Mat::ones(size, size, CV_8U);
-  cv::Mat sum = cv::Mat::zeros(size, size, CV_32F), count = cv::Mat::zeros(size, size, CV_32F);
-  cv::Mat patch, mask_f;
-  int n = 0;
-  for (size_t i = 0; i < used.size(); ++i) {
-    if (!Patch(images[used[i]], pos[i], half, &patch)) continue;
-    const cv::Mat mask = FrameMask(all, pos[i], ContextOf(samples[used[i]], k));
-    mask.convertTo(mask_f, CV_32F);
-    sum += patch.mul(mask_f);
-    count += mask_f;
-    ++n;
-  }
-  Appearance a = all;
-  const float min_count = float(std::max(double(kMinSamplesPerPixel), kMinSeenFraction * n));
-  a.mask = count >= min_count;  // 255 / 0
+  all.mask = cv::Mat::ones(2 * half + 1, 2 * half + 1, CV_8U);
+  return all;
+}
+
+// The mean appearance from its sums: pixels seen by too few samples unknown, rows from `cut_row`
+// down left out.
+Appearance FromSums(const PatchSums& p, const Appearance& frame, int cut_row) {
+  Appearance a = frame;
+  const float min_count = float(std::max(double(kMinSamplesPerPixel), kMinSeenFraction * p.n));
+  a.mask = p.count >= min_count;  // 255 / 0
   a.mask /= 255;
-  if (n < int(kMinSamples) || cv::countNonZero(a.mask) == 0) return Appearance{};
-  cv::divide(sum, cv::max(count, 1.0f), a.image);
+  if (p.n < int(kMinSamples) || cv::countNonZero(a.mask) == 0) return Appearance{};
+  cv::divide(p.sum, cv::max(p.count, 1.0f), a.image);
+  const int size = 2 * frame.half + 1;
   if (cut_row >= 0 && cut_row < size) {
-    CutBelow(cut_row, slope, &a);
+    CutBelow(cut_row, frame.horizon_slope, &a);
     if (cv::countNonZero(a.mask) == 0) return Appearance{};
   }
   // Unknown pixels hold the mean known level: masked everywhere, but finite and neutral.
   const cv::Scalar mean = cv::mean(a.image, a.mask);
   a.image.setTo(mean, a.mask == 0);
   return a;
+}
+
+// Mean of the samples' patches over the pixels that show the sphere; rows from `cut_row` down
+// left out (the plate's reflection, appearance_model.h; -1: none), the cut sloping with the
+// plate by `slope` rows per column.
+Appearance Average(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
+                   const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
+                   int k, int half, double radius_px, int cut_row, double slope) {
+  const Appearance frame = Framing(half, radius_px, slope);
+  const int size = 2 * half + 1;
+  PatchSums p{cv::Mat::zeros(size, size, CV_32F), cv::Mat::zeros(size, size, CV_32F), 0};
+  cv::Mat patch, mask_f;
+  for (size_t i = 0; i < used.size(); ++i) {
+    if (!MaskedPatch(images, samples, used, pos, i, k, frame, &patch, &mask_f)) continue;
+    p.sum += patch;
+    p.count += mask_f;
+    ++p.n;
+  }
+  return FromSums(p, frame, cut_row);
+}
+
+// s->jackknife: the appearance averaged again without each group of samples (sample i in group
+// i mod groups), at the positions and with the cut it was averaged at. Each is the whole sum
+// less its group's, so the patches are taken once.
+void LeaveGroupsOut(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
+                    const std::vector<size_t>& used, int k, int max_groups, LearntSphere* s) {
+  s->jackknife.clear();
+  const Appearance& a = s->appearance;
+  if (!a.valid() || s->averaged.size() != used.size() || max_groups < 3) return;
+  const size_t groups = std::min(size_t(max_groups), used.size());
+  const Appearance frame = Framing(a.half, a.radius_px, a.horizon_slope);
+  const int size = 2 * a.half + 1;
+  const auto zeros = [&] {
+    return PatchSums{cv::Mat::zeros(size, size, CV_32F), cv::Mat::zeros(size, size, CV_32F), 0};
+  };
+  PatchSums whole = zeros();
+  std::vector<PatchSums> group(groups);
+  for (PatchSums& g : group) g = zeros();
+  cv::Mat patch, mask_f;
+  for (size_t i = 0; i < used.size(); ++i) {
+    if (!MaskedPatch(images, samples, used, s->averaged, i, k, frame, &patch, &mask_f)) continue;
+    PatchSums& g = group[i % groups];
+    g.sum += patch;
+    g.count += mask_f;
+    ++g.n;
+    whole.sum += patch;
+    whole.count += mask_f;
+    ++whole.n;
+  }
+  for (const PatchSums& g : group) {
+    const PatchSums rest{whole.sum - g.sum, whole.count - g.count, whole.n - g.n};
+    s->jackknife.push_back(FromSums(rest, frame, s->cut_row));
+  }
 }
 
 }  // namespace
@@ -241,6 +302,7 @@ void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSamp
   for (int pass = 0; pass <= learn.passes; ++pass) {
     a = Average(images, samples, used, pos, k, half, radius_px, cut_row, learn.plate_slope);
     if (!a.valid()) return;
+    s->averaged = pos;
     // Register every sample to the mean (the last pass only to report where they sit); each
     // sample on its own, so any thread count gives the same positions.
     ParallelFor(used.size(), learn.threads, [&](size_t i) {
@@ -251,6 +313,8 @@ void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSamp
   }
   s->appearance = a;
   s->registered = pos;
+  s->cut_row = cut_row;
+  s->jackknife.clear();
 }
 
 }  // namespace
@@ -376,7 +440,11 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
                                             cut[k].appearance.half, horizon[k], radius_px,
                                             learn.plate_slope);
   }
-  return moves ? cut : out;
+  std::array<LearntSphere, 2>& learnt = moves ? cut : out;
+  for (int k = 0; k < 2; ++k) {
+    LeaveGroupsOut(images, samples, used, k, learn.jackknife_groups, &learnt[k]);
+  }
+  return learnt;
 }
 
 OffsetEstimate SilhouetteOffset(const LearntSphere& s, int axis) {
@@ -504,19 +572,63 @@ Appearance UpperPart(const Appearance& a) {
   return u;
 }
 
-OffsetEstimate LimbColumnOffset(const Appearance& a_whole, double row_offset) {
+namespace {
+
+// The outline fit LimbColumnOffset makes, on the part of `a_whole` above its reflection.
+LimbFit UpperLimb(const Appearance& a_whole, double row_offset) {
   const Appearance a = UpperPart(a_whole);
   LimbFitOptions lo;
   lo.radius_px = a.radius_px;
   lo.max_shift_px = Reach(kLimbOffsetMaxPx, kLimbOffsetMaxR, a.radius_px);
   lo.row = row_offset;
-  const LimbFit limb = FitLimb(a, lo);
+  return FitLimb(a, lo);
+}
+
+OffsetEstimate LimbEstimate(const LimbFit& limb) {
   if (!limb.ok) return OffsetEstimate{0, NAN, 0, "none"};
   OffsetEstimate e;
   e.value = limb.centre.x();
   e.err = limb.centre_err.x();
   e.n = size_t(limb.rays);
   e.source = "limb";
+  return e;
+}
+
+}  // namespace
+
+double JackknifeError(const std::vector<double>& values) {
+  double sum = 0;
+  size_t g = 0;
+  for (double v : values) {
+    if (std::isfinite(v)) sum += v, ++g;
+  }
+  if (g < 3) return NAN;
+  const double mean = sum / double(g);
+  double ss = 0;
+  for (double v : values) {
+    if (std::isfinite(v)) ss += (v - mean) * (v - mean);
+  }
+  return std::sqrt(double(g - 1) / double(g) * ss);
+}
+
+OffsetEstimate LimbColumnOffset(const Appearance& a_whole, double row_offset) {
+  return LimbEstimate(UpperLimb(a_whole, row_offset));
+}
+
+OffsetEstimate LimbColumnOffset(const LearntSphere& s, double row_offset) {
+  const LimbFit limb = UpperLimb(s.appearance, row_offset);
+  OffsetEstimate e = LimbEstimate(limb);
+  if (e.source == "none" || s.jackknife.empty()) return e;
+  std::vector<double> columns;
+  for (const Appearance& a : s.jackknife) {
+    const LimbFit f = a.valid() ? UpperLimb(a, row_offset) : LimbFit{};
+    columns.push_back(f.ok ? f.centre.x() : NAN);
+  }
+  const double noise = JackknifeError(columns);
+  if (getenv("JKDBG")) fprintf(stderr, "JK col %.4f scatter %.4f model %.4f jack %.4f groups %zu\n", e.value, limb.col_scatter_err, limb.col_model_err, noise, columns.size());
+  if (std::isfinite(noise)) {
+    e.err = std::hypot(std::max(limb.col_scatter_err, noise), limb.col_model_err);
+  }
   return e;
 }
 

@@ -61,12 +61,21 @@ inline constexpr int kLearnPasses = 1;
 // appearance; each pass more averages and registers every sample once again), `threads` for
 // the samples' registrations (tracking/parallel_for.h: the result does not depend on it).
 // bench/bench_tracking_footage --learn-passes measures what the passes buy.
+// Groups of learning samples for the delete-a-group jackknife (LearntSphere::jackknife): as
+// many as there are samples up to this. More groups give the variance more degrees of freedom
+// (groups - 1); each costs a mean and a limb fit per sphere and sequence.
+// `bench_tracking_footage --jackknife` measures the trade.
+inline constexpr int kJackknifeGroups = 16;
+
 struct LearnOptions {
   int passes = kLearnPasses;
   int threads = 1;
   // The plate edge's slope, rows per column (plate_slope.h): the plate's reflection in a sphere
   // tilts with it, and is looked for and cut along it.
   double plate_slope = 0;
+  // Jackknife groups (kJackknifeGroups); 0 (or fewer than 3): none, the column's uncertainty
+  // from the outline's pairs alone.
+  int jackknife_groups = kJackknifeGroups;
 };
 // Frames whose reference row is within this of the lowest (relative to the plate) rest, px.
 inline constexpr double kContactBandPx = 0.3;
@@ -105,7 +114,21 @@ struct LearntSphere {
   // give no edge at all (a 20-frame mean of under-exposed steel); this one is then the
   // symmetry estimate's cross-check (ColumnWithoutTheUpperOutline).
   OffsetEstimate whole_outline_col{0, std::numeric_limits<double>::quiet_NaN(), 0, "none"};
+  // The appearance learnt again with each of kJackknifeGroups groups of its samples left out
+  // (sample i in group i mod groups; the same positions and cut): what the samples' noise does
+  // to a quantity measured on the appearance shows as that quantity's spread over these
+  // (LimbColumnOffset). Empty for appearances not returned by LearnAppearances.
+  std::vector<Appearance> jackknife;
+  // The positions the appearance is the mean at (its last pass's, before `registered`) and the
+  // row its plate reflection was cut from (-1: none): what LearnAppearances redoes for them.
+  std::vector<Eigen::Vector2d> averaged;
+  int cut_row = -1;
 };
+
+// The jackknife estimate of the standard error of `values` (one per left-out group, NaN where
+// the quantity could not be measured without that group): sqrt((g - 1) / g * sum (v - mean)^2)
+// over the g finite ones; NaN with fewer than 3.
+double JackknifeError(const std::vector<double>& values);
 
 // How far the learning reaches for a sphere (Reach, tolerances.h): the rough centres' errors
 // are a fraction of the radius (a centroid on a front-lit steel sphere sits ~0.45 R low, on its
@@ -195,7 +218,13 @@ OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
                                 const std::vector<double>& plate_rows, double radius_px);
 // Centre column of the appearance's outline (limb_fit.h), relative to its reference column;
 // `row_offset` (reference -> centre, NaN: unknown) holds the circle's row where only one side of
-// the outline shows.
+// the outline shows. Its uncertainty: the outline model's (LimbFit::col_model_err) with the
+// larger of the pairs' scatter and the column's jackknife error over the sphere's left-out
+// groups (LearntSphere::jackknife). The pairs' scatter alone treats neighbouring rays as
+// independent edges; they are not (at R = 23.75 px the 120 rays are 1.2 px apart, within the
+// gradient's reach): on POV-Ray A_r 5.5 the left column spread over seven noise seeds by
+// 0.058 px where the pairs stated 0.018-0.043 (docs/BENCHMARKS.md, "Column uncertainty").
+OffsetEstimate LimbColumnOffset(const LearntSphere& s, double row_offset);
 OffsetEstimate LimbColumnOffset(const Appearance& a, double row_offset);
 // Symmetry axis of the appearance, relative to its reference column.
 OffsetEstimate SymmetryColumnOffset(const Appearance& a);

@@ -341,9 +341,14 @@ LimbFit FitLimb(const Appearance& a, const LimbFitOptions& o) {
     // The pairs and the circle fit answer the same question from different assumptions (equal
     // radial bias on mirrored rays, or every edge on the circle): half their difference is a
     // systematic uncertainty the pairs' scatter does not show.
-    col_err = std::hypot(col_err, 0.5 * (col - c.x()));
+    out.col_scatter_err = col_err;
+    out.col_model_err = 0.5 * std::abs(col - c.x());
+    col_err = std::hypot(col_err, out.col_model_err);
     c.x() = col;
-  } else if (!o.fit_radius) {
+  } else {
+    out.col_scatter_err = col_err;
+  }
+  if (pairs < kLimbMinPairs && !o.fit_radius) {
     // One side of the outline only (the far side dark under one-sided light): no pairs cancel
     // the edges' inward shift, and with the radius held the column moves toward the seen side
     // by that shift (POV-Ray one-sided light: 0.09-0.19 px, stated as 0.04). The same edges
@@ -357,6 +362,7 @@ LimbFit FitLimb(const Appearance& a, const LimbFitOptions& o) {
         std::abs(r_free - r) <= kKnownRadiusSlackPx) {
       const double half = 0.5 * (c_free.x() - c.x());
       c.x() += half;
+      out.col_model_err = std::abs(half);
       col_err = std::hypot(col_err, half);
     }
   }

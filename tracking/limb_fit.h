@@ -68,6 +68,11 @@ struct LimbFit {
   // Standard uncertainty (col, row), px; the column's includes half the difference between the
   // pairs' and the circle's answers.
   Eigen::Vector2d centre_err{0, 0};
+  // centre_err.x()'s two parts: the scatter of the pairs (or the circle fit's covariance), from
+  // this one appearance, and the model's (half the pairs' and the circle's difference, or of the
+  // circle fits with the radius held and free). The first assumes independent edges, which
+  // neighbouring rays are not; LimbColumnOffset (appearance_model.h) measures the noise instead.
+  double col_scatter_err = 0, col_model_err = 0;
   double radius_err = 0;
   int rays = 0;                    // rays whose edge entered the fit
   int pairs = 0;                   // mirrored pairs of rays the column came from (0: the fit)

@@ -256,7 +256,7 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
   // Columns from the outline, whose row is then known (where only one side of it shows).
   for (int k = 0; k < 2; ++k) {
     const double row = o.row[k].source == "none" ? std::nan("") : o.row[k].value;
-    o.col[k] = LimbColumnOffset(m.learnt[k].appearance, row);
+    o.col[k] = LimbColumnOffset(m.learnt[k], row);
     if (o.col[k].source == "none") o.col[k] = ColumnWithoutTheUpperOutline(m.learnt[k]);
   }
   return o;

@@ -129,6 +129,9 @@ void SequenceOptions::Check() const {
   if (threads < 0 || threads > 256) throw UsageError("--threads must be 0 (all cores) .. 256");
   if (chunk_frames < 1) throw UsageError("--chunk-frames must be >= 1");
   if (learn_passes < 0 || learn_passes > 20) throw UsageError("learning passes must be 0 .. 20");
+  if (jackknife_groups < 0 || jackknife_groups > 64) {
+    throw UsageError("jackknife groups must be 0 .. 64");
+  }
   if (camera_bits != 0 && (camera_bits < 8 || camera_bits > 16)) {
     throw UsageError("--bits must be 8 .. 16 (the camera's bits per pixel)");
   }
@@ -239,7 +242,8 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
         prepared = PrepareSequenceMethod(learning, reference, options.tracker.method,
                                          std::isfinite(options.contact_radius_px),
                                          LearnOptions{options.learn_passes, threads,
-                                                      chunk_opts.plate_slope});
+                                                      chunk_opts.plate_slope,
+                                                      options.jackknife_groups});
         chunk_opts.method = prepared.choice.method;
         chunk_opts.appearance = prepared.appearance;
         // The template's radius (the scale's, or its outline's) is every frame's radius, which

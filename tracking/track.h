@@ -35,6 +35,9 @@ struct SequenceOptions {
   // Template method: the learning's passes (appearance_model.h, LearnOptions); it runs on
   // `threads` threads.
   int learn_passes = kLearnPasses;
+  // Template method: the jackknife groups of the column offset's uncertainty (appearance_model.h,
+  // LearnOptions); 0: none.
+  int jackknife_groups = kJackknifeGroups;
   // The plate edge's motion per px in the dimer plane's px (plate_contact.h,
   // GivenPlateMotionScale); NaN: 1, or fitted on a polished plate.
   double plate_motion_scale = std::numeric_limits<double>::quiet_NaN();

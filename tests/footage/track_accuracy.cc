@@ -126,8 +126,7 @@ bool TrackAccuracy::MeetsTargets(std::string* why) const {
 }
 
 TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string& method,
-                                   int threads, bool scale_given,
-                                   const tracking::EccStop* ecc, int learn_passes,
+                                   int threads, bool scale_given, const TrackerKnobs& knobs,
                                    const std::string& input) {
   double radius = kNaN;
   const std::vector<TruthRow> truth = ReadTruthCsv(folder + "/truth.csv", &radius);
@@ -137,8 +136,9 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
   tracking::SequenceOptions opt;
   opt.tracker.method = tracking::ParseMethod(method);
   opt.threads = threads;
-  if (ecc) opt.tracker.ecc = *ecc;
-  opt.learn_passes = learn_passes;
+  if (knobs.ecc) opt.tracker.ecc = *knobs.ecc;
+  opt.learn_passes = knobs.learn_passes;
+  opt.jackknife_groups = knobs.jackknife_groups;
   if (scale_given) opt.contact_radius_px = radius;
   auto source = tracking::FrameSource::Open(input.empty() ? folder : input);
   const auto start = std::chrono::steady_clock::now();

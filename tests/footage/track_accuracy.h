@@ -92,14 +92,18 @@ inline constexpr double kScatterBoundFactor = 1.5;
 // told the scale, as `dimerlab track --m-per-px` is by a user with a calibrated camera (the
 // sphere radius in pixels, from truth.csv's header); without it the tracker measures the radius
 // from the spheres' look, which is what a front-lit steel sphere does not show.
-// `ecc`: the template method's ECC stopping rule (tracking/template_locator.h); null: the
-// tracker's default. `learn_passes`: the template's learning passes (appearance_model.h).
-// `input`: track this instead of the folder's images (the same frames in another form, e.g. a
-// .cine), truth.csv's rows taken in order as its frames 0, 1, ...; empty: the folder.
+// `knobs`: the template method's speed-for-accuracy settings, the tracker's defaults unless
+// set. `input`: track this instead of the folder's images (the same frames in another form,
+// e.g. a .cine), truth.csv's rows taken in order as its frames 0, 1, ...; empty: the folder.
+struct TrackerKnobs {
+  // ECC's stopping rule (tracking/template_locator.h); null: the tracker's default.
+  const tracking::EccStop* ecc = nullptr;
+  int learn_passes = tracking::kLearnPasses;          // the learning's passes
+  int jackknife_groups = tracking::kJackknifeGroups;  // of the column offset's uncertainty
+};
 TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string& method,
                                    int threads = 0, bool scale_given = true,
-                                   const tracking::EccStop* ecc = nullptr,
-                                   int learn_passes = tracking::kLearnPasses,
+                                   const TrackerKnobs& knobs = {},
                                    const std::string& input = "");
 
 // One table row: "| method | found L/R | bias L/R | scatter L/R | bound L/R | bias/stated L/R |
