@@ -1,4 +1,3 @@
-#include <cstdio>
 #include "tracking/appearance_model.h"
 
 #include "tracking/limb_fit.h"
@@ -625,7 +624,6 @@ OffsetEstimate LimbColumnOffset(const LearntSphere& s, double row_offset) {
     columns.push_back(f.ok ? f.centre.x() : NAN);
   }
   const double noise = JackknifeError(columns);
-  if (getenv("JKDBG")) fprintf(stderr, "JK col %.4f scatter %.4f model %.4f jack %.4f groups %zu\n", e.value, limb.col_scatter_err, limb.col_model_err, noise, columns.size());
   if (std::isfinite(noise)) {
     e.err = std::hypot(std::max(limb.col_scatter_err, noise), limb.col_model_err);
   }
