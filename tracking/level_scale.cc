@@ -7,8 +7,8 @@
 namespace dimer::tracking {
 namespace {
 
-// How many frames from the start are tried for a readable one.
-constexpr size_t kFirstFramesTried = 16;
+// How many frames, spread over the source, are read for their brightest level.
+constexpr size_t kFramesSampled = 16;
 
 class ScaledSource : public FrameSource {
  public:
@@ -50,44 +50,57 @@ LevelScale ChooseLevelScale(const FrameSource& source, int bits) {
                std::to_string(s.factor) + " (not checked against the frames)";
     return s;
   }
-  for (size_t i = 0; i < std::min(source.size(), kFirstFramesTried); ++i) {
-    const Frame f = source.Read(i);
+  // The brightest level of up to kFramesSampled readable frames spread over the source (the
+  // first readable one for the header's and the user's bits, which it must fit).
+  std::string name;
+  double hi = -1;
+  size_t readable = 0;
+  const size_t n = source.size();
+  for (size_t j = 0; j < std::min(n, kFramesSampled); ++j) {
+    const Frame f = source.Read(j * n / std::min(n, kFramesSampled));
     if (!f.error.empty()) continue;
     if (f.image.depth() != CV_16U) return s;
-    double lo = 0, hi = 0;
-    cv::minMaxLoc(f.image, &lo, &hi);
-    // Without a header or --bits, levels that fit in 12 bits are taken as a 10- or 12-bit
-    // camera's (a warning says so: a dark film of a 16-bit camera would clip, past 2^bits, the
-    // frames brighter than its first). A header that says 16 bits is believed.
-    const bool guessed = bits == 0 && !rec.known && hi < double(1 << kGuessBitsUpTo);
-    const int b = bits > 0 ? bits : header ? rec.real_bpp : guessed ? (hi < 1024 ? 10 : 12) : 0;
-    if (b == 0) return s;
-    const double top = double((1u << unsigned(b)) - 1u);
-    if (hi > top) {
-      if (bits > 0) {
-        throw InputError(f.name + ": levels up to " + std::to_string(int(hi)) + ", above --bits " +
-                         std::to_string(bits) + " (0.." + std::to_string(int(top)) + ")");
-      }
-      s.reason = "levels up to " + std::to_string(int(hi)) + " in " + f.name + ", above the " +
-                 std::to_string(b) + "-bit range the header states: tracked as stored";
-      return s;
+    double lo = 0, top = 0;
+    cv::minMaxLoc(f.image, &lo, &top);
+    if (top > hi) hi = top, name = f.name;
+    ++readable;
+    if (bits > 0 || header) break;
+  }
+  if (readable == 0) return s;
+  // Without a header or --bits, levels that fit in fewer than 16 bits are taken as a camera's of
+  // the fewest bits that hold them, 8 at least (a warning says so: a dark film of a 16-bit
+  // camera would clip, past 2^bits, frames brighter than those sampled). A header that says 16
+  // bits is believed.
+  const bool guessed = bits == 0 && !rec.known && hi < double(1 << kGuessBitsUpTo);
+  int needed = 8;
+  while (needed < 16 && hi > double((1u << unsigned(needed)) - 1u)) ++needed;
+  const int b = bits > 0 ? bits : header ? rec.real_bpp : guessed ? needed : 0;
+  if (b == 0) return s;
+  const double top = double((1u << unsigned(b)) - 1u);
+  if (hi > top) {
+    if (bits > 0) {
+      throw InputError(name + ": levels up to " + std::to_string(int(hi)) + ", above --bits " +
+                       std::to_string(bits) + " (0.." + std::to_string(int(top)) + ")");
     }
-    s.factor = 65535.0 / top;
-    s.bits = b;
-    if (guessed) {
-      s.warn = true;
-      s.reason = f.name + ": 16-bit frames with levels up to " + std::to_string(int(hi)) +
-                 ", taken as a " + std::to_string(b) + "-bit camera's and scaled by 65535/" +
-                 std::to_string(int(top)) + " (the tracker's levels are fractions of the full " +
-                 "scale); give the camera's bits with --bits (16: as stored)";
-      return s;
-    }
-    s.reason = std::to_string(b) + "-bit levels (" +
-               (bits > 0 ? std::string("--bits") : std::string("the header's RealBPP")) +
-               ") scaled by 65535/" + std::to_string(int(top)) +
-               " to the 16-bit range the tracker's levels are fractions of";
+    s.reason = "levels up to " + std::to_string(int(hi)) + " in " + name + ", above the " +
+               std::to_string(b) + "-bit range the header states: tracked as stored";
     return s;
   }
+  s.factor = 65535.0 / top;
+  s.bits = b;
+  if (guessed) {
+    s.warn = true;
+    s.reason = name + ": 16-bit frames with levels up to " + std::to_string(int(hi)) +
+               " (the brightest of " + std::to_string(readable) + " frames spread over the " +
+               "film), taken as a " + std::to_string(b) + "-bit camera's and scaled by 65535/" +
+               std::to_string(int(top)) + " (the tracker's levels are fractions of the full " +
+               "scale); give the camera's bits with --bits (16: as stored)";
+    return s;
+  }
+  s.reason = std::to_string(b) + "-bit levels (" +
+             (bits > 0 ? std::string("--bits") : std::string("the header's RealBPP")) +
+             ") scaled by 65535/" + std::to_string(int(top)) +
+             " to the 16-bit range the tracker's levels are fractions of";
   return s;
 }
 

@@ -12,10 +12,14 @@
 //
 // The bits are the user's (`dimerlab track --bits B`), else the .cine header's RealBPP when the
 // first readable frame stays within them (a file whose software already scaled its levels is
-// tracked as it is). Other 16-bit sources (TIFF, PNG) carry no such header: when their first
-// readable frame's levels fit in 12 bits they are taken as a 10-bit camera's (up to 1023) or a
-// 12-bit one's, with a warning, since a very dark film of a 16-bit camera looks the same (its
-// later frames, if brighter than 2^bits, would clip); else tracked as stored.
+// tracked as it is). Other 16-bit sources (TIFF, PNG) carry no such header: when the levels of
+// up to 16 frames spread over the film fit in fewer than 16 bits, they are taken as a camera's
+// of the fewest bits that hold them (8 at least), with a warning, since a dark film of a 16-bit
+// camera looks the same (its frames brighter than those sampled, if beyond 2^bits, would clip);
+// else tracked as stored. Guessed at 10 and 12 bits only, 16-bit frames filling a quarter of
+// the range (8-bit levels x 64) lost spheres and plate on 8 of 22 POV-Ray films (ring light
+// 49 px off, an over-exposed plate 0.41 px; docs/BENCHMARKS.md, "16-bit frames that fill part
+// of the range").
 #include <memory>
 #include <string>
 
@@ -31,8 +35,8 @@ struct LevelScale {
 };
 
 // Levels of 16-bit frames that fit in this many bits, with no header or --bits to say the
-// camera's, are taken as a 10- or 12-bit camera's.
-inline constexpr int kGuessBitsUpTo = 12;
+// camera's, are taken as a camera's of the fewest bits (8 at least) that hold them.
+inline constexpr int kGuessBitsUpTo = 15;
 
 // `bits`: the camera's bits per pixel as the user gives them (8..16; 16: never scale), 0: the
 // header's. Throws InputError naming the frame when the given bits cannot hold its levels.

@@ -29,6 +29,9 @@ int64_t RangeSum(const cv::Mat& frame, int row, int first, int last) {
 }
 
 double FullScale(const cv::Mat& img) { return img.depth() == CV_8U ? 255.0 : 65535.0; }
+// A plate's bright side at a level within this fraction of the full scale is taken as clipped
+// there when most of its pixels sit at that level (RefinePlateRow).
+constexpr double kClipBelowFullScale = 0.01;
 
 // Pixel noise sigma in rows r0..r1: the median absolute difference of horizontal neighbours
 // (clear columns; a sample of every kNoiseColumnStride-th column, every second row), which the
@@ -48,12 +51,11 @@ double BandNoise(const cv::Mat& frame, int r0, int r1, const std::vector<uint8_t
 }
 
 // Pixel noise sigma for a clipped edge's fit (RefinePlateRow): as BandNoise, over the `use`
-// columns of the rows near the step k whose mean is clear of 0 and of the clip (elsewhere the
-// clip cuts the noise), each column's rows moved down by `shift` (a sloping edge); NaN if there
-// is none.
+// columns of the rows near the step k whose mean is clear of 0 and of the `clip` level
+// (elsewhere the clip cuts the noise), each column's rows moved down by `shift` (a sloping
+// edge); NaN if there is none.
 double LitRowNoise(const cv::Mat& frame, int first_row, const std::vector<double>& profile, int k,
-                   const std::vector<uint8_t>& use, const std::vector<int>& shift) {
-  const double clip = FullScale(frame);
+                   const std::vector<uint8_t>& use, const std::vector<int>& shift, double clip) {
   thread_local std::vector<double> d;
   d.clear();
   for (int i = k - kBracketRows; i <= k + kBracketRows; ++i) {
@@ -440,9 +442,20 @@ double RefinePlateRow(const cv::Mat& frame, double row_guess,
   // is fitted to the rows instead.
   double size = 0;
   const int k = StrongestStep(profile, &size);
-  const double clip = FullScale(frame);
   const bool below = profile[k + kBracketRows] > profile[k - kBracketRows];
   const int bright_row = r0 + k + (below ? kBracketRows : -kBracketRows);
+  // Where the camera saturates: the container's top, or the bright row's brightest level when
+  // that is within kClipBelowFullScale of it. A camera of fewer bits saturates below the top
+  // (its levels shifted up: 4095 x 16 = 65520; or scaled, level_scale.h: 8-bit data x 64 taken
+  // as 14-bit, 65283), and a plate clipped there was taken for an edge's true level (POV-Ray
+  // over-exposed: the plate row 0.41 px off).
+  double clip = FullScale(frame), brightest = 0;
+  for (int col = 0; col < frame.cols; ++col) {
+    if (inlier_cols[col]) {
+      brightest = std::max(brightest, PixelAt(frame, bright_row + shift_of[col], col));
+    }
+  }
+  if (brightest >= (1 - kClipBelowFullScale) * clip) clip = brightest;
   int at_clip = 0;
   for (int col = 0; col < frame.cols; ++col) {
     at_clip += inlier_cols[col] && PixelAt(frame, bright_row + shift_of[col], col) >= clip;
@@ -450,7 +463,7 @@ double RefinePlateRow(const cv::Mat& frame, double row_guess,
   if (2 * at_clip < n_cols) return row - rest;
   // No row clear of the clip and of black: the band's noise, which the clip has cut (a frame's
   // own fit is then too sure of itself; the sequence uses the others' noise, clipped_edge.h).
-  const double lit_sigma = LitRowNoise(frame, r0, profile, k, inlier_cols, shift_of);
+  const double lit_sigma = LitRowNoise(frame, r0, profile, k, inlier_cols, shift_of, clip);
   const double pixel_sigma = std::isfinite(lit_sigma) ? lit_sigma : pb.sigma;
   const double fitted = ClippedEdgeRowInProfile(
       profile, r0, clip, pixel_sigma, pixel_sigma / std::sqrt(double(n_cols)), psf_sigma_px);

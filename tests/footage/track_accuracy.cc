@@ -192,7 +192,10 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
   for (int k = 0; k < 2; ++k) a.sphere[k] = Summarise(errors[k], good[k]);
   a.template_run = res.method == tracking::Method::kTemplate;
   if (a.template_run) {
-    const tracking::Frame first = source->Read(0);
+    // The first frame as the tracker saw it: its noise in the levels of the appearance the
+    // bound is computed on (16-bit levels of fewer bits are scaled, tracking/level_scale.h).
+    const tracking::Frame first =
+        tracking::ScaledLevels(*source, res.level_scale.factor)->Read(0);
     const double noise = first.error.empty() ? tracking::FrameNoiseSigma(first.image) : kNaN;
     for (int k = 0; k < 2; ++k) {
       SphereAccuracy& s = a.sphere[k];

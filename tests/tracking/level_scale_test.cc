@@ -82,10 +82,30 @@ TEST(LevelScale, WithoutAHeaderTheBitsAreTheUsersOrGuessedWithAWarning) {
   EXPECT_FALSE(given.warn);
   EXPECT_THROW(ChooseLevelScale(low, 10), InputError);  // 4000 does not fit 10 bits
 
+  // Any bits short of 16, the fewest that hold the levels (8 at least): 8-bit levels x 64 (a
+  // film filling a quarter of the range) as 14 bits, 8-bit levels stored unscaled as 8.
+  MemorySource quarter(Frames(CV_16UC1, 255 * 64));
+  EXPECT_EQ(ChooseLevelScale(quarter).bits, 14);
+  EXPECT_DOUBLE_EQ(ChooseLevelScale(quarter).factor, 65535.0 / 16383.0);
+  EXPECT_TRUE(ChooseLevelScale(quarter).warn);
+  MemorySource unscaled(Frames(CV_16UC1, 200));
+  EXPECT_EQ(ChooseLevelScale(unscaled).bits, 8);
   MemorySource full(Frames(CV_16UC1, 50000));
   EXPECT_FALSE(ChooseLevelScale(full).warn);
   MemorySource eight(Frames(CV_8UC1, 0));
   EXPECT_EQ(ChooseLevelScale(eight, 12).factor, 1.0);  // 8-bit frames: nothing to scale
+}
+
+// The bits are guessed from frames spread over the film, not the first alone: a film that
+// brightens later (a lamp warming up, the dimer moving into the light) would otherwise be
+// clipped at the first frame's bits.
+TEST(LevelScale, TheGuessRestsOnFramesSpreadOverTheFilm) {
+  std::vector<cv::Mat> frames = Frames(CV_16UC1, 900, 40);
+  frames[30].at<uint16_t>(4, 5) = 3000;  // a later, brighter frame
+  MemorySource film(frames);
+  const LevelScale s = ChooseLevelScale(film);
+  EXPECT_EQ(s.bits, 12);
+  EXPECT_NE(s.reason.find("frame"), std::string::npos) << s.reason;
 }
 
 }  // namespace

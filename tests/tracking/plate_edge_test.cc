@@ -177,6 +177,25 @@ TEST(PlateEdgeClipped, BrightSideAboveIsTheSameFitMirrored) {
   }
 }
 
+TEST(PlateEdgeClipped, ACameraSaturatingBelowTheContainersTopIsClippedThere) {
+  // The same clipped edges as 16-bit frames of a camera saturating below 65535: a 12-bit
+  // camera's levels shifted to the top (x 16: saturation at 65520) and 8-bit levels x 64 scaled
+  // as a 14-bit camera's (level_scale.h: 65283). Each is read as its 8-bit frame is; taken
+  // unclipped (the clip looked for at 65535 only), an over-exposed POV-Ray plate was 0.41 px off.
+  for (double factor : {16.0 * 4095.0 / 255.0, 64.0 * 65535.0 / 16383.0}) {
+    for (int i = 0; i < 6; ++i) {
+      const double y = 60.02 + 0.08 * i;
+      const cv::Mat eight = ClippedBlurredEdge(y, 4.0, 17);
+      cv::Mat wide;
+      eight.convertTo(wide, CV_16U, factor);
+      const double row8 = RefinePlateRow(eight, 60.5, {}, 0.5);
+      const double row16 = RefinePlateRow(wide, 60.5, {}, 0.5);
+      EXPECT_NEAR(row16, row8, 0.01) << "x " << factor << ", edge at " << y;
+      EXPECT_NEAR(row16, y, 0.05) << "x " << factor << ", edge at " << y;
+    }
+  }
+}
+
 class PlateEdgeRendered : public ::testing::TestWithParam<Lighting> {};
 
 TEST_P(PlateEdgeRendered, SubPixelRowOnRenderedFramesWithNoise) {
