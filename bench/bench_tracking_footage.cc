@@ -7,13 +7,16 @@
 //   bench_tracking_footage --learn-passes [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --camera [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --jackknife [frames] [subframes] [cache_dir] [seeds]
+//   bench_tracking_footage --exposure [frames] [subframes] [cache_dir]
 // (--ecc: what ECC's stopping rule trades, tracking/template_locator.h EccStop; --learn-passes:
 // what the template learning's passes trade, tracking/appearance_model.h LearnOptions. Every
 // case tracked by `auto` with each rule; the accuracy, how far the answers move from the first
 // rule's, and the CPU time per frame. --camera: front-lit steel through other cameras,
 // tests/footage/camera_variants.h: another scale, defocus, 16 bit, a camera not level; every
 // method. --jackknife: the column offset's stated uncertainty over noise seeds, by the
-// jackknife's groups; defaults 20 frames, 2 slices, 9 seeds.)
+// jackknife's groups; defaults 20 frames, 2 slices, 9 seeds. --exposure: every lighting with
+// its levels lowered and as 16-bit frames of a quarter of the range; defaults 20 frames, 2
+// slices.)
 // Defaults: 40 frames of the hop motion, 6 exposure slices (300 us at 2000 frames/s), cache
 // folder bench_footage_cache (footage is reused while its scenes are unchanged), methods
 // "auto,centroid,template" (comma-separated `--method` names of tracking/refiner.h; auto is the
@@ -31,6 +34,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <opencv2/imgcodecs.hpp>
 
 #include "tests/footage/camera_variants.h"
 #include "tests/footage/povray_footage.h"
@@ -280,6 +285,52 @@ int JackknifeTrade(size_t frames, int slices, const std::string& cache, int seed
   return 0;
 }
 
+// --exposure: how the tracking depends on the film's levels. Every lighting's footage written
+// again with its levels x 0.7 and x 0.5 (8-bit, rounded: a lower gain, the noise scaled with
+// the signal, so that only the levels change) and as 16-bit frames x 64 (a quarter of the
+// 16-bit range, no header: a 14-bit camera's, or a 16-bit one's at a quarter of full scale),
+// tracked by `auto`; one row per footage and version, the 8-bit original first.
+int ExposureTrade(size_t frames, int slices, const std::string& cache) {
+  struct Version {
+    const char* name;
+    double factor;
+    int depth;
+  };
+  const std::vector<Version> versions = {
+      {"levels x 0.7", 0.7, CV_8U}, {"levels x 0.5", 0.5, CV_8U}, {"16-bit x 64", 64, CV_16U}};
+  std::printf("The film's levels against accuracy: %zu frames per case, `auto`, load average "
+              "%.1f at start\n\n", frames, LoadAverage());
+  const std::string header = AccuracyHeader();
+  const size_t line2 = header.find('\n') + 1;
+  std::printf("| footage | levels %s|---|---%s", header.substr(0, line2).c_str(),
+              header.substr(line2).c_str());
+  for (const Case& c : AllCases()) {
+    const std::string dir = Footage(c, frames, slices, cache, nullptr);
+    std::printf("| %s | as rendered %s", c.name.c_str(),
+                AccuracyRow(MeasureTrackAccuracy(dir, "auto")).c_str());
+    std::fflush(stdout);
+    for (const Version& v : versions) {
+      std::string out = cache + "/levels/" + c.name + " " + v.name;
+      for (char& ch : out) {
+        if (ch == ' ') ch = '_';
+      }
+      std::filesystem::create_directories(out);
+      std::filesystem::copy_file(dir + "/truth.csv", out + "/truth.csv",
+                                 std::filesystem::copy_options::overwrite_existing);
+      for (const TruthRow& row : ReadTruthCsv(dir + "/truth.csv")) {
+        cv::Mat img = cv::imread(dir + "/" + row.file, cv::IMREAD_UNCHANGED), scaled;
+        img.convertTo(scaled, v.depth, v.factor);
+        cv::imwrite(out + "/" + row.file, scaled);
+      }
+      std::printf("| %s | %s %s", c.name.c_str(), v.name,
+                  AccuracyRow(MeasureTrackAccuracy(out, "auto")).c_str());
+      std::fflush(stdout);
+    }
+  }
+  std::printf("\nload average at the end %.1f\n", LoadAverage());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -287,6 +338,13 @@ int main(int argc, char** argv) {
   if (camera) {
     --argc;
     ++argv;
+  }
+  if (argc > 1 && std::string(argv[1]) == "--exposure") {
+    const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 20;
+    const int slices = argc > 3 ? std::atoi(argv[3]) : 2;
+    const std::string cache = argc > 4 ? argv[4] : "bench_footage_cache";
+    std::filesystem::create_directories(cache);
+    return ExposureTrade(frames, slices, cache);
   }
   if (argc > 1 && std::string(argv[1]) == "--jackknife") {
     const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 20;
