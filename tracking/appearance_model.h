@@ -57,16 +57,16 @@ inline constexpr size_t kLearnSpanFrames = 4000;
 // docs/BENCHMARKS.md).
 inline constexpr int kLearnPasses = 1;
 
-// How the learning runs: `passes` as kLearnPasses (0: the rough positions' mean is the
-// appearance; each pass more averages and registers every sample once again), `threads` for
-// the samples' registrations (tracking/parallel_for.h: the result does not depend on it).
-// bench/bench_tracking_footage --learn-passes measures what the passes buy.
 // Groups of learning samples for the delete-a-group jackknife (LearntSphere::jackknife): as
 // many as there are samples up to this. More groups give the variance more degrees of freedom
 // (groups - 1); each costs a mean and a limb fit per sphere and sequence.
 // `bench_tracking_footage --jackknife` measures the trade.
 inline constexpr int kJackknifeGroups = 16;
 
+// How the learning runs: `passes` as kLearnPasses (0: the rough positions' mean is the
+// appearance; each pass more averages and registers every sample once again), `threads` for
+// the samples' registrations (tracking/parallel_for.h: the result does not depend on it).
+// bench/bench_tracking_footage --learn-passes measures what the passes buy.
 struct LearnOptions {
   int passes = kLearnPasses;
   int threads = 1;
@@ -223,7 +223,8 @@ OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
 // groups (LearntSphere::jackknife). The pairs' scatter alone treats neighbouring rays as
 // independent edges; they are not (at R = 23.75 px the 120 rays are 1.2 px apart, within the
 // gradient's reach): on POV-Ray A_r 5.5 the left column spread over seven noise seeds by
-// 0.058 px where the pairs stated 0.018-0.043 (docs/BENCHMARKS.md, "Column uncertainty").
+// 0.058 px where the pairs stated 0.018-0.043 (docs/BENCHMARKS.md, "The column's stated
+// uncertainty over noise seeds").
 OffsetEstimate LimbColumnOffset(const LearntSphere& s, double row_offset);
 OffsetEstimate LimbColumnOffset(const Appearance& a, double row_offset);
 // Symmetry axis of the appearance, relative to its reference column.
