@@ -1,9 +1,11 @@
 // The stated uncertainty of the template method's column offset (LimbColumnOffset,
 // tracking/appearance_model.h) against the spread the same footage shows over noise seeds: a
 // faintly outlined steel-like sphere, learnt from 20 noisy 8-bit frames as the tracker learns it.
-// The outline's pairs of rays share the appearance's noise with their neighbours, so their own
-// scatter stated about half the spread (POV-Ray A_r 5.5: 0.018-0.043 px against 0.058); the
-// delete-a-group jackknife over the learning samples measures the spread itself.
+// The delete-a-group jackknife over the learning samples states the spread itself; the outline
+// pairs' own scatter, which takes neighbouring rays for independent edges, fell short of it on
+// POV-Ray footage (tests/tracking/povray_footage_test.cc, PovrayNoiseSeeds), though not on this
+// footage (0.055 px against 0.059). Here the check is that the jackknife is neither short of
+// the spread nor far above it (it states 1.25 times it: an edge's argmax is a rough statistic).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -56,7 +58,8 @@ cv::Mat Frame(const std::array<Eigen::Vector2d, 2>& c, Gaussian* noise) {
   cv::Mat out(kHeight, kWidth, CV_8U);
   for (int y = 0; y < kHeight; ++y) {
     for (int x = 0; x < kWidth; ++x) {
-      out.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(img.at<float>(y, x) + kNoise * noise->Next());
+      const double v = img.at<float>(y, x) + kNoise * noise->Next();
+      out.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(v);
     }
   }
   return out;
