@@ -1,6 +1,7 @@
 #include "tracking/level_scale.h"
 
 #include <algorithm>
+#include <mutex>
 
 #include "common/error.h"
 
@@ -9,32 +10,6 @@ namespace {
 
 // How many frames, spread over the source, are read for their brightest level.
 constexpr size_t kFramesSampled = 16;
-
-class ScaledSource : public FrameSource {
- public:
-  ScaledSource(FrameSource& inner, double factor) : inner_(inner), factor_(factor) {}
-  size_t size() const override { return inner_.size(); }
-  bool random_access() const override { return inner_.random_access(); }
-  RecordingInfo recording() const override { return inner_.recording(); }
-  Frame Read(size_t index) const override { return Scaled(inner_.Read(index)); }
-  bool Next(Frame* frame) override {
-    if (!inner_.Next(frame)) return false;
-    *frame = Scaled(std::move(*frame));
-    return true;
-  }
-
- private:
-  Frame Scaled(Frame f) const {
-    if (f.error.empty() && f.image.depth() == CV_16U) {
-      cv::Mat s;
-      f.image.convertTo(s, CV_16U, factor_);
-      f.image = s;
-    }
-    return f;
-  }
-  FrameSource& inner_;
-  double factor_;
-};
 
 }  // namespace
 
@@ -104,7 +79,40 @@ LevelScale ChooseLevelScale(const FrameSource& source, int bits) {
   return s;
 }
 
-std::unique_ptr<FrameSource> ScaledLevels(FrameSource& inner, double factor) {
+Frame ScaledSource::Read(size_t index) const { return Scaled(inner_.Read(index)); }
+
+bool ScaledSource::Next(Frame* frame) {
+  if (!inner_.Next(frame)) return false;
+  *frame = Scaled(std::move(*frame));
+  return true;
+}
+
+size_t ScaledSource::clipped_frames() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return clipped_.size();
+}
+
+std::string ScaledSource::first_clipped() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return clipped_.empty() ? std::string() : clipped_.begin()->second;
+}
+
+Frame ScaledSource::Scaled(Frame f) const {
+  if (f.error.empty() && f.image.depth() == CV_16U) {
+    double lo = 0, hi = 0;
+    cv::minMaxLoc(f.image, &lo, &hi);
+    if (hi * factor_ > 65535.5) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      clipped_.emplace(f.index, f.name);
+    }
+    cv::Mat s;
+    f.image.convertTo(s, CV_16U, factor_);
+    f.image = s;
+  }
+  return f;
+}
+
+std::unique_ptr<ScaledSource> ScaledLevels(FrameSource& inner, double factor) {
   return std::make_unique<ScaledSource>(inner, factor);
 }
 

@@ -20,7 +20,9 @@
 // the range (8-bit levels x 64) lost spheres and plate on 8 of 22 POV-Ray films (ring light
 // 49 px off, an over-exposed plate 0.41 px; docs/BENCHMARKS.md, "16-bit frames that fill part
 // of the range").
+#include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 
 #include "tracking/frame_source.h"
@@ -32,6 +34,10 @@ struct LevelScale {
   int bits = 0;        // the camera's bits per pixel it rests on (0: none)
   std::string reason;  // why, or why not (empty when the source has nothing to scale)
   bool warn = false;   // `reason` is a warning (16-bit levels that may be a camera's fewer bits)
+  // Frames whose levels the factor took past 65535 (clipped), and the first of them; set by
+  // TrackSequence after the track.
+  size_t clipped_frames = 0;
+  std::string first_clipped;
 };
 
 // Levels of 16-bit frames that fit in this many bits, with no header or --bits to say the
@@ -43,7 +49,27 @@ inline constexpr int kGuessBitsUpTo = 15;
 LevelScale ChooseLevelScale(const FrameSource& source, int bits = 0);
 
 // `inner` with every readable 16-bit frame multiplied by `factor` (rounded, saturated); other
-// frames as they are. Same size, order, names and errors.
-std::unique_ptr<FrameSource> ScaledLevels(FrameSource& inner, double factor);
+// frames as they are. Same size, order, names and errors. The frames whose levels the factor
+// took past 65535 are counted (once each, however often read): their brightest pixels were
+// clipped, which a guessed camera's bits can do to a frame brighter than those sampled.
+class ScaledSource : public FrameSource {
+ public:
+  ScaledSource(FrameSource& inner, double factor) : inner_(inner), factor_(factor) {}
+  size_t size() const override { return inner_.size(); }
+  bool random_access() const override { return inner_.random_access(); }
+  RecordingInfo recording() const override { return inner_.recording(); }
+  Frame Read(size_t index) const override;
+  bool Next(Frame* frame) override;
+  size_t clipped_frames() const;
+  std::string first_clipped() const;  // the name of the first (by index); empty: none
+
+ private:
+  Frame Scaled(Frame f) const;
+  FrameSource& inner_;
+  double factor_;
+  mutable std::mutex mutex_;
+  mutable std::map<size_t, std::string> clipped_;  // frame index -> name
+};
+std::unique_ptr<ScaledSource> ScaledLevels(FrameSource& inner, double factor);
 
 }  // namespace dimer::tracking

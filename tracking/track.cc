@@ -160,10 +160,13 @@ SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options
   if (scale.factor != 1) {
     const auto scaled = ScaledLevels(source, scale.factor);
     result = TrackSequenceOf(*scaled, options, on_progress, on_skip);
+    result.level_scale = scale;
+    result.level_scale.clipped_frames = scaled->clipped_frames();
+    result.level_scale.first_clipped = scaled->first_clipped();
   } else {
     result = TrackSequenceOf(source, options, on_progress, on_skip);
+    result.level_scale = scale;
   }
-  result.level_scale = scale;
   return result;
 }
 
@@ -567,8 +570,10 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
   }
   attrs.push_back({"level_scale", r.level_scale.factor});
   attrs.push_back({"level_scale_bits", int64_t(r.level_scale.bits)});
+  attrs.push_back({"level_scale_clipped_frames", int64_t(r.level_scale.clipped_frames)});
   units["level_scale"] = "1";
   units["level_scale_bits"] = "bit";
+  units["level_scale_clipped_frames"] = "1";
   if (rec.info.known) {  // the .cine header's values, exactly as stored
     attrs.push_back({"exposure_ns", rec.info.exposure_ns});
     attrs.push_back({"trigger_time", TriggerTimeText(rec.info.trigger_seconds,
@@ -754,6 +759,15 @@ void RunTrack(const TrackArgs& args) {
     std::fprintf(stderr, "dimerlab: warning: %s\n", r.level_scale.reason.c_str());
   } else if (!r.level_scale.reason.empty() && !args.quiet) {
     std::fprintf(stderr, "dimerlab track: levels: %s\n", r.level_scale.reason.c_str());
+  }
+  if (r.level_scale.clipped_frames > 0) {
+    std::fprintf(stderr,
+                 "dimerlab: warning: %zu %s (the first %s) had levels above the %d bits "
+                 "taken for the camera and were clipped at the top by the scaling; give the "
+                 "camera's bits with --bits (16: as stored)\n",
+                 r.level_scale.clipped_frames,
+                 r.level_scale.clipped_frames == 1 ? "frame" : "frames",
+                 r.level_scale.first_clipped.c_str(), r.level_scale.bits);
   }
   // The choice and its evidence (also in the file); -q keeps stderr empty on success.
   if (!r.method_reason.empty() && !args.quiet) {

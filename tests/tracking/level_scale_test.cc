@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "common/error.h"
 #include "tests/common/test_tmpdir.h"
 #include "tracking/cine_writer.h"
@@ -106,6 +108,25 @@ TEST(LevelScale, TheGuessRestsOnFramesSpreadOverTheFilm) {
   const LevelScale s = ChooseLevelScale(film);
   EXPECT_EQ(s.bits, 12);
   EXPECT_NE(s.reason.find("frame"), std::string::npos) << s.reason;
+}
+
+// A frame brighter than the bits the film was taken for (none of those sampled was) is clipped
+// by the scaling, and counted once however often it is read, so that the track file and
+// stderr can say so.
+TEST(LevelScale, FramesTheScalingClipsAreCounted) {
+  std::vector<cv::Mat> frames = Frames(CV_16UC1, 900, 40);
+  frames[31].at<uint16_t>(4, 5) = 3000;  // frame 31 is not among the 16 sampled
+  MemorySource film(frames);
+  const LevelScale s = ChooseLevelScale(film);
+  ASSERT_EQ(s.bits, 10);
+  const auto scaled = ScaledLevels(film, s.factor);
+  EXPECT_EQ(scaled->clipped_frames(), 0u);
+  EXPECT_EQ(scaled->Read(30).image.at<uint16_t>(2, 3), uint16_t(std::lround(900 * s.factor)));
+  EXPECT_EQ(scaled->clipped_frames(), 0u);
+  EXPECT_EQ(scaled->Read(31).image.at<uint16_t>(4, 5), 65535);
+  scaled->Read(31);
+  EXPECT_EQ(scaled->clipped_frames(), 1u);
+  EXPECT_EQ(scaled->first_clipped(), film.Read(31).name);
 }
 
 }  // namespace
