@@ -8,6 +8,7 @@
 //   bench_tracking_footage --camera [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --jackknife [frames] [subframes] [cache_dir] [seeds]
 //   bench_tracking_footage --exposure [frames] [subframes] [cache_dir]
+//   bench_tracking_footage --seeds [frames] [subframes] [cache_dir]
 // (--ecc: what ECC's stopping rule trades, tracking/template_locator.h EccStop; --learn-passes:
 // what the template learning's passes trade, tracking/appearance_model.h LearnOptions. Every
 // case tracked by `auto` with each rule; the accuracy, how far the answers move from the first
@@ -16,7 +17,9 @@
 // method. --jackknife: the column offset's stated uncertainty over noise seeds, by the
 // jackknife's groups; defaults 20 frames, 2 slices, 9 seeds. --exposure: every lighting with
 // its levels lowered and as 16-bit frames of a quarter of the range; defaults 20 frames, 2
-// slices.)
+// slices. --seeds: the rough centres from the highlights, tracking/highlight_seed.h, on every
+// frame of every lighting and its levels x 0.7 and x 0.5, against the truth; defaults 20
+// frames, 2 slices; run --exposure first or it writes the lowered films itself.)
 // Defaults: 40 frames of the hop motion, 6 exposure slices (300 us at 2000 frames/s), cache
 // folder bench_footage_cache (footage is reused while its scenes are unchanged), methods
 // "auto,centroid,template" (comma-separated `--method` names of tracking/refiner.h; auto is the
@@ -38,6 +41,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "tests/footage/camera_variants.h"
+#include "tracking/appearance_model.h"
+#include "tracking/highlight_seed.h"
+#include "tracking/plate_edge.h"
 #include "tests/footage/povray_footage.h"
 #include "tests/footage/track_accuracy.h"
 
@@ -285,6 +291,76 @@ int JackknifeTrade(size_t frames, int slices, const std::string& cache, int seed
   return 0;
 }
 
+// Footage `dir` written again with its levels x `factor` into `depth` (rounded), as the folder
+// CACHE/levels/NAME_VERSION; returns the folder.
+std::string LevelsVersion(const std::string& dir, const std::string& cache,
+                          const std::string& name, const std::string& version, double factor,
+                          int depth) {
+  std::string out = cache + "/levels/" + name + " " + version;
+  for (char& ch : out) {
+    if (ch == ' ') ch = '_';
+  }
+  std::filesystem::create_directories(out);
+  std::filesystem::copy_file(dir + "/truth.csv", out + "/truth.csv",
+                             std::filesystem::copy_options::overwrite_existing);
+  for (const TruthRow& row : ReadTruthCsv(dir + "/truth.csv")) {
+    cv::Mat img = cv::imread(dir + "/" + row.file, cv::IMREAD_UNCHANGED), scaled;
+    img.convertTo(scaled, depth, factor);
+    cv::imwrite(out + "/" + row.file, scaled);
+  }
+  return out;
+}
+
+// --seeds: the highlights' rough centres (tracking/highlight_seed.h) on every frame, as the
+// template learning takes them where the silhouette methods find nothing: above the plate's
+// coarse row (FindPlateRowCoarse, the tracker's fallback), the blobs split into the two
+// spheres' groups. Columns against the truth: how far the seeds are off, and how many farther
+// than the learning's first search for them (SeedSearchPx, 8 px at R = 23.75) and than its
+// search for the final appearance (LearnSearchPx, 4 px): a seed farther off than the search is
+// averaged in where it is.
+int SeedsTrade(size_t frames, int slices, const std::string& cache) {
+  std::printf("Highlight seeds against the truth: %zu frames per case, every frame, load average "
+              "%.1f at start\n\n", frames, LoadAverage());
+  std::printf("| footage | levels | seeded | column error mean / worst (px) | off by more than "
+              "the seed search / the learning's search |\n|---|---|---|---|---|\n");
+  for (const Case& c : AllCases()) {
+    const std::string dir = Footage(c, frames, slices, cache, nullptr);
+    for (double factor : {1.0, 0.7, 0.5}) {
+      char version[32];
+      std::snprintf(version, sizeof version, "levels x %.1f", factor);
+      const std::string film =
+          factor == 1.0 ? dir : LevelsVersion(dir, cache, c.name, version, factor, CV_8U);
+      double radius = 0;
+      const std::vector<TruthRow> truth = ReadTruthCsv(film + "/truth.csv", &radius);
+      const int seed_search = dimer::tracking::SeedSearchPx(radius);
+      const int search = dimer::tracking::LearnSearchPx(radius);
+      double sum = 0, worst = 0;
+      size_t n = 0, off_seed = 0, off = 0;
+      for (const TruthRow& row : truth) {
+        const cv::Mat img = cv::imread(film + "/" + row.file, cv::IMREAD_UNCHANGED);
+        const double plate = dimer::tracking::FindPlateRowCoarse(img);
+        std::array<Eigen::Vector2d, 2> s;
+        if (!dimer::tracking::SplitHighlights(
+                dimer::tracking::FindHighlightBlobs(img, plate, radius), radius, &s)) {
+          continue;
+        }
+        const double e = std::max(std::abs(s[0].x() - row.centre[0].x()),
+                                  std::abs(s[1].x() - row.centre[1].x()));
+        sum += e;
+        worst = std::max(worst, e);
+        off_seed += e > seed_search;
+        off += e > search;
+        ++n;
+      }
+      std::printf("| %s | x %.1f | %zu of %zu | %.2f / %.2f | %zu / %zu |\n", c.name.c_str(),
+                  factor, n, truth.size(), n ? sum / double(n) : 0.0, worst, off_seed, off);
+      std::fflush(stdout);
+    }
+  }
+  std::printf("\nload average at the end %.1f\n", LoadAverage());
+  return 0;
+}
+
 // --exposure: how the tracking depends on the film's levels. Every lighting's footage written
 // again with its levels x 0.7 and x 0.5 (8-bit, rounded: a lower gain, the noise scaled with
 // the signal, so that only the levels change) and as 16-bit frames x 64 (a quarter of the
@@ -310,18 +386,7 @@ int ExposureTrade(size_t frames, int slices, const std::string& cache) {
                 AccuracyRow(MeasureTrackAccuracy(dir, "auto")).c_str());
     std::fflush(stdout);
     for (const Version& v : versions) {
-      std::string out = cache + "/levels/" + c.name + " " + v.name;
-      for (char& ch : out) {
-        if (ch == ' ') ch = '_';
-      }
-      std::filesystem::create_directories(out);
-      std::filesystem::copy_file(dir + "/truth.csv", out + "/truth.csv",
-                                 std::filesystem::copy_options::overwrite_existing);
-      for (const TruthRow& row : ReadTruthCsv(dir + "/truth.csv")) {
-        cv::Mat img = cv::imread(dir + "/" + row.file, cv::IMREAD_UNCHANGED), scaled;
-        img.convertTo(scaled, v.depth, v.factor);
-        cv::imwrite(out + "/" + row.file, scaled);
-      }
+      const std::string out = LevelsVersion(dir, cache, c.name, v.name, v.factor, v.depth);
       std::printf("| %s | %s %s", c.name.c_str(), v.name,
                   AccuracyRow(MeasureTrackAccuracy(out, "auto")).c_str());
       std::fflush(stdout);
@@ -345,6 +410,13 @@ int main(int argc, char** argv) {
     const std::string cache = argc > 4 ? argv[4] : "bench_footage_cache";
     std::filesystem::create_directories(cache);
     return ExposureTrade(frames, slices, cache);
+  }
+  if (argc > 1 && std::string(argv[1]) == "--seeds") {
+    const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 20;
+    const int slices = argc > 3 ? std::atoi(argv[3]) : 2;
+    const std::string cache = argc > 4 ? argv[4] : "bench_footage_cache";
+    std::filesystem::create_directories(cache);
+    return SeedsTrade(frames, slices, cache);
   }
   if (argc > 1 && std::string(argv[1]) == "--jackknife") {
     const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 20;

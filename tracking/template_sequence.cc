@@ -4,113 +4,26 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
+#include "tracking/highlight_seed.h"
 #include "tracking/parallel_for.h"
 #include "tracking/plate_edge.h"
 
 namespace dimer::tracking {
 namespace {
 
-// Highlights seed: a pixel is a highlight when it stands this many robust sigmas above the
-// median of the region above the plate, and above the midpoint between that median and the
-// brightest pixel.
-constexpr double kHighlightSigmas = 10.0;
 // Fewer learning frames than this with both spheres found by the silhouette methods, and the
 // rough centres come from the highlights instead.
 constexpr size_t kMinSeededFrames = 3;
 
-// Rough centres from the highlights alone (footage where the silhouette methods find nothing:
-// dark steel on a dark background, under-exposed): the bright blobs above the plate, split into
-// two groups at the widest gap between their columns (the two spheres, more than a radius
-// apart), each group's mean position. Pixels off vertically (highlights sit above the centre):
-// learning re-centres on the plate contact (appearance_model.h). `plate_row`: the plate's
-// highest row (where it slopes).
-// The frame's level step: the greatest common divisor of its levels (1 for most frames; 257 for
-// 8-bit data widened to 16 bits, 64 for a 10-bit camera's levels shifted to the top).
-double LevelStep(const cv::Mat& image) {
-  unsigned step = 0;
-  for (int r = 0; r < image.rows && step != 1; ++r) {
-    for (int c = 0; c < image.cols && step != 1; ++c) {
-      const unsigned v =
-          image.depth() == CV_8U ? image.at<uint8_t>(r, c) : image.at<uint16_t>(r, c);
-      step = std::gcd(step, v);
-    }
-  }
-  return step == 0 ? 1.0 : double(step);
-}
-
+// Rough centres from the highlights alone (highlight_seed.h). `plate_row`: the plate's highest
+// row (where it slopes).
 bool HighlightSeed(const cv::Mat& image, double plate_row, double radius_px, LearningSample* s) {
-  const int rows = std::isfinite(plate_row) ? std::clamp(int(plate_row) - 2, 1, image.rows)
-                                            : image.rows;
-  cv::Mat above;
-  image(cv::Rect(0, 0, image.cols, rows)).convertTo(above, CV_32F);
-  std::vector<float> v(above.begin<float>(), above.end<float>());
-  auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  const double median = *mid;
-  for (float& x : v) x = float(std::abs(x - median));
-  std::nth_element(v.begin(), mid, v.end());
-  // At least half the data's level step: a backdrop whose noise the quantisation hides (MAD 0)
-  // must not make every level above its median a highlight. The step is the frame's own (the
-  // greatest common divisor of its levels): 16-bit frames of coarser data (8-bit levels x 257,
-  // a 10-bit camera's x 64) with a floor of half a 16-bit level made every noisy pixel a
-  // highlight, and the learning followed noise (a warm-lit POV-Ray film 30 px off;
-  // docs/BENCHMARKS.md); a floor of half an 8-bit level was too high for x 64 data.
-  const double sigma = std::max(1.4826 * *mid, 0.5 * LevelStep(image));
-  const double floor_level = median + kHighlightSigmas * sigma;
-  double top = 0;
-  cv::minMaxLoc(above, nullptr, &top);
-  cv::Mat labels, stats, centroids;
-  // A highlight lies on a sphere: a bright blob wider or taller than a sphere is something else
-  // in the scene (a white ruler or a lamp behind the dimer). When the brightest pixel is in one,
-  // the level it sets is above the highlights: the brightest pixel is then taken outside what
-  // is connected to those blobs at the floor level (the whole ruler), and the level set again.
-  auto larger = [&](int i) {
-    return radius_px > 0 && (stats.at<int>(i, cv::CC_STAT_WIDTH) > 2 * radius_px ||
-                             stats.at<int>(i, cv::CC_STAT_HEIGHT) > 2 * radius_px);
-  };
-  double level = std::max(floor_level, 0.5 * (median + top));
-  int n = cv::connectedComponentsWithStats(above > level, labels, stats, centroids, 8, CV_32S);
-  cv::Mat large = cv::Mat::zeros(above.size(), CV_8U);
-  for (int i = 1; i < n; ++i) {
-    if (larger(i)) large.setTo(255, labels == i);
+  std::array<Eigen::Vector2d, 2> centres;
+  if (!SplitHighlights(FindHighlightBlobs(image, plate_row, radius_px), radius_px, &centres)) {
+    return false;
   }
-  if (cv::countNonZero(large) > 0) {
-    cv::Mat floor_labels;
-    const int m = cv::connectedComponents(above > floor_level, floor_labels, 8, CV_32S);
-    std::vector<uint8_t> excluded(size_t(m), 0);
-    for (int r = 0; r < large.rows; ++r) {
-      for (int c = 0; c < large.cols; ++c) {
-        if (large.at<uint8_t>(r, c)) excluded[size_t(floor_labels.at<int>(r, c))] = 1;
-      }
-    }
-    cv::Mat rest = above > floor_level;
-    for (int r = 0; r < rest.rows; ++r) {
-      for (int c = 0; c < rest.cols; ++c) {
-        if (excluded[size_t(floor_labels.at<int>(r, c))]) rest.at<uint8_t>(r, c) = 0;
-      }
-    }
-    top = 0;
-    if (cv::countNonZero(rest) > 0) cv::minMaxLoc(above, nullptr, &top, nullptr, nullptr, rest);
-    level = std::max(floor_level, 0.5 * (median + top));
-    n = cv::connectedComponentsWithStats((above > level) & rest, labels, stats, centroids, 8,
-                                         CV_32S);
-  }
-  std::vector<Eigen::Vector2d> blobs;
-  for (int i = 1; i < n; ++i) {
-    if (!larger(i)) blobs.emplace_back(centroids.at<double>(i, 0), centroids.at<double>(i, 1));
-  }
-  if (blobs.size() < 2) return false;
-  std::sort(blobs.begin(), blobs.end(), [](const auto& a, const auto& b) { return a.x() < b.x(); });
-  size_t cut = 1;
-  for (size_t i = 1; i < blobs.size(); ++i) {
-    if (blobs[i].x() - blobs[i - 1].x() > blobs[cut].x() - blobs[cut - 1].x()) cut = i;
-  }
-  if (blobs[cut].x() - blobs[cut - 1].x() < radius_px) return false;
-  Eigen::Vector2d left(0, 0), right(0, 0);
-  for (size_t i = 0; i < blobs.size(); ++i) (i < cut ? left : right) += blobs[i];
-  s->centre = {left / double(cut), right / double(blobs.size() - cut)};
+  s->centre = centres;
   s->found = {true, true};
   return true;
 }
@@ -161,10 +74,9 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
     m.plate_shift = EstimatePlateShift(samples, reference.radius_px);
     return m;
   }
-  size_t seeded = 0;
+  size_t seeded = 0, from_highlights = 0;
   for (const LearningSample& s : samples) seeded += s.found[0] && s.found[1];
   if (seeded < kMinSeededFrames) {
-    size_t from_highlights = 0;
     for (size_t i = 0; i < samples.size(); ++i) {
       LearningSample& s = samples[i];
       if (s.found[0] && s.found[1]) continue;
@@ -193,9 +105,13 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
   if (m.plate_shift.applied) {
     for (LearningSample& s : samples) s.plate_row += m.plate_shift.value;
   }
+  // Seeds from the highlights scatter by more than the learning's search (docs/BENCHMARKS.md,
+  // "Highlight seeds"): the first learning searches wider for them.
+  LearnOptions lo = learn;
+  if (from_highlights > 0) lo.seed_search_px = SeedSearchPx(reference.radius_px);
   m.learnt = LearnAppearances(samples, reference.radius_px, !m.choice.silhouettes,
                               !m.choice.silhouettes && !radius_known, &m.radius_from_outline,
-                              learn);
+                              lo);
   if (!m.learnt[0].appearance.valid() || !m.learnt[1].appearance.valid()) {
     // Nothing to learn from (fewer than 3 learning frames with both spheres): the silhouette
     // methods are what is left.

@@ -1,0 +1,100 @@
+// Rough centres from the highlights (tracking/highlight_seed.h): the blobs' masses and the split
+// into the two spheres' groups. The blob layouts are those measured on the POV-Ray films
+// (docs/BENCHMARKS.md, "Highlight seeds").
+#include "tracking/highlight_seed.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include <cmath>
+#include <random>
+
+namespace dimer::tracking {
+namespace {
+
+constexpr double kRadius = 23.75;
+
+HighlightBlob At(double col, double row, double mass) { return {{col, row}, mass}; }
+
+// A ring light on steel: one heavy highlight per sphere at its centre, and the rod's
+// reflections, a row of light dots nearer the right sphere. Splitting at the widest gap between
+// columns put the dots with the right sphere, 41 px off.
+TEST(SplitHighlights, TheRodsGlintsDoNotJoinASphere) {
+  const std::vector<HighlightBlob> blobs = {
+      At(387.0, 223.5, 179), At(249.5, 225.0, 177), At(315.5, 224, 3),  At(326.5, 224, 10),
+      At(338.5, 224.0, 6),   At(346.5, 224.0, 5),   At(350.5, 224, 4), At(357.0, 224, 6.5)};
+  std::array<Eigen::Vector2d, 2> c;
+  ASSERT_TRUE(SplitHighlights(blobs, kRadius, &c));
+  EXPECT_NEAR(c[0].x(), 249.5, 1e-9);
+  EXPECT_NEAR(c[1].x(), 387.0, 1e-9);
+  EXPECT_NEAR(c[0].y(), 225.0, 1e-9);
+}
+
+// Touching spheres (A_r 2.0): each sphere's two lamps' highlights 10 px apart, the spheres a
+// diameter apart; a run a diameter long can take the left sphere's pair and the right sphere's
+// near highlight with all the mass in two runs either way. The runs farthest apart are kept.
+TEST(SplitHighlights, TouchingSpheresAreSplitBetweenThem) {
+  const std::vector<HighlightBlob> blobs = {At(337.7, 215.3, 47.5), At(347.7, 216.7, 41.5),
+                                            At(290.5, 219.0, 57.0), At(300.5, 221.0, 36.0)};
+  std::array<Eigen::Vector2d, 2> c;
+  ASSERT_TRUE(SplitHighlights(blobs, kRadius, &c));
+  EXPECT_NEAR(c[0].x(), 295.5, 1e-9);
+  EXPECT_NEAR(c[1].x(), 342.7, 1e-9);
+}
+
+// A cluttered backdrop reflected at both limbs of each sphere, 21.7 px either side of its
+// centre: each group spans nearly a diameter. A faint speck (mass 0.3) is left out.
+TEST(SplitHighlights, LimbReflectionsEitherSideOfEachSphere) {
+  const std::vector<HighlightBlob> blobs = {At(228.0, 216.0, 0.3), At(271.0, 219.5, 60.1),
+                                            At(365.3, 218.5, 81.1), At(408.6, 219.0, 112.4),
+                                            At(228.3, 222.0, 54.0)};
+  std::array<Eigen::Vector2d, 2> c;
+  ASSERT_TRUE(SplitHighlights(blobs, kRadius, &c));
+  EXPECT_NEAR(c[0].x(), 0.5 * (271.0 + 228.3), 1e-9);
+  EXPECT_NEAR(c[1].x(), 0.5 * (365.3 + 408.6), 1e-9);
+}
+
+TEST(SplitHighlights, OneSpheresHighlightsOrTooFewBlobsAreRefused) {
+  std::array<Eigen::Vector2d, 2> c;
+  EXPECT_FALSE(SplitHighlights({}, kRadius, &c));
+  EXPECT_FALSE(SplitHighlights({At(100, 50, 10)}, kRadius, &c));
+  // Two highlights on one sphere, 10 px apart: no gap of a radius between two runs.
+  EXPECT_FALSE(SplitHighlights({At(100, 50, 10), At(110, 52, 9)}, kRadius, &c));
+  // A heavy blob and specks only: the specks are dropped, one blob is left.
+  EXPECT_FALSE(SplitHighlights({At(100, 50, 100), At(200, 50, 2), At(260, 50, 3)}, kRadius, &c));
+}
+
+// Through FindHighlightBlobs on a frame: two bright spots (the spheres' highlights) and a row of
+// dim dots between them, above a bright plate, with noise. The dots pass the highlight level
+// but weigh little; the seeds are the spots'.
+TEST(FindHighlightBlobs, MassesSetTheRodsGlintsApartFromTheSpheresHighlights) {
+  cv::Mat frame(240, 480, CV_8U, cv::Scalar(6));
+  cv::Mat f;
+  frame.convertTo(f, CV_32F);
+  cv::Mat n32(frame.size(), CV_32F);
+  cv::RNG rng(7);
+  rng.fill(n32, cv::RNG::NORMAL, 0, 1.5);  // a noisy dark backdrop
+  f += n32;
+  const cv::Point2d left(150.3, 150.6), right(289.7, 149.2);
+  for (int r = 0; r < f.rows; ++r) {
+    for (int c = 0; c < f.cols; ++c) {
+      for (const cv::Point2d& p : {left, right}) {
+        const double d2 = (c - p.x) * (c - p.x) + (r - p.y) * (r - p.y);
+        f.at<float>(r, c) += float(120 * std::exp(-d2 / (2 * 1.2 * 1.2)));
+      }
+    }
+  }
+  for (int col : {215, 226, 238, 246, 250, 257}) f.at<float>(150, col) += 70;  // the rod's dots
+  f.rowRange(200, 240).setTo(200);                                              // the plate
+  f.convertTo(frame, CV_8U);
+  const std::vector<HighlightBlob> blobs = FindHighlightBlobs(frame, 200, kRadius);
+  ASSERT_GE(blobs.size(), 8u);  // both spots and the six dots
+  std::array<Eigen::Vector2d, 2> c;
+  ASSERT_TRUE(SplitHighlights(blobs, kRadius, &c));
+  EXPECT_NEAR(c[0].x(), left.x, 0.3);
+  EXPECT_NEAR(c[1].x(), right.x, 0.3);
+  EXPECT_NEAR(c[0].y(), left.y, 0.3);
+}
+
+}  // namespace
+}  // namespace dimer::tracking
