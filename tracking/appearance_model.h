@@ -77,7 +77,8 @@ struct LearnOptions {
   // from the outline's pairs alone.
   int jackknife_groups = kJackknifeGroups;
   // The first learning's registration search, px, where the rough centres are seeds from the
-  // highlights (highlight_seed.h), which scatter farther than LearnSearchPx; 0: LearnSearchPx.
+  // highlights (highlight_seed.h), which scatter farther than LearnSearchPx. 0: LearnSearchPx
+  // here; PrepareSequenceMethod gives SeedSearchPx for 0 when it seeds from the highlights.
   int seed_search_px = 0;
 };
 // Frames whose reference row is within this of the lowest (relative to the plate) rest, px.

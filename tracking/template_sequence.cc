@@ -106,9 +106,14 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
     for (LearningSample& s : samples) s.plate_row += m.plate_shift.value;
   }
   // Seeds from the highlights scatter by more than the learning's search (docs/BENCHMARKS.md,
-  // "Highlight seeds"): the first learning searches wider for them.
+  // "Highlight seeds"): the first learning searches wider for them; other rough centres keep
+  // the learning's own search.
   LearnOptions lo = learn;
-  if (from_highlights > 0) lo.seed_search_px = SeedSearchPx(reference.radius_px);
+  lo.seed_search_px = 0;
+  if (from_highlights > 0) {
+    lo.seed_search_px =
+        learn.seed_search_px > 0 ? learn.seed_search_px : SeedSearchPx(reference.radius_px);
+  }
   m.learnt = LearnAppearances(samples, reference.radius_px, !m.choice.silhouettes,
                               !m.choice.silhouettes && !radius_known, &m.radius_from_outline,
                               lo);

@@ -132,6 +132,9 @@ void SequenceOptions::Check() const {
   if (jackknife_groups < 0 || jackknife_groups > 64) {
     throw UsageError("jackknife groups must be 0 .. 64");
   }
+  if (seed_search_px < 0 || seed_search_px > 64) {
+    throw UsageError("the seed search must be 0 (the default) .. 64 px");
+  }
   if (camera_bits != 0 && (camera_bits < 8 || camera_bits > 16)) {
     throw UsageError("--bits must be 8 .. 16 (the camera's bits per pixel)");
   }
@@ -246,7 +249,8 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
                                          std::isfinite(options.contact_radius_px),
                                          LearnOptions{options.learn_passes, threads,
                                                       chunk_opts.plate_slope,
-                                                      options.jackknife_groups});
+                                                      options.jackknife_groups,
+                                                      options.seed_search_px});
         chunk_opts.method = prepared.choice.method;
         chunk_opts.appearance = prepared.appearance;
         // The template's radius (the scale's, or its outline's) is every frame's radius, which
