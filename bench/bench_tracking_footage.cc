@@ -318,20 +318,22 @@ std::string LevelsVersion(const std::string& dir, const std::string& cache,
 
 // --seeds: the highlights' rough centres (tracking/highlight_seed.h) on every frame, as the
 // template learning takes them where the silhouette methods find nothing: above the plate's
-// coarse row (FindPlateRowCoarse, the tracker's fallback), the blobs split into the two
-// spheres' groups. A lamp's highlight stands off the centre by the same amount in every frame
-// (the soft box's 6 px, the one-sided light's 12), which the learning does not mind: it
-// registers the frames to one another and finds the centre on the outline. What it minds is the
-// seeds' scatter about that: each sphere's column error less its median over the film, mean and
-// worst, and how many frames have a seed farther off than the learning's first search for them
-// (SeedSearchPx, 8 px at R = 23.75) and than its search for the final appearance
+// coarse row (FindPlateRowCoarse, the tracker's fallback), the film's split chosen by SeedFilm
+// (the weighed one or the widest gap: more frames whose seeds stand the median separation apart
+// within the first learning's search, 8 px at R = 23.75). A lamp's highlight stands off the
+// centre by the same amount in every frame (the soft box's 6 px, the one-sided light's 12),
+// which the learning does not mind: it registers the frames to one another and finds the
+// centre on the outline. What it minds is the seeds' scatter about that: each sphere's column
+// error less its median over the film, mean and worst, and how many frames have a seed farther
+// off than the first search (SeedSearchPx) and than the search for the final appearance
 // (LearnSearchPx, 4 px): such a seed is averaged in where it is.
 int SeedsTrade(size_t frames, int slices, const std::string& cache) {
   std::printf("Highlight seeds against the truth: %zu frames per case, every frame, load average "
               "%.1f at start\n\n", frames, LoadAverage());
-  std::printf("| footage | levels | seeded | median column error L / R (px) | scatter about it "
-              "mean / worst (px) | off by more than the seed search / the learning's search "
-              "|\n|---|---|---|---|---|---|\n");
+  std::printf("| footage | levels | split | frames a dimer apart: weighed / widest gap | seeded "
+              "| median column error L / R (px) | scatter about it mean / worst (px) | off by "
+              "more than the seed search / the learning's search |\n"
+              "|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : AllCases()) {
     const std::string dir = Footage(c, frames, slices, cache, nullptr);
     for (double factor : {1.0, 0.7, 0.5}) {
@@ -343,16 +345,20 @@ int SeedsTrade(size_t frames, int slices, const std::string& cache) {
       const std::vector<TruthRow> truth = ReadTruthCsv(film + "/truth.csv", &radius);
       const int seed_search = dimer::tracking::SeedSearchPx(radius);
       const int search = dimer::tracking::LearnSearchPx(radius);
-      std::array<std::vector<double>, 2> error;
+      std::vector<std::vector<dimer::tracking::HighlightBlob>> blobs;
       for (const TruthRow& row : truth) {
         const cv::Mat img = cv::imread(film + "/" + row.file, cv::IMREAD_UNCHANGED);
-        const double plate = dimer::tracking::FindPlateRowCoarse(img);
-        std::array<Eigen::Vector2d, 2> s;
-        if (!dimer::tracking::SplitHighlights(
-                dimer::tracking::FindHighlightBlobs(img, plate, radius), radius, &s)) {
-          continue;
+        blobs.push_back(dimer::tracking::FindHighlightBlobs(
+            img, dimer::tracking::FindPlateRowCoarse(img), radius));
+      }
+      const dimer::tracking::HighlightSeeds seeds =
+          dimer::tracking::SeedFilm(blobs, radius, seed_search, 3);
+      std::array<std::vector<double>, 2> error;
+      for (size_t i = 0; i < truth.size(); ++i) {
+        if (!seeds.seeded[i]) continue;
+        for (int k = 0; k < 2; ++k) {
+          error[k].push_back(seeds.seeds[i][k].x() - truth[i].centre[k].x());
         }
-        for (int k = 0; k < 2; ++k) error[k].push_back(s[k].x() - row.centre[k].x());
       }
       const size_t n = error[0].size();
       std::array<double, 2> median{0, 0};
@@ -371,9 +377,12 @@ int SeedsTrade(size_t frames, int slices, const std::string& cache) {
         off_seed += d > seed_search;
         off += d > search;
       }
-      std::printf("| %s | x %.1f | %zu of %zu | %+.2f / %+.2f | %.2f / %.2f | %zu / %zu |\n",
-                  c.name.c_str(), factor, n, truth.size(), median[0], median[1],
-                  n ? sum / double(n) : 0.0, worst, off_seed, off);
+      std::printf("| %s | x %.1f | %s | %zu / %zu | %zu of %zu | %+.2f / %+.2f | %.2f / %.2f | "
+                  "%zu / %zu |\n",
+                  c.name.c_str(), factor, n == 0 ? "-" : seeds.by_mass ? "weighed" : "widest gap",
+                  seeds.by_mass ? seeds.agreeing : seeds.other_agreeing,
+                  seeds.by_mass ? seeds.other_agreeing : seeds.agreeing, n, truth.size(),
+                  median[0], median[1], n ? sum / double(n) : 0.0, worst, off_seed, off);
       std::fflush(stdout);
     }
   }

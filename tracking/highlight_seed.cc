@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace dimer::tracking {
@@ -174,6 +175,83 @@ bool SplitHighlights(std::vector<HighlightBlob> blobs, double radius_px,
   };
   *centres = {mean(*left), mean(*right)};
   return true;
+}
+
+bool SplitAtWidestGap(std::vector<HighlightBlob> blobs, double radius_px,
+                      std::array<Eigen::Vector2d, 2>* centres) {
+  if (blobs.size() < 2) return false;
+  std::stable_sort(blobs.begin(), blobs.end(), [](const HighlightBlob& a, const HighlightBlob& b) {
+    return a.centre.x() < b.centre.x();
+  });
+  size_t cut = 1;
+  for (size_t i = 1; i < blobs.size(); ++i) {
+    if (blobs[i].centre.x() - blobs[i - 1].centre.x() >
+        blobs[cut].centre.x() - blobs[cut - 1].centre.x()) {
+      cut = i;
+    }
+  }
+  if (blobs[cut].centre.x() - blobs[cut - 1].centre.x() < radius_px) return false;
+  Eigen::Vector2d left(0, 0), right(0, 0);
+  for (size_t i = 0; i < blobs.size(); ++i) (i < cut ? left : right) += blobs[i].centre;
+  *centres = {left / double(cut), right / double(blobs.size() - cut)};
+  return true;
+}
+
+namespace {
+
+// How consistent a split's seeds are over the film: the frames whose two seeds stand within
+// `tolerance_px` of the median frame's separation, and the mean absolute deviation from it
+// (infinity with fewer than `min_frames` seeded).
+struct Consistency {
+  size_t agreeing = 0;
+  double spread = std::numeric_limits<double>::infinity();
+};
+Consistency SeparationConsistency(const std::vector<std::array<Eigen::Vector2d, 2>>& seeds,
+                                  const std::vector<bool>& seeded, double tolerance_px,
+                                  size_t min_frames) {
+  std::vector<double> apart;
+  for (size_t i = 0; i < seeds.size(); ++i) {
+    if (seeded[i]) apart.push_back((seeds[i][1] - seeds[i][0]).norm());
+  }
+  Consistency c;
+  if (apart.empty() || apart.size() < min_frames) return c;
+  std::vector<double> sorted = apart;
+  auto mid = sorted.begin() + std::ptrdiff_t(sorted.size() / 2);
+  std::nth_element(sorted.begin(), mid, sorted.end());
+  double sum = 0;
+  for (double a : apart) {
+    sum += std::abs(a - *mid);
+    c.agreeing += std::abs(a - *mid) <= tolerance_px;
+  }
+  c.spread = sum / double(apart.size());
+  return c;
+}
+
+}  // namespace
+
+HighlightSeeds SeedFilm(const std::vector<std::vector<HighlightBlob>>& blobs, double radius_px,
+                        double tolerance_px, size_t min_frames) {
+  std::array<HighlightSeeds, 2> by;  // 0: weighed, 1: widest gap
+  std::array<Consistency, 2> c;
+  for (int k = 0; k < 2; ++k) {
+    by[k].by_mass = k == 0;
+    by[k].seeds.resize(blobs.size());
+    by[k].seeded.resize(blobs.size());
+    for (size_t i = 0; i < blobs.size(); ++i) {
+      by[k].seeded[i] = k == 0 ? SplitHighlights(blobs[i], radius_px, &by[k].seeds[i])
+                               : SplitAtWidestGap(blobs[i], radius_px, &by[k].seeds[i]);
+    }
+    c[k] = SeparationConsistency(by[k].seeds, by[k].seeded, tolerance_px, min_frames);
+  }
+  for (int k = 0; k < 2; ++k) {
+    by[k].agreeing = c[k].agreeing;
+    by[k].spread_px = c[k].spread;
+    by[k].other_agreeing = c[1 - k].agreeing;
+    by[k].other_spread_px = c[1 - k].spread;
+  }
+  const bool gap = c[1].agreeing > c[0].agreeing ||
+                   (c[1].agreeing == c[0].agreeing && c[1].spread < c[0].spread);
+  return by[gap ? 1 : 0];
 }
 
 }  // namespace dimer::tracking

@@ -1,7 +1,8 @@
 #pragma once
 // Rough sphere centres from the highlights alone, for footage where the silhouette methods find
 // nothing (dark steel on a dark background, under-exposed, a ring light): the bright blobs above
-// the plate, split into the two spheres' groups. template_sequence.cc seeds the appearance
+// the plate, split into the two spheres' groups by one of two rules, the one whose seeds keep a
+// dimer's length apart over the film (SeedFilm). template_sequence.cc seeds the appearance
 // learning with them; learning re-centres on the plate contact (appearance_model.h), so a
 // highlight's height above the centre does not matter, its column does.
 #include <opencv2/core.hpp>
@@ -31,6 +32,31 @@ std::vector<HighlightBlob> FindHighlightBlobs(const cv::Mat& image, double plate
 // runs are less than a radius apart (one sphere's highlights, or the plate's).
 bool SplitHighlights(std::vector<HighlightBlob> blobs, double radius_px,
                      std::array<Eigen::Vector2d, 2>* centres);
+
+// The split the tracker used before SplitHighlights: at the widest gap between the blobs'
+// columns (every blob kept), each side's mean position; false when fewer than two blobs or the
+// gap is under a radius. A rod's glints between the spheres join one side (ring light: seeds
+// 40 px off), but a sphere whose second highlight is too faint to weigh keeps its specks there
+// (a cluttered backdrop's limb reflections: SplitHighlights puts such a seed at the bright limb).
+bool SplitAtWidestGap(std::vector<HighlightBlob> blobs, double radius_px,
+                      std::array<Eigen::Vector2d, 2>* centres);
+
+// Seeds for a film's learning frames (`blobs`: each frame's FindHighlightBlobs). The dimer is
+// rigid and a lamp's highlight sits at the same place on both spheres, so right seeds stand the
+// same distance apart in every frame. Both splits are made on every frame; the film's is the one
+// with more frames whose separation is within `tolerance_px` of its median frame's (those the
+// learning's first search can register), then the smaller mean absolute deviation from it, the
+// weighed split on a tie; a split seeding fewer than `min_frames` frames is not chosen.
+// `seeded[i]`: frame i has seeds in `seeds[i]`.
+struct HighlightSeeds {
+  std::vector<std::array<Eigen::Vector2d, 2>> seeds;
+  std::vector<bool> seeded;
+  bool by_mass = true;  // SplitHighlights, else SplitAtWidestGap
+  size_t agreeing = 0, other_agreeing = 0;    // the chosen and the other split's
+  double spread_px = 0, other_spread_px = 0;  // the chosen and the other split's
+};
+HighlightSeeds SeedFilm(const std::vector<std::vector<HighlightBlob>>& blobs, double radius_px,
+                        double tolerance_px, size_t min_frames);
 
 // As whole divisors (blobs lighter than a tenth of the heaviest; pairs within a twentieth of the
 // heaviest pair), compared by multiplying: a film's levels x 257 (8-bit data in 16 bits) give

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "tracking/highlight_seed.h"
 #include "tracking/parallel_for.h"
@@ -15,18 +16,6 @@ namespace {
 // Fewer learning frames than this with both spheres found by the silhouette methods, and the
 // rough centres come from the highlights instead.
 constexpr size_t kMinSeededFrames = 3;
-
-// Rough centres from the highlights alone (highlight_seed.h). `plate_row`: the plate's highest
-// row (where it slopes).
-bool HighlightSeed(const cv::Mat& image, double plate_row, double radius_px, LearningSample* s) {
-  std::array<Eigen::Vector2d, 2> centres;
-  if (!SplitHighlights(FindHighlightBlobs(image, plate_row, radius_px), radius_px, &centres)) {
-    return false;
-  }
-  s->centre = centres;
-  s->found = {true, true};
-  return true;
-}
 
 }  // namespace
 
@@ -77,8 +66,13 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
   size_t seeded = 0, from_highlights = 0;
   for (const LearningSample& s : samples) seeded += s.found[0] && s.found[1];
   if (seeded < kMinSeededFrames) {
+    // The frames the probe did not find both spheres in, each with its plate line and
+    // highlights; the film's seeds from those (highlight_seed.h, SeedFilm).
+    std::vector<size_t> frames;
+    std::vector<LearningSample> lines;
+    std::vector<std::vector<HighlightBlob>> blobs;
     for (size_t i = 0; i < samples.size(); ++i) {
-      LearningSample& s = samples[i];
+      const LearningSample& s = samples[i];
       if (s.found[0] && s.found[1]) continue;
       // Where the probe found no plate, the coarse row at the frame's centre column.
       LearningSample line = s;
@@ -88,14 +82,30 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
       }
       // Above the plate everywhere: its highest point where it slopes.
       const double highest = std::min(line.PlateRowAt(0), line.PlateRowAt(s.image.cols - 1));
-      if (!HighlightSeed(s.image, highest, reference.radius_px, &s)) continue;
+      frames.push_back(i);
+      lines.push_back(line);
+      blobs.push_back(FindHighlightBlobs(s.image, highest, reference.radius_px));
+    }
+    const HighlightSeeds seeds =
+        SeedFilm(blobs, reference.radius_px, SeedSearchPx(reference.radius_px), kMinSeededFrames);
+    for (size_t j = 0; j < frames.size(); ++j) {
+      if (!seeds.seeded[j]) continue;
+      LearningSample& s = samples[frames[j]];
+      s.centre = seeds.seeds[j];
+      s.found = {true, true};
+      s.plate_row = lines[j].plate_row;
+      s.plate_col = lines[j].plate_col;
       ++from_highlights;
-      s.plate_row = line.plate_row;
-      s.plate_col = line.plate_col;
     }
     if (from_highlights > 0) {
+      char spread[200];
+      std::snprintf(spread, sizeof spread,
+                    " (%s: %zu of them a dimer's length apart within %d px, %zu by the %s)",
+                    seeds.by_mass ? "weighed" : "split at the widest gap", seeds.agreeing,
+                    SeedSearchPx(reference.radius_px), seeds.other_agreeing,
+                    seeds.by_mass ? "widest gap" : "weighed");
       m.choice.reason += "; rough centres of " + std::to_string(from_highlights) +
-                         " learning frames from the highlights";
+                         " learning frames from the highlights" + spread;
     }
   }
   // Before learning, which frames the templates on the plate contact: the learning frames'

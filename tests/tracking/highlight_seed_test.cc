@@ -1,5 +1,5 @@
-// Rough centres from the highlights (tracking/highlight_seed.h): the blobs' masses and the split
-// into the two spheres' groups. The blob layouts are those measured on the POV-Ray films
+// Rough centres from the highlights (tracking/highlight_seed.h): the blobs' masses, the two
+// splits into the spheres' groups, and the film's choice between them. The blob layouts are those measured on the POV-Ray films
 // (docs/BENCHMARKS.md, "Highlight seeds").
 #include "tracking/highlight_seed.h"
 
@@ -62,6 +62,49 @@ TEST(SplitHighlights, OneSpheresHighlightsOrTooFewBlobsAreRefused) {
   EXPECT_FALSE(SplitHighlights({At(100, 50, 10), At(110, 52, 9)}, kRadius, &c));
   // A heavy blob and specks only: the specks are dropped, one blob is left.
   EXPECT_FALSE(SplitHighlights({At(100, 50, 100), At(200, 50, 2), At(260, 50, 3)}, kRadius, &c));
+}
+
+// The old split, kept for the films it suits: at the widest gap between columns, every blob on
+// its side averaged (the rod's dots then join the right sphere).
+TEST(SplitAtWidestGap, EveryBlobOnEachSideOfTheWidestGap) {
+  const std::vector<HighlightBlob> blobs = {At(387.0, 223.5, 179), At(249.5, 225.0, 177),
+                                            At(315.5, 224, 3), At(357.0, 224, 6.5)};
+  std::array<Eigen::Vector2d, 2> c;
+  ASSERT_TRUE(SplitAtWidestGap(blobs, kRadius, &c));
+  EXPECT_NEAR(c[0].x(), 249.5, 1e-9);
+  EXPECT_NEAR(c[1].x(), (387.0 + 315.5 + 357.0) / 3, 1e-9);
+  EXPECT_FALSE(SplitAtWidestGap({At(100, 50, 10), At(110, 52, 9)}, kRadius, &c));
+}
+
+// A film's seeds by the split whose two seeds stand a dimer's length apart in the most frames.
+// Ring light: the weighed split keeps the separation, the widest gap does not. Cluttered
+// backdrop whose left sphere's right limb fades after frame 4: the weighed split puts that
+// sphere's seed at its left limb (21.7 px off) from then on, the widest gap keeps the specks
+// there and stays within a few px.
+TEST(SeedFilm, TheSplitWhoseSeedsStandADimersLengthApartIsTheFilms) {
+  std::vector<std::vector<HighlightBlob>> ring, clutter;
+  for (int i = 0; i < 12; ++i) {
+    const double x = 250 + 0.3 * i;
+    ring.push_back({At(x, 225, 177), At(x + 137.5, 223.5, 179), At(x + 66 + i % 3, 224, 10),
+                    At(x + 97, 224, 6), At(x + 107.5 - i % 4, 224, 5)});
+    const double faint = i < 5 ? 60 : 4;  // the left sphere's right limb
+    clutter.push_back({At(x - 21.7, 222, 55), At(x + 21.7, 219, faint), At(x + 3 - i % 5, 219, 3),
+                       At(x + 137.5 - 21.7, 218, 81), At(x + 137.5 + 21.7, 219, 112)});
+  }
+  const HighlightSeeds r = SeedFilm(ring, kRadius, 8, 3);
+  EXPECT_TRUE(r.by_mass);
+  EXPECT_EQ(r.agreeing, 12u);
+  for (size_t i = 0; i < ring.size(); ++i) {
+    ASSERT_TRUE(r.seeded[i]);
+    EXPECT_NEAR(r.seeds[i][1].x() - r.seeds[i][0].x(), 137.5, 1e-9) << "frame " << i;
+  }
+  const HighlightSeeds c = SeedFilm(clutter, kRadius, 8, 3);
+  EXPECT_FALSE(c.by_mass);
+  EXPECT_GT(c.agreeing, c.other_agreeing);
+  for (size_t i = 0; i < clutter.size(); ++i) {
+    ASSERT_TRUE(c.seeded[i]);
+    EXPECT_NEAR(c.seeds[i][0].x(), 250 + 0.3 * double(i), 8.0) << "frame " << i;
+  }
 }
 
 // Through FindHighlightBlobs on a frame: two bright spots (the spheres' highlights) and a row of
