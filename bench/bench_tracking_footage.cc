@@ -9,7 +9,7 @@
 //   bench_tracking_footage --jackknife [frames] [subframes] [cache_dir] [seeds]
 //   bench_tracking_footage --exposure [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --seeds [frames] [subframes] [cache_dir]
-//   bench_tracking_footage --seed-search [frames] [subframes] [cache_dir]
+//   bench_tracking_footage --seed-agreement [frames] [subframes] [cache_dir]
 // (--ecc: what ECC's stopping rule trades, tracking/template_locator.h EccStop; --learn-passes:
 // what the template learning's passes trade, tracking/appearance_model.h LearnOptions. Every
 // case tracked by `auto` with each rule; the accuracy, how far the answers move from the first
@@ -20,9 +20,10 @@
 // its levels lowered and as 16-bit frames of a quarter of the range; defaults 20 frames, 2
 // slices. --seeds: the rough centres from the highlights, tracking/highlight_seed.h, on every
 // frame of every lighting and its levels x 0.7 and x 0.5, against the truth; defaults 20
-// frames, 2 slices; run --exposure first or it writes the lowered films itself. --seed-search:
-// what the first learning's search for highlight seeds trades, on the films seeded from their
-// highlights; defaults 20 frames, 2 slices.)
+// frames, 2 slices; run --exposure first or it writes the lowered films itself.
+// --seed-agreement: what leaving out the learning frames whose highlight seeds are not a
+// dimer's length apart trades, on the films seeded from their highlights; defaults 20 frames, 2
+// slices.)
 // Defaults: 40 frames of the hop motion, 6 exposure slices (300 us at 2000 frames/s), cache
 // folder bench_footage_cache (footage is reused while its scenes are unchanged), methods
 // "auto,centroid,template" (comma-separated `--method` names of tracking/refiner.h; auto is the
@@ -320,19 +321,19 @@ std::string LevelsVersion(const std::string& dir, const std::string& cache,
 // template learning takes them where the silhouette methods find nothing: above the plate's
 // coarse row (FindPlateRowCoarse, the tracker's fallback), the film's split chosen by SeedFilm
 // (the weighed one or the widest gap: more frames whose seeds stand the median separation apart
-// within the first learning's search, 8 px at R = 23.75). A lamp's highlight stands off the
-// centre by the same amount in every frame (the soft box's 6 px, the one-sided light's 12),
-// which the learning does not mind: it registers the frames to one another and finds the
-// centre on the outline. What it minds is the seeds' scatter about that: each sphere's column
-// error less its median over the film, mean and worst, and how many frames have a seed farther
-// off than the first search (SeedSearchPx) and than the search for the final appearance
-// (LearnSearchPx, 4 px): such a seed is averaged in where it is.
+// within twice the learning's search, 8 px at R = 23.75), the frames that do not left out. A
+// lamp's highlight stands off the centre by the same amount in every frame (the soft box's 6 px,
+// the one-sided light's 12), which the learning does not mind: it registers the frames to one
+// another and finds the centre on the outline. What it minds is the seeds' scatter about that:
+// each sphere's column error less its median over the kept frames, mean and worst, and how many
+// kept frames have a seed farther off than the learning's search (LearnSearchPx, 4 px): such a
+// seed is averaged in where it is.
 int SeedsTrade(size_t frames, int slices, const std::string& cache) {
   std::printf("Highlight seeds against the truth: %zu frames per case, every frame, load average "
               "%.1f at start\n\n", frames, LoadAverage());
-  std::printf("| footage | levels | split | frames a dimer apart: weighed / widest gap | seeded "
-              "| median column error L / R (px) | scatter about it mean / worst (px) | off by "
-              "more than the seed search / the learning's search |\n"
+  std::printf("| footage | levels | split | frames a dimer apart: weighed / widest gap | kept / "
+              "seeded | median column error L / R (px) | scatter about it mean / worst (px) | "
+              "kept frames off by more than the learning's search |\n"
               "|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : AllCases()) {
     const std::string dir = Footage(c, frames, slices, cache, nullptr);
@@ -343,7 +344,6 @@ int SeedsTrade(size_t frames, int slices, const std::string& cache) {
           factor == 1.0 ? dir : LevelsVersion(dir, cache, c.name, version, factor, CV_8U);
       double radius = 0;
       const std::vector<TruthRow> truth = ReadTruthCsv(film + "/truth.csv", &radius);
-      const int seed_search = dimer::tracking::SeedSearchPx(radius);
       const int search = dimer::tracking::LearnSearchPx(radius);
       std::vector<std::vector<dimer::tracking::HighlightBlob>> blobs;
       for (const TruthRow& row : truth) {
@@ -352,10 +352,12 @@ int SeedsTrade(size_t frames, int slices, const std::string& cache) {
             img, dimer::tracking::FindPlateRowCoarse(img), radius));
       }
       const dimer::tracking::HighlightSeeds seeds =
-          dimer::tracking::SeedFilm(blobs, radius, seed_search, 3);
+          dimer::tracking::SeedFilm(blobs, radius, 2.0 * search, 3);
       std::array<std::vector<double>, 2> error;
+      size_t seeded = 0;
       for (size_t i = 0; i < truth.size(); ++i) {
-        if (!seeds.seeded[i]) continue;
+        seeded += seeds.seeded[i];
+        if (!seeds.agrees[i]) continue;
         for (int k = 0; k < 2; ++k) {
           error[k].push_back(seeds.seeds[i][k].x() - truth[i].centre[k].x());
         }
@@ -368,21 +370,21 @@ int SeedsTrade(size_t frames, int slices, const std::string& cache) {
         median[k] = e[n / 2];
       }
       double sum = 0, worst = 0;
-      size_t off_seed = 0, off = 0;
+      size_t off = 0;
       for (size_t i = 0; i < n; ++i) {
         const double d = std::max(std::abs(error[0][i] - median[0]),
                                   std::abs(error[1][i] - median[1]));
         sum += d;
         worst = std::max(worst, d);
-        off_seed += d > seed_search;
         off += d > search;
       }
-      std::printf("| %s | x %.1f | %s | %zu / %zu | %zu of %zu | %+.2f / %+.2f | %.2f / %.2f | "
-                  "%zu / %zu |\n",
-                  c.name.c_str(), factor, n == 0 ? "-" : seeds.by_mass ? "weighed" : "widest gap",
+      std::printf("| %s | x %.1f | %s | %zu / %zu | %zu / %zu | %+.2f / %+.2f | %.2f / %.2f | "
+                  "%zu |\n",
+                  c.name.c_str(), factor,
+                  seeded == 0 ? "-" : seeds.by_mass ? "weighed" : "widest gap",
                   seeds.by_mass ? seeds.agreeing : seeds.other_agreeing,
-                  seeds.by_mass ? seeds.other_agreeing : seeds.agreeing, n, truth.size(),
-                  median[0], median[1], n ? sum / double(n) : 0.0, worst, off_seed, off);
+                  seeds.by_mass ? seeds.other_agreeing : seeds.agreeing, n, seeded, median[0],
+                  median[1], n ? sum / double(n) : 0.0, worst, off);
       std::fflush(stdout);
     }
   }
@@ -390,15 +392,16 @@ int SeedsTrade(size_t frames, int slices, const std::string& cache) {
   return 0;
 }
 
-// --seed-search: the first learning's search for seeds from the highlights
-// (tracking/appearance_model.h, SeedSearchPx; LearnOptions::seed_search_px), from the
-// learning's own search (LearnSearchPx, 4 px at R = 23.75) up. The films whose learning is
-// seeded from the highlights: ring_light, under-exposed and the cluttered backdrop as rendered
+// --seed-agreement: how near the film's median separation a learning frame's two highlight seeds
+// must stand to be learnt from (tracking/highlight_seed.h, SeedFilm; LearnOptions::
+// seed_agreement_px): by default twice the learning's search (LearnSearchPx, 4 px at R = 23.75),
+// each seed then possibly within it; 64 px keeps nearly every frame. It also decides between the
+// two splits (more frames agreeing). The films whose learning is seeded from the highlights: ring_light, under-exposed and the cluttered backdrop as rendered
 // and at 0.7 of their levels, the one-sided light, and front_point through a warm-lit colour
 // sensor made grey by a 3x3 filter (tests/common/warm_bayer.h, MosaicFilterToGrey; rounded to 8
 // bits). Tracked by `auto` on one thread: each sphere's |bias|, the worst over the films, the
 // films meeting the bias target, and the CPU time per sequence.
-int SeedSearchTrade(size_t frames, int slices, const std::string& cache) {
+int SeedAgreementTrade(size_t frames, int slices, const std::string& cache) {
   std::vector<std::pair<std::string, std::string>> films;
   for (const Case& c : AllCases()) {
     if (c.name != "ring_light" && c.name != "underexposed" && c.name != "cluttered_backdrop" &&
@@ -427,23 +430,22 @@ int SeedSearchTrade(size_t frames, int slices, const std::string& cache) {
                          LevelsVersion(dir, cache, c.name, "levels x 0.7", 0.7, CV_8U));
     }
   }
-  const int own = dimer::tracking::LearnSearchPx(23.75);
-  const int chosen = dimer::tracking::SeedSearchPx(23.75);
-  std::printf("The first learning's search for highlight seeds: %zu films of %zu frames, R = "
-              "23.75 px, `auto`, 1 thread, load average %.1f at start\n\n| search (px) | ",
+  const double chosen = 2.0 * dimer::tracking::LearnSearchPx(23.75);
+  std::printf("Highlight seeds' agreement with the dimer's length: %zu films of %zu frames, R = "
+              "23.75 px, `auto`, 1 thread, load average %.1f at start\n\n| agreement (px) | ",
               films.size(), frames, LoadAverage());
   for (const auto& f : films) std::printf("%s: bias L / R (px) | ", f.first.c_str());
   std::printf("worst bias (px) | films within 0.1 px | CPU per sequence (ms) |\n|---|");
   for (size_t i = 0; i < films.size(); ++i) std::printf("---|");
   std::printf("---|---|---|\n");
-  for (int search : {own, 6, chosen, 10, 12}) {
-    std::printf("| %d%s | ", search,
-                search == chosen ? " (default)" : search == own ? " (the learning's own)" : "");
+  for (double agreement : {4.0, 6.0, chosen, 12.0, 64.0}) {
+    std::printf("| %.0f%s | ", agreement,
+                agreement == chosen ? " (default)" : agreement == 64 ? " (nearly all kept)" : "");
     double worst = 0, cpu = 0;
     int within = 0;
     for (const auto& f : films) {
       TrackerKnobs knobs;
-      knobs.seed_search_px = search;
+      knobs.seed_agreement_px = agreement;
       const std::clock_t t0 = std::clock();
       const TrackAccuracy a = MeasureTrackAccuracy(f.second, "auto", 1, true, knobs);
       cpu += double(std::clock() - t0) / CLOCKS_PER_SEC;
@@ -510,12 +512,12 @@ int main(int argc, char** argv) {
     std::filesystem::create_directories(cache);
     return ExposureTrade(frames, slices, cache);
   }
-  if (argc > 1 && std::string(argv[1]) == "--seed-search") {
+  if (argc > 1 && std::string(argv[1]) == "--seed-agreement") {
     const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 20;
     const int slices = argc > 3 ? std::atoi(argv[3]) : 2;
     const std::string cache = argc > 4 ? argv[4] : "bench_footage_cache";
     std::filesystem::create_directories(cache);
-    return SeedSearchTrade(frames, slices, cache);
+    return SeedAgreementTrade(frames, slices, cache);
   }
   if (argc > 1 && std::string(argv[1]) == "--seeds") {
     const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 20;

@@ -25,10 +25,6 @@ constexpr size_t kMinSamples = 3;
 // larger of this and kLearnSearchR times the radius (Reach, tolerances.h).
 constexpr int kLearnSearchPx = 4;
 constexpr double kLearnSearchR = 0.16;
-// Seeds from the highlights (highlight_seed.h): the first learning's search, px, the larger of
-// this and kSeedSearchR times the radius (SeedSearchPx).
-constexpr int kSeedSearchPx = 8;
-constexpr double kSeedSearchR = 0.34;
 // Symmetry: levels above this quantile of the appearance are clipped to it (highlights).
 constexpr double kSymmetryClipQuantile = 0.9;
 // Symmetry from the rim: the ring [R - kRimInsidePx, R + kRimOutsidePx] holds the outline and
@@ -295,12 +291,12 @@ void LeaveGroupsOut(const std::vector<cv::Mat>& images, const std::vector<Learni
 namespace {
 
 // Learns sphere k's appearance from `start` positions (one per used sample): kLearnPasses of
-// averaging and registration to the mean, each sample searched within `search_px` of where it
-// is. Invalid appearance if too few samples.
+// averaging and registration to the mean. Invalid appearance if too few samples.
 void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
               const std::vector<size_t>& used, int k, int half, double radius_px,
               int cut_row, std::vector<Eigen::Vector2d> pos, const LearnOptions& learn,
-              LearntSphere* s, int search_px) {
+              LearntSphere* s) {
+  const int search_px = LearnSearchPx(radius_px);
   Appearance a;
   for (int pass = 0; pass <= learn.passes; ++pass) {
     a = Average(images, samples, used, pos, k, half, radius_px, cut_row, learn.plate_slope);
@@ -324,10 +320,6 @@ void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSamp
 
 int LearnSearchPx(double radius_px) {
   return int(std::lround(Reach(kLearnSearchPx, kLearnSearchR, radius_px)));
-}
-
-int SeedSearchPx(double radius_px) {
-  return int(std::lround(Reach(kSeedSearchPx, kSeedSearchR, radius_px)));
 }
 
 std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& samples,
@@ -361,8 +353,7 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   for (int k = 0; k < 2; ++k) {
     out[k].samples = used;
     for (size_t j : used) out[k].rough.push_back(samples[j].centre[k]);
-    LearnOne(images, samples, used, k, half, radius_px, -1, out[k].rough, learn, &out[k],
-             learn.seed_search_px > 0 ? learn.seed_search_px : LearnSearchPx(radius_px));
+    LearnOne(images, samples, used, k, half, radius_px, -1, out[k].rough, learn, &out[k]);
     if (!out[k].appearance.valid()) return {};
   }
   if (!recentre) return out;
@@ -410,8 +401,7 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   for (int k = 0; k < 2; ++k) {
     start[k] = out[k].registered;
     for (Eigen::Vector2d& p : start[k]) p += Eigen::Vector2d(col_shift[k], shift);
-    LearnOne(images, samples, used, k, final_half, radius_px, -1, start[k], learn, &out[k],
-             LearnSearchPx(radius_px));
+    LearnOne(images, samples, used, k, final_half, radius_px, -1, start[k], learn, &out[k]);
     if (!out[k].appearance.valid()) return {};
   }
   for (int k = 0; k < 2; ++k) {
@@ -440,8 +430,7 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   for (int k = 0; k < 2; ++k) {
     if (horizon[k] < 0) continue;
     LearnOne(images, samples, used, k, final_half, radius_px,
-             std::max(0, horizon[k] - HorizonGuard(radius_px)), start[k], learn, &cut[k],
-             LearnSearchPx(radius_px));
+             std::max(0, horizon[k] - HorizonGuard(radius_px)), start[k], learn, &cut[k]);
     if (!cut[k].appearance.valid()) return {};
   }
   // Registered with the whole appearance, a sphere follows its own reflection as much as its

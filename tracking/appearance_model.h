@@ -76,10 +76,10 @@ struct LearnOptions {
   // Jackknife groups (kJackknifeGroups); 0 (or fewer than 3): none, the column's uncertainty
   // from the outline's pairs alone.
   int jackknife_groups = kJackknifeGroups;
-  // The first learning's registration search, px, where the rough centres are seeds from the
-  // highlights (highlight_seed.h), which scatter farther than LearnSearchPx. 0: LearnSearchPx
-  // here; PrepareSequenceMethod gives SeedSearchPx for 0 when it seeds from the highlights.
-  int seed_search_px = 0;
+  // Seeds from the highlights (highlight_seed.h, SeedFilm): a learning frame is kept when its
+  // two seeds stand within this of the film's median separation, px; 0: twice LearnSearchPx
+  // (each seed then possibly within the learning's search). PrepareSequenceMethod uses it.
+  double seed_agreement_px = 0;
 };
 // Frames whose reference row is within this of the lowest (relative to the plate) rest, px.
 inline constexpr double kContactBandPx = 0.3;
@@ -190,10 +190,6 @@ Appearance UpperPart(const Appearance& a);
 // How far the learning registers a sample from where it was seeded, px (whole pixels): a rough
 // centre farther off than this is averaged in where it is.
 int LearnSearchPx(double radius_px);
-// The first learning's search where the rough centres are seeds from the highlights
-// (LearnOptions::seed_search_px): 8 px at R = 23.75, where 6 px left a cluttered backdrop's left
-// column 0.36 px off and 8-12 px gave 0.04-0.06 (docs/BENCHMARKS.md, "Highlight seeds").
-int SeedSearchPx(double radius_px);
 
 // Both spheres' appearances (0 left, 1 right); invalid appearance if too few samples.
 // `recentre` (footage without clean silhouettes): the templates are framed again around the

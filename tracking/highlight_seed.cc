@@ -205,6 +205,7 @@ namespace {
 struct Consistency {
   size_t agreeing = 0;
   double spread = std::numeric_limits<double>::infinity();
+  std::vector<bool> agrees;  // per frame
 };
 Consistency SeparationConsistency(const std::vector<std::array<Eigen::Vector2d, 2>>& seeds,
                                   const std::vector<bool>& seeded, double tolerance_px,
@@ -214,6 +215,7 @@ Consistency SeparationConsistency(const std::vector<std::array<Eigen::Vector2d, 
     if (seeded[i]) apart.push_back((seeds[i][1] - seeds[i][0]).norm());
   }
   Consistency c;
+  c.agrees.assign(seeds.size(), false);
   if (apart.empty() || apart.size() < min_frames) return c;
   std::vector<double> sorted = apart;
   auto mid = sorted.begin() + std::ptrdiff_t(sorted.size() / 2);
@@ -222,6 +224,9 @@ Consistency SeparationConsistency(const std::vector<std::array<Eigen::Vector2d, 
   for (double a : apart) {
     sum += std::abs(a - *mid);
     c.agreeing += std::abs(a - *mid) <= tolerance_px;
+  }
+  for (size_t i = 0; i < seeds.size(); ++i) {
+    c.agrees[i] = seeded[i] && std::abs((seeds[i][1] - seeds[i][0]).norm() - *mid) <= tolerance_px;
   }
   c.spread = sum / double(apart.size());
   return c;
@@ -245,6 +250,7 @@ HighlightSeeds SeedFilm(const std::vector<std::vector<HighlightBlob>>& blobs, do
   }
   for (int k = 0; k < 2; ++k) {
     by[k].agreeing = c[k].agreeing;
+    by[k].agrees = c[k].agrees;
     by[k].spread_px = c[k].spread;
     by[k].other_agreeing = c[1 - k].agreeing;
     by[k].other_spread_px = c[1 - k].spread;

@@ -44,13 +44,14 @@ bool SplitAtWidestGap(std::vector<HighlightBlob> blobs, double radius_px,
 // Seeds for a film's learning frames (`blobs`: each frame's FindHighlightBlobs). The dimer is
 // rigid and a lamp's highlight sits at the same place on both spheres, so right seeds stand the
 // same distance apart in every frame. Both splits are made on every frame; the film's is the one
-// with more frames whose separation is within `tolerance_px` of its median frame's (those the
-// learning's first search can register), then the smaller mean absolute deviation from it, the
-// weighed split on a tie; a split seeding fewer than `min_frames` frames is not chosen.
-// `seeded[i]`: frame i has seeds in `seeds[i]`.
+// with more frames whose separation is within `tolerance_px` of its median frame's (`agrees`:
+// those whose seeds the learning's search can register; the others have one seed off), then the
+// smaller mean absolute deviation from it, the weighed split on a tie; a split seeding fewer
+// than `min_frames` frames agrees nowhere. `seeded[i]`: frame i has seeds in `seeds[i]`.
 struct HighlightSeeds {
   std::vector<std::array<Eigen::Vector2d, 2>> seeds;
   std::vector<bool> seeded;
+  std::vector<bool> agrees;  // seeded, and within the tolerance of the median separation
   bool by_mass = true;  // SplitHighlights, else SplitAtWidestGap
   size_t agreeing = 0, other_agreeing = 0;    // the chosen and the other split's
   double spread_px = 0, other_spread_px = 0;  // the chosen and the other split's

@@ -86,10 +86,21 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
       lines.push_back(line);
       blobs.push_back(FindHighlightBlobs(s.image, highest, reference.radius_px));
     }
+    // A seed farther off than the learning's search is averaged in where it is; a frame whose
+    // two seeds are not a dimer's length apart has one of them off (docs/BENCHMARKS.md,
+    // "Highlight seeds"), and is left out.
+    const double agreement = learn.seed_agreement_px > 0
+                                 ? learn.seed_agreement_px
+                                 : 2.0 * LearnSearchPx(reference.radius_px);
     const HighlightSeeds seeds =
-        SeedFilm(blobs, reference.radius_px, SeedSearchPx(reference.radius_px), kMinSeededFrames);
+        SeedFilm(blobs, reference.radius_px, agreement, kMinSeededFrames);
+    size_t left_out = 0;
     for (size_t j = 0; j < frames.size(); ++j) {
       if (!seeds.seeded[j]) continue;
+      if (!seeds.agrees[j]) {
+        ++left_out;
+        continue;
+      }
       LearningSample& s = samples[frames[j]];
       s.centre = seeds.seeds[j];
       s.found = {true, true};
@@ -98,12 +109,13 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
       ++from_highlights;
     }
     if (from_highlights > 0) {
-      char spread[200];
+      char spread[240];
       std::snprintf(spread, sizeof spread,
-                    " (%s: %zu of them a dimer's length apart within %d px, %zu by the %s)",
+                    " (%s: %zu a dimer's length apart within %.0f px, %zu by the %s; %zu left "
+                    "out)",
                     seeds.by_mass ? "weighed" : "split at the widest gap", seeds.agreeing,
-                    SeedSearchPx(reference.radius_px), seeds.other_agreeing,
-                    seeds.by_mass ? "widest gap" : "weighed");
+                    agreement, seeds.other_agreeing, seeds.by_mass ? "widest gap" : "weighed",
+                    left_out);
       m.choice.reason += "; rough centres of " + std::to_string(from_highlights) +
                          " learning frames from the highlights" + spread;
     }
@@ -115,18 +127,9 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
   if (m.plate_shift.applied) {
     for (LearningSample& s : samples) s.plate_row += m.plate_shift.value;
   }
-  // Seeds from the highlights scatter by more than the learning's search (docs/BENCHMARKS.md,
-  // "Highlight seeds"): the first learning searches wider for them; other rough centres keep
-  // the learning's own search.
-  LearnOptions lo = learn;
-  lo.seed_search_px = 0;
-  if (from_highlights > 0) {
-    lo.seed_search_px =
-        learn.seed_search_px > 0 ? learn.seed_search_px : SeedSearchPx(reference.radius_px);
-  }
   m.learnt = LearnAppearances(samples, reference.radius_px, !m.choice.silhouettes,
                               !m.choice.silhouettes && !radius_known, &m.radius_from_outline,
-                              lo);
+                              learn);
   if (!m.learnt[0].appearance.valid() || !m.learnt[1].appearance.valid()) {
     // Nothing to learn from (fewer than 3 learning frames with both spheres): the silhouette
     // methods are what is left.

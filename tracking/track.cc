@@ -132,8 +132,8 @@ void SequenceOptions::Check() const {
   if (jackknife_groups < 0 || jackknife_groups > 64) {
     throw UsageError("jackknife groups must be 0 .. 64");
   }
-  if (seed_search_px < 0 || seed_search_px > 64) {
-    throw UsageError("the seed search must be 0 (the default) .. 64 px");
+  if (!(seed_agreement_px >= 0 && seed_agreement_px <= 64)) {
+    throw UsageError("the seeds' agreement must be 0 (the default) .. 64 px");
   }
   if (camera_bits != 0 && (camera_bits < 8 || camera_bits > 16)) {
     throw UsageError("--bits must be 8 .. 16 (the camera's bits per pixel)");
@@ -250,7 +250,7 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
                                          LearnOptions{options.learn_passes, threads,
                                                       chunk_opts.plate_slope,
                                                       options.jackknife_groups,
-                                                      options.seed_search_px});
+                                                      options.seed_agreement_px});
         chunk_opts.method = prepared.choice.method;
         chunk_opts.appearance = prepared.appearance;
         // The template's radius (the scale's, or its outline's) is every frame's radius, which

@@ -38,9 +38,10 @@ struct SequenceOptions {
   // Template method: the jackknife groups of the column offset's uncertainty (appearance_model.h,
   // LearnOptions); 0: none.
   int jackknife_groups = kJackknifeGroups;
-  // Template method: the first learning's search for seeds from the highlights, px
-  // (appearance_model.h, SeedSearchPx); 0: SeedSearchPx.
-  int seed_search_px = 0;
+  // Template method: how near the film's median separation a learning frame's two seeds from the
+  // highlights must stand to be learnt from, px (appearance_model.h, LearnOptions); 0: twice
+  // the learning's search.
+  double seed_agreement_px = 0;
   // The plate edge's motion per px in the dimer plane's px (plate_contact.h,
   // GivenPlateMotionScale); NaN: 1, or fitted on a polished plate.
   double plate_motion_scale = std::numeric_limits<double>::quiet_NaN();

@@ -139,7 +139,7 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
   if (knobs.ecc) opt.tracker.ecc = *knobs.ecc;
   opt.learn_passes = knobs.learn_passes;
   opt.jackknife_groups = knobs.jackknife_groups;
-  opt.seed_search_px = knobs.seed_search_px;
+  opt.seed_agreement_px = knobs.seed_agreement_px;
   if (scale_given) opt.contact_radius_px = radius;
   auto source = tracking::FrameSource::Open(input.empty() ? folder : input);
   const auto start = std::chrono::steady_clock::now();

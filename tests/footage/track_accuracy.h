@@ -100,7 +100,7 @@ struct TrackerKnobs {
   const tracking::EccStop* ecc = nullptr;
   int learn_passes = tracking::kLearnPasses;          // the learning's passes
   int jackknife_groups = tracking::kJackknifeGroups;  // of the column offset's uncertainty
-  int seed_search_px = 0;  // the first learning's search for highlight seeds; 0: the default
+  double seed_agreement_px = 0;  // highlight seeds' agreement with the dimer's length; 0: default
 };
 TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string& method,
                                    int threads = 0, bool scale_given = true,

@@ -103,7 +103,26 @@ TEST(SeedFilm, TheSplitWhoseSeedsStandADimersLengthApartIsTheFilms) {
   EXPECT_GT(c.agreeing, c.other_agreeing);
   for (size_t i = 0; i < clutter.size(); ++i) {
     ASSERT_TRUE(c.seeded[i]);
+    EXPECT_TRUE(c.agrees[i]) << "frame " << i;
     EXPECT_NEAR(c.seeds[i][0].x(), 250 + 0.3 * double(i), 8.0) << "frame " << i;
+  }
+}
+
+// A frame whose seeds are not a dimer's length apart (one sphere's highlight lost, a speck taken
+// for it) is marked, and left out of the learning by its caller.
+TEST(SeedFilm, FramesWhoseSeedsAreNotADimersLengthApartAreMarked) {
+  std::vector<std::vector<HighlightBlob>> film;
+  for (int i = 0; i < 10; ++i) {
+    const double x = 250 + 0.3 * i;
+    film.push_back({At(x, 225, 177), At(x + 137.5, 223.5, 179)});
+  }
+  film[4] = {At(250 + 1.2 + 40, 225, 177), At(250 + 1.2 + 137.5, 223.5, 179)};  // 40 px off
+  film[7] = {At(250, 225, 177)};                                                 // one blob
+  const HighlightSeeds s = SeedFilm(film, kRadius, 8, 3);
+  EXPECT_EQ(s.agreeing, 8u);
+  for (size_t i = 0; i < film.size(); ++i) {
+    EXPECT_EQ(s.seeded[i], i != 7) << "frame " << i;
+    EXPECT_EQ(s.agrees[i], i != 4 && i != 7) << "frame " << i;
   }
 }
 

@@ -396,12 +396,21 @@ TEST(PovrayCine, TenBitAndColourPhantomFilesMeetTheTargets) {
     EXPECT_TRUE(measure(name).MeetsTargets(&why)) << name << ": " << why;
   }
   // The filtered film misses the scatter target in 8 bits too (the filter's leak at the
-  // highlights, docs/BENCHMARKS.md): its 16-bit export must track as its 8-bit frames do.
+  // highlights, docs/BENCHMARKS.md): its 16-bit export must track as its 8-bit frames do. Its
+  // learning is seeded from highlights that scatter by 2-13 px, and there the registrations'
+  // whole-pixel peaks are near ties that float rounding decides: the same seeds (checked by
+  // hand) give columns 0.016 px apart for the 8-bit frames and their x 257 copy, and per-frame
+  // positions up to 0.05 px apart (docs/BENCHMARKS.md, "Highlight seeds"). The biases must
+  // agree within a quarter of the uncertainty the track file states for them, at least 0.01 px
+  // (0.01 px flat before the highlight seeds were weighed, when the pair agreed within 0.002).
   const TrackAccuracy a8 = measure("narrow.cine"), a16 = measure("wide.cine");
   for (int k = 0; k < 2; ++k) {
     EXPECT_EQ(a16.sphere[k].found, a8.sphere[k].found) << k;
-    EXPECT_NEAR(a16.sphere[k].bias.x(), a8.sphere[k].bias.x(), 0.01) << k;
-    EXPECT_NEAR(a16.sphere[k].bias.y(), a8.sphere[k].bias.y(), 0.01) << k;
+    for (int axis = 0; axis < 2; ++axis) {
+      const double tolerance = std::max(0.01, 0.25 * a8.sphere[k].stated_err(axis));
+      EXPECT_NEAR(a16.sphere[k].bias(axis), a8.sphere[k].bias(axis), tolerance)
+          << "sphere " << k << " axis " << axis;
+    }
     EXPECT_NEAR(a16.sphere[k].scatter, a8.sphere[k].scatter, 0.01) << k;
   }
   EXPECT_EQ(a16.identity_swaps, 0u);
@@ -499,8 +508,8 @@ TEST(PovrayQuarterRange, SixteenBitFramesOfAQuarterOfTheRangeTrackAsTheirEightBi
 // rough centres come from the highlights; splitting them at the widest gap between columns put a
 // steel rod's glints of the ring light with a sphere (ring_light's right sphere not found, the
 // left 49 px off) and, under-exposed, lost 10-15 % of the frames. The highlights are now weighed
-// by their light (tracking/highlight_seed.h) and the first learning searches twice as far for
-// seeds from them (tracking/appearance_model.h, SeedSearchPx). Each film: both spheres found, no swap, each bias within 3 of its
+// by their light, and a film's learning frames whose seeds are not a dimer's length apart are
+// left out (tracking/highlight_seed.h). Each film: both spheres found, no swap, each bias within 3 of its
 // stated uncertainties (the track file's word on its column), the plate within the target; the
 // issue's bias target where the film as rendered meets it (under-exposed and the cluttered
 // backdrop; ring_light's left column misses it as rendered). CTest `povray.lower_levels`.
