@@ -505,26 +505,19 @@ int main(int argc, char** argv) {
     --argc;
     ++argv;
   }
-  if (argc > 1 && std::string(argv[1]) == "--exposure") {
+  // The modes of 20-frame films in 2 slices by default: [frames] [subframes] [cache_dir].
+  using ShortMode = int (*)(size_t, int, const std::string&);
+  const std::vector<std::pair<std::string, ShortMode>> short_modes = {
+      {"--exposure", ExposureTrade},
+      {"--seed-agreement", SeedAgreementTrade},
+      {"--seeds", SeedsTrade}};
+  for (const auto& [flag, run] : short_modes) {
+    if (argc < 2 || std::string(argv[1]) != flag) continue;
     const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 20;
     const int slices = argc > 3 ? std::atoi(argv[3]) : 2;
     const std::string cache = argc > 4 ? argv[4] : "bench_footage_cache";
     std::filesystem::create_directories(cache);
-    return ExposureTrade(frames, slices, cache);
-  }
-  if (argc > 1 && std::string(argv[1]) == "--seed-agreement") {
-    const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 20;
-    const int slices = argc > 3 ? std::atoi(argv[3]) : 2;
-    const std::string cache = argc > 4 ? argv[4] : "bench_footage_cache";
-    std::filesystem::create_directories(cache);
-    return SeedAgreementTrade(frames, slices, cache);
-  }
-  if (argc > 1 && std::string(argv[1]) == "--seeds") {
-    const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 20;
-    const int slices = argc > 3 ? std::atoi(argv[3]) : 2;
-    const std::string cache = argc > 4 ? argv[4] : "bench_footage_cache";
-    std::filesystem::create_directories(cache);
-    return SeedsTrade(frames, slices, cache);
+    return run(frames, slices, cache);
   }
   if (argc > 1 && std::string(argv[1]) == "--jackknife") {
     const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 20;

@@ -471,6 +471,20 @@ TEST(PovrayLeavingTheFrame, ASphereCutByTheFramesEdgeIsNotFoundBesideItself) {
 // defocus_1px's not found, over-exposed's plate 0.41 px off (CTest `povray.quarter_range`).
 std::vector<Case> CameraCases();
 
+// The 8-bit footage in `src` written again into `dst` with its levels x `factor` into `depth`
+// (rounded, saturated), truth.csv copied. Fails the test where a frame is not 8-bit.
+void WriteLevelsCopy(const std::string& src, const std::filesystem::path& dst, double factor,
+                     int depth) {
+  std::filesystem::copy_file(src + "/truth.csv", dst / "truth.csv");
+  for (const auto& row : ReadTruthCsv(src + "/truth.csv")) {
+    const cv::Mat img = cv::imread(src + "/" + row.file, cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(img.type(), CV_8UC1) << row.file;
+    cv::Mat out;
+    img.convertTo(out, depth, factor);
+    ASSERT_TRUE(cv::imwrite(dst / row.file, out));
+  }
+}
+
 TEST(PovrayQuarterRange, SixteenBitFramesOfAQuarterOfTheRangeTrackAsTheirEightBitFrames) {
   std::vector<Case> cases = {Case{"overexposed", Lighting::kOverexposed, 3.9},
                              Case{"ring_light", Lighting::kRingLight, 3.9}};
@@ -481,14 +495,7 @@ TEST(PovrayQuarterRange, SixteenBitFramesOfAQuarterOfTheRangeTrackAsTheirEightBi
   for (const Case& c : cases) {
     const std::string src = Footage(c);
     dimer::testing::TempDir tmp;
-    std::filesystem::copy_file(src + "/truth.csv", tmp / "truth.csv");
-    for (const auto& row : ReadTruthCsv(src + "/truth.csv")) {
-      const cv::Mat img = cv::imread(src + "/" + row.file, cv::IMREAD_UNCHANGED);
-      ASSERT_EQ(img.type(), CV_8UC1) << row.file;
-      cv::Mat wide;
-      img.convertTo(wide, CV_16U, 64);
-      ASSERT_TRUE(cv::imwrite(tmp / row.file, wide));
-    }
+    ASSERT_NO_FATAL_FAILURE(WriteLevelsCopy(src, tmp.path(), 64, CV_16U));
     const TrackAccuracy a8 = Accuracy(c);
     const TrackAccuracy a16 = MeasureTrackAccuracy(tmp.path().string(), TestMethod(), 2);
     std::printf("%s, 8-bit and as 16-bit x 64\n%s%s%s", c.name, AccuracyHeader().c_str(),
@@ -521,14 +528,7 @@ TEST(PovrayLowerLevels, FrontLitSteelAtALowerGainIsFoundAndItsStatedUncertaintyH
   for (const auto& [c, bias_target] : cases) {
     const std::string src = Footage(c);
     dimer::testing::TempDir tmp;
-    std::filesystem::copy_file(src + "/truth.csv", tmp / "truth.csv");
-    for (const auto& row : ReadTruthCsv(src + "/truth.csv")) {
-      const cv::Mat img = cv::imread(src + "/" + row.file, cv::IMREAD_UNCHANGED);
-      ASSERT_EQ(img.type(), CV_8UC1) << row.file;
-      cv::Mat lower;
-      img.convertTo(lower, CV_8U, 0.7);
-      ASSERT_TRUE(cv::imwrite(tmp / row.file, lower));
-    }
+    ASSERT_NO_FATAL_FAILURE(WriteLevelsCopy(src, tmp.path(), 0.7, CV_8U));
     const TrackAccuracy a = MeasureTrackAccuracy(tmp.path().string(), TestMethod(), 2);
     std::printf("%s, levels x 0.7\n%s%s", c.name, AccuracyHeader().c_str(),
                 AccuracyRow(a).c_str());
