@@ -221,12 +221,12 @@ Consistency SeparationConsistency(const std::vector<std::array<Eigen::Vector2d, 
   auto mid = sorted.begin() + std::ptrdiff_t(sorted.size() / 2);
   std::nth_element(sorted.begin(), mid, sorted.end());
   double sum = 0;
-  for (double a : apart) {
-    sum += std::abs(a - *mid);
-    c.agreeing += std::abs(a - *mid) <= tolerance_px;
-  }
   for (size_t i = 0; i < seeds.size(); ++i) {
-    c.agrees[i] = seeded[i] && std::abs((seeds[i][1] - seeds[i][0]).norm() - *mid) <= tolerance_px;
+    if (!seeded[i]) continue;
+    const double off = std::abs((seeds[i][1] - seeds[i][0]).norm() - *mid);
+    sum += off;
+    c.agrees[i] = off <= tolerance_px;
+    c.agreeing += c.agrees[i];
   }
   c.spread = sum / double(apart.size());
   return c;
