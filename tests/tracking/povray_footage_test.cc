@@ -242,6 +242,19 @@ TEST(PovrayFootageThreads, OverexposedPlateIdenticalForOneAndTwoThreads) {
   ExpectIdentical(r);
 }
 
+// And where the learning is seeded from the highlights, the film's split chosen by the dimer's
+// length and the frames that disagree left out (tracking/highlight_seed.h): the cluttered
+// backdrop.
+TEST(PovrayFootageThreads, HighlightSeededLearningIdenticalForOneAndTwoThreads) {
+  const auto r = TrackWithOneAndTwoThreads(
+      Case{"cluttered_backdrop", Lighting::kClutteredBackdrop, 3.9});
+  EXPECT_NE(r[0].method_reason.find("from the highlights"), std::string::npos)
+      << r[0].method_reason;
+  EXPECT_NE(r[0].method_reason.find("left out"), std::string::npos) << r[0].method_reason;
+  EXPECT_EQ(r[0].method_reason, r[1].method_reason);
+  ExpectIdentical(r);
+}
+
 // Through a camera turned about its axis (half a degree, 8 degrees), the track file's metres run
 // along the plate: the resting left sphere's centre stands R above the plate, and the dimer's
 // axis angle is the scene's, both within the 0.1 px bias (read off level axes at half a
