@@ -20,7 +20,7 @@
 // its levels lowered and as 16-bit frames of a quarter of the range; defaults 20 frames, 2
 // slices. --seeds: the rough centres from the highlights, tracking/highlight_seed.h, on every
 // frame of every lighting and its levels x 0.7 and x 0.5, against the truth; defaults 20
-// frames, 2 slices; run --exposure first or it writes the lowered films itself.
+// frames, 2 slices; it writes the lowered films into CACHE/levels, as --exposure does.
 // --seed-agreement: what leaving out the learning frames whose highlight seeds are not a
 // dimer's length apart trades, on the films seeded from their highlights; defaults 20 frames, 2
 // slices.)
