@@ -1,5 +1,7 @@
 #include "tracking/highlight_seed.h"
 
+#include "tracking/median.h"
+
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -13,6 +15,28 @@ namespace {
 // A pixel is a highlight when it stands this many robust sigmas above the median of the region
 // above the plate, and above the midpoint between that median and the brightest pixel.
 constexpr double kHighlightSigmas = 10.0;
+
+// The sensor's noise in `region`, from the differences of horizontal neighbours (sigma sqrt 2
+// each, whatever the scene's shading), their median read through the level step (median.h,
+// QuantisedMedian). The spread of the levels about their median measured the scene instead: a
+// cluttered backdrop's shading, and in whole levels, so that at half the gain the floor stood at
+// 30 levels over the median where the noise was 1 and the spheres' highlights 31
+// (docs/BENCHMARKS.md, "Highlight seeds"). At least half the data's level step: a backdrop whose
+// noise the quantisation hides must not make every level above its median a highlight. The step
+// is the frame's own (the greatest common divisor of its levels): 16-bit frames of coarser data
+// (8-bit levels x 257, a 10-bit camera's x 64) with a floor of half a 16-bit level made every
+// noisy pixel a highlight, and the learning followed noise (a warm-lit POV-Ray film 30 px off);
+// a floor of half an 8-bit level was too high for x 64 data.
+double NoiseSigma(const cv::Mat& region, double step) {
+  std::vector<double> d;
+  d.reserve(size_t(region.rows) * size_t(std::max(region.cols - 1, 0)));
+  for (int r = 0; r < region.rows; ++r) {
+    const float* a = region.ptr<float>(r);
+    for (int c = 1; c < region.cols; ++c) d.push_back(double(a[c]) - double(a[c - 1]));
+  }
+  const double m = QuantisedMedian(d, step);
+  return std::max(std::isfinite(m) ? 1.4826 * m / std::sqrt(2.0) : 0.0, 0.5 * step);
+}
 
 }  // namespace
 
@@ -38,15 +62,7 @@ std::vector<HighlightBlob> FindHighlightBlobs(const cv::Mat& image, double plate
   auto mid = v.begin() + std::ptrdiff_t(v.size() / 2);
   std::nth_element(v.begin(), mid, v.end());
   const double median = *mid;
-  for (float& x : v) x = float(std::abs(x - median));
-  std::nth_element(v.begin(), mid, v.end());
-  // At least half the data's level step: a backdrop whose noise the quantisation hides (MAD 0)
-  // must not make every level above its median a highlight. The step is the frame's own (the
-  // greatest common divisor of its levels): 16-bit frames of coarser data (8-bit levels x 257,
-  // a 10-bit camera's x 64) with a floor of half a 16-bit level made every noisy pixel a
-  // highlight, and the learning followed noise (a warm-lit POV-Ray film 30 px off;
-  // docs/BENCHMARKS.md); a floor of half an 8-bit level was too high for x 64 data.
-  const double sigma = std::max(1.4826 * *mid, 0.5 * LevelStep(image));
+  const double sigma = NoiseSigma(above, LevelStep(image));
   const double floor_level = median + kHighlightSigmas * sigma;
   double top = 0;
   cv::minMaxLoc(above, nullptr, &top);

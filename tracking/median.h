@@ -29,4 +29,28 @@ inline double LowestSupported(std::vector<double> v, double support, size_t min_
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+// The median of non-negative values that are whole multiples of `step` (absolute differences of
+// quantised levels), read as the continuous quantity they were rounded from: a value k step
+// stands for [(k - 1/2) step, (k + 1/2) step] (k = 0: [0, step / 2]), evenly filled, and the
+// median is interpolated where the count passes half. The plain median of such data jumps by
+// whole steps: a noise of 1 level reads as 0.67 or 1.48 levels. NaN for an empty sample.
+inline double QuantisedMedian(const std::vector<double>& v, double step) {
+  if (v.empty() || !(step > 0)) return std::numeric_limits<double>::quiet_NaN();
+  std::vector<long long> k(v.size());
+  for (size_t i = 0; i < v.size(); ++i) k[i] = std::llround(std::abs(v[i]) / step);
+  std::sort(k.begin(), k.end());
+  const double half = 0.5 * double(k.size());
+  for (size_t i = 0; i < k.size();) {
+    size_t j = i;
+    while (j < k.size() && k[j] == k[i]) ++j;
+    if (double(j) >= half) {
+      const double lo = k[i] == 0 ? 0.0 : (double(k[i]) - 0.5) * step;
+      const double width = k[i] == 0 ? 0.5 * step : step;
+      return lo + (half - double(i)) / double(j - i) * width;
+    }
+    i = j;
+  }
+  return double(k.back()) * step;
+}
+
 }  // namespace dimer::tracking

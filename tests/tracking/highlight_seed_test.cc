@@ -158,5 +158,37 @@ TEST(FindHighlightBlobs, MassesSetTheRodsGlintsApartFromTheSpheresHighlights) {
   EXPECT_NEAR(c[0].y(), left.y, 0.3);
 }
 
+// A backdrop of broad bands two levels apart (a cluttered lab: shelves, a poster), noise of one
+// level, and two spheres' highlights 30 levels above it, as the cluttered backdrop at half the
+// gain (docs/BENCHMARKS.md, "Highlight seeds"). The highlight floor is set by the noise, read
+// from neighbouring pixels; read from the levels' spread about their median (the bands) it stood
+// at 44 levels above the median, over the highlights.
+TEST(FindHighlightBlobs, TheFloorFollowsTheNoiseNotTheBackdropsShading) {
+  cv::Mat f(240, 480, CV_32F);
+  for (int c = 0; c < f.cols; ++c) f.col(c).setTo((c / 40) % 2 == 0 ? 20.0 : 26.0);
+  cv::Mat n32(f.size(), CV_32F);
+  cv::RNG rng(11);
+  rng.fill(n32, cv::RNG::NORMAL, 0, 1.0);
+  f += n32;
+  const cv::Point2d left(150.3, 150.6), right(289.7, 149.2);
+  for (int r = 0; r < f.rows; ++r) {
+    for (int c = 0; c < f.cols; ++c) {
+      for (const cv::Point2d& p : {left, right}) {
+        const double d2 = (c - p.x) * (c - p.x) + (r - p.y) * (r - p.y);
+        f.at<float>(r, c) += float(30 * std::exp(-d2 / (2 * 1.2 * 1.2)));
+      }
+    }
+  }
+  f.rowRange(200, 240).setTo(200);  // the plate
+  cv::Mat frame;
+  f.convertTo(frame, CV_8U);
+  const std::vector<HighlightBlob> blobs = FindHighlightBlobs(frame, 200, kRadius);
+  std::array<Eigen::Vector2d, 2> c;
+  ASSERT_TRUE(SplitHighlights(blobs, kRadius, &c)) << blobs.size() << " blobs";
+  EXPECT_NEAR(c[0].x(), left.x, 0.5);
+  EXPECT_NEAR(c[1].x(), right.x, 0.5);
+  EXPECT_EQ(blobs.size(), 2u);  // nothing of the bands or the noise
+}
+
 }  // namespace
 }  // namespace dimer::tracking
