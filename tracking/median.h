@@ -38,19 +38,20 @@ inline double QuantisedMedian(const std::vector<double>& v, double step) {
   if (v.empty() || !(step > 0)) return std::numeric_limits<double>::quiet_NaN();
   std::vector<long long> k(v.size());
   for (size_t i = 0; i < v.size(); ++i) k[i] = std::llround(std::abs(v[i]) / step);
-  std::sort(k.begin(), k.end());
+  // The bin where the count passes half holds the element ranked ceil(n/2) - 1 (linear time: a
+  // frame's 150,000 differences, every learning frame).
   const double half = 0.5 * double(k.size());
-  for (size_t i = 0; i < k.size();) {
-    size_t j = i;
-    while (j < k.size() && k[j] == k[i]) ++j;
-    if (double(j) >= half) {
-      const double lo = k[i] == 0 ? 0.0 : (double(k[i]) - 0.5) * step;
-      const double width = k[i] == 0 ? 0.5 * step : step;
-      return lo + (half - double(i)) / double(j - i) * width;
-    }
-    i = j;
+  const size_t rank = size_t(std::ceil(half)) - 1;
+  std::nth_element(k.begin(), k.begin() + std::ptrdiff_t(rank), k.end());
+  const long long m = k[rank];
+  size_t below = 0, in = 0;
+  for (long long x : k) {
+    below += x < m;
+    in += x == m;
   }
-  return double(k.back()) * step;
+  const double lo = m == 0 ? 0.0 : (double(m) - 0.5) * step;
+  const double width = m == 0 ? 0.5 * step : step;
+  return lo + (half - double(below)) / double(in) * width;
 }
 
 }  // namespace dimer::tracking
