@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <cmath>
+#include <initializer_list>
 #include <random>
 
 namespace dimer::tracking {
@@ -126,6 +127,19 @@ TEST(SeedFilm, FramesWhoseSeedsAreNotADimersLengthApartAreMarked) {
   }
 }
 
+// Gaussian spots (sigma 1.2 px, `peak` levels high) added to a float frame: the spheres'
+// highlights.
+void AddHighlights(cv::Mat* f, std::initializer_list<cv::Point2d> at, double peak) {
+  for (int r = 0; r < f->rows; ++r) {
+    for (int c = 0; c < f->cols; ++c) {
+      for (const cv::Point2d& p : at) {
+        const double d2 = (c - p.x) * (c - p.x) + (r - p.y) * (r - p.y);
+        f->at<float>(r, c) += float(peak * std::exp(-d2 / (2 * 1.2 * 1.2)));
+      }
+    }
+  }
+}
+
 // Through FindHighlightBlobs on a frame: two bright spots (the spheres' highlights) and a row of
 // dim dots between them, above a bright plate, with noise. The dots pass the highlight level
 // but weigh little; the seeds are the spots'.
@@ -138,14 +152,7 @@ TEST(FindHighlightBlobs, MassesSetTheRodsGlintsApartFromTheSpheresHighlights) {
   rng.fill(n32, cv::RNG::NORMAL, 0, 1.5);  // a noisy dark backdrop
   f += n32;
   const cv::Point2d left(150.3, 150.6), right(289.7, 149.2);
-  for (int r = 0; r < f.rows; ++r) {
-    for (int c = 0; c < f.cols; ++c) {
-      for (const cv::Point2d& p : {left, right}) {
-        const double d2 = (c - p.x) * (c - p.x) + (r - p.y) * (r - p.y);
-        f.at<float>(r, c) += float(120 * std::exp(-d2 / (2 * 1.2 * 1.2)));
-      }
-    }
-  }
+  AddHighlights(&f, {left, right}, 120);
   for (int col : {215, 226, 238, 246, 250, 257}) f.at<float>(150, col) += 70;  // the rod's dots
   f.rowRange(200, 240).setTo(200);                                              // the plate
   f.convertTo(frame, CV_8U);
@@ -171,14 +178,7 @@ TEST(FindHighlightBlobs, TheFloorFollowsTheNoiseNotTheBackdropsShading) {
   rng.fill(n32, cv::RNG::NORMAL, 0, 1.0);
   f += n32;
   const cv::Point2d left(150.3, 150.6), right(289.7, 149.2);
-  for (int r = 0; r < f.rows; ++r) {
-    for (int c = 0; c < f.cols; ++c) {
-      for (const cv::Point2d& p : {left, right}) {
-        const double d2 = (c - p.x) * (c - p.x) + (r - p.y) * (r - p.y);
-        f.at<float>(r, c) += float(30 * std::exp(-d2 / (2 * 1.2 * 1.2)));
-      }
-    }
-  }
+  AddHighlights(&f, {left, right}, 30);
   f.rowRange(200, 240).setTo(200);  // the plate
   cv::Mat frame;
   f.convertTo(frame, CV_8U);
