@@ -1,13 +1,13 @@
 #include "tracking/highlight_seed.h"
 
-#include "tracking/median.h"
-
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
+
+#include "tracking/median.h"
 
 namespace dimer::tracking {
 namespace {
