@@ -396,11 +396,12 @@ int SeedsTrade(size_t frames, int slices, const std::string& cache) {
 // must stand to be learnt from (tracking/highlight_seed.h, SeedFilm; LearnOptions::
 // seed_agreement_px): by default twice the learning's search (LearnSearchPx, 4 px at R = 23.75),
 // each seed then possibly within it; 64 px keeps nearly every frame. It also decides between the
-// two splits (more frames agreeing). The films whose learning is seeded from the highlights: ring_light, under-exposed and the cluttered backdrop as rendered
-// and at 0.7 of their levels, the one-sided light, and front_point through a warm-lit colour
-// sensor made grey by a 3x3 filter (tests/common/warm_bayer.h, MosaicFilterToGrey; rounded to 8
-// bits). Tracked by `auto` on one thread: each sphere's |bias|, the worst over the films, the
-// films meeting the bias target, and the CPU time per sequence.
+// two splits (more frames agreeing). The films whose learning is seeded from the highlights:
+// ring_light, under-exposed and the cluttered backdrop as rendered and at 0.7 of their levels,
+// the one-sided light, and front_point through a warm-lit colour sensor made grey by a 3x3
+// filter (tests/common/warm_bayer.h, MosaicFilterToGrey; rounded to 8 bits). Tracked by `auto`
+// on one thread: each sphere's |bias|, the worst over the films, the films meeting the bias
+// target, and the CPU time per sequence.
 int SeedAgreementTrade(size_t frames, int slices, const std::string& cache) {
   std::vector<std::pair<std::string, std::string>> films;
   for (const Case& c : AllCases()) {

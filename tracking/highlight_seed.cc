@@ -21,12 +21,13 @@ constexpr double kHighlightSigmas = 10.0;
 // QuantisedMedian). The spread of the levels about their median measured the scene instead: a
 // cluttered backdrop's shading, and in whole levels, so that at half the gain the floor stood at
 // 30 levels over the median where the noise was 1 and the spheres' highlights 31
-// (docs/BENCHMARKS.md, "Highlight seeds"). At least half the data's level step: a backdrop whose
-// noise the quantisation hides must not make every level above its median a highlight. The step
-// is the frame's own (the greatest common divisor of its levels): 16-bit frames of coarser data
-// (8-bit levels x 257, a 10-bit camera's x 64) with a floor of half a 16-bit level made every
-// noisy pixel a highlight, and the learning followed noise (a warm-lit POV-Ray film 30 px off);
-// a floor of half an 8-bit level was too high for x 64 data.
+// (docs/BENCHMARKS.md, "The highlight floor from the sensor's noise"). At least half the
+// data's level step: a backdrop whose noise the quantisation hides must not make every level
+// above its median a highlight. The step is the frame's own (the greatest common divisor of
+// its levels): 16-bit frames of coarser data (8-bit levels x 257, a 10-bit camera's x 64) with
+// a floor of half a 16-bit level made every noisy pixel a highlight, and the learning followed
+// noise (a warm-lit POV-Ray film 30 px off); a floor of half an 8-bit level was too high for
+// x 64 data.
 double NoiseSigma(const cv::Mat& region, double step) {
   std::vector<double> d;
   d.reserve(size_t(region.rows) * size_t(std::max(region.cols - 1, 0)));

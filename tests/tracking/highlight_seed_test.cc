@@ -1,6 +1,6 @@
 // Rough centres from the highlights (tracking/highlight_seed.h): the blobs' masses, the two
-// splits into the spheres' groups, and the film's choice between them. The blob layouts are those measured on the POV-Ray films
-// (docs/BENCHMARKS.md, "Highlight seeds").
+// splits into the spheres' groups, the film's choice between them, and the highlight floor. The
+// blob layouts are those measured on the POV-Ray films (docs/BENCHMARKS.md, "Highlight seeds").
 #include "tracking/highlight_seed.h"
 
 #include <gtest/gtest.h>
