@@ -1,5 +1,6 @@
 #include "tracking/appearance_model.h"
 
+#include "tracking/appearance_mismatch.h"
 #include "tracking/limb_fit.h"
 #include "tracking/median.h"
 #include "tracking/parallel_for.h"
@@ -656,11 +657,11 @@ OffsetEstimate ColumnWithoutTheUpperOutline(const LearntSphere& s) {
   return Midway(e, s.whole_outline_col, "symmetry_and_whole_outline");
 }
 
-OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to,
-                                    const OffsetEstimate& from_offset) {
-  if (!from.valid() || !to.valid() || from.image.size() != to.image.size()) {
-    return OffsetEstimate{0, NAN, 0, "none"};
-  }
+namespace {
+
+// The two outline fits of TransferRowByOutline; false where either fails.
+bool OutlineRows(const Appearance& from, const Appearance& to, LimbFit* a, LimbFit* b) {
+  if (!from.valid() || !to.valid() || from.image.size() != to.image.size()) return false;
   // Both outlines over the same pixels (the rod's side of each and the lower cuts of both left
   // out of both): the arcs fitted are the same, and so is their bias.
   Appearance f = UpperPart(from), t = UpperPart(to);
@@ -674,8 +675,39 @@ OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to
   lo.max_shift_px =
       Reach(kTransferOutlineMaxShiftPx, kTransferOutlineMaxShiftR, from.radius_px);
   lo.one_side_ok = true;
-  const LimbFit a = FitLimb(f, lo), b = FitLimb(t, lo);
-  if (!a.ok || !b.ok) return OffsetEstimate{0, NAN, 0, "none"};
+  *a = FitLimb(f, lo);
+  *b = FitLimb(t, lo);
+  return a->ok && b->ok;
+}
+
+}  // namespace
+
+OffsetEstimate TransferRowByOutline(const LearntSphere& from, const LearntSphere& to,
+                                    const OffsetEstimate& from_offset) {
+  OffsetEstimate e = TransferRowByOutline(from.appearance, to.appearance, from_offset);
+  if (e.source == "none" || from.jackknife.size() != to.jackknife.size()) return e;
+  // Group j leaves the same learning frames out of both spheres (both learn from the frames
+  // that show both): the difference's spread over the groups is its noise, neighbouring edges'
+  // correlation included.
+  std::vector<double> differences;
+  for (size_t j = 0; j < from.jackknife.size(); ++j) {
+    LimbFit a, b;
+    differences.push_back(OutlineRows(from.jackknife[j], to.jackknife[j], &a, &b)
+                              ? b.centre.y() - a.centre.y()
+                              : NAN);
+  }
+  const double noise = JackknifeError(differences);
+  if (std::isfinite(noise)) {
+    const double fits = std::sqrt(e.err * e.err - from_offset.err * from_offset.err);
+    e.err = std::hypot(from_offset.err, std::max(fits, noise));
+  }
+  return e;
+}
+
+OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to,
+                                    const OffsetEstimate& from_offset) {
+  LimbFit a, b;
+  if (!OutlineRows(from, to, &a, &b)) return OffsetEstimate{0, NAN, 0, "none"};
   OffsetEstimate e;
   e.value = from_offset.value + (b.centre.y() - a.centre.y());
   e.err = std::sqrt(from_offset.err * from_offset.err + a.centre_err.y() * a.centre_err.y() +
@@ -686,10 +718,29 @@ OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to
 }
 
 OffsetEstimate CombineRowTransfers(const OffsetEstimate& registered,
-                                   const OffsetEstimate& outline) {
-  if (outline.source == "none") return registered;
-  if (registered.source == "none") return outline;
-  return Midway(registered, outline, "plate_contact_of_other_both");
+                                   const OffsetEstimate& outline, double mismatch) {
+  if (!std::isfinite(mismatch)) {
+    if (outline.source == "none") return registered;
+    if (registered.source == "none") return outline;
+    return Midway(registered, outline, "plate_contact_of_other_both");
+  }
+  // Each with its model error.
+  OffsetEstimate reg = registered, out = outline;
+  reg.err = std::hypot(reg.err, RegisteredTransferModelErr(mismatch));
+  out.err = std::hypot(out.err, kOutlineTransferModelPx);
+  if (outline.source == "none") return reg;
+  if (registered.source == "none") return out;
+  if (!(reg.err > 0) || !std::isfinite(reg.err) || !std::isfinite(out.err)) {
+    return Midway(registered, outline, "plate_contact_of_other_both");
+  }
+  const double wr = 1.0 / (reg.err * reg.err), wo = 1.0 / (out.err * out.err);
+  OffsetEstimate e = reg;
+  e.value = (wr * reg.value + wo * out.value) / (wr + wo);
+  e.err = 1.0 / std::sqrt(wr + wo);
+  const double scale = std::abs(reg.value - out.value) / std::hypot(reg.err, out.err);
+  if (scale > 1) e.err *= scale;
+  e.source = "plate_contact_of_other_both";
+  return e;
 }
 
 OffsetEstimate TransferOffset(const Appearance& from, const Appearance& to,

@@ -264,14 +264,30 @@ OffsetEstimate TransferOffset(const Appearance& from, const Appearance& to,
 // dark under one-sided light): both are fitted over the same pixels, so their arcs are alike.
 OffsetEstimate TransferRowByOutline(const Appearance& from, const Appearance& to,
                                     const OffsetEstimate& from_offset);
+// The same with the outlines' noise measured: the uncertainty takes the larger of the two
+// circle fits' and the jackknife's over the spheres' left-out groups (LearntSphere::jackknife),
+// as the limb column does (LimbColumnOffset).
+OffsetEstimate TransferRowByOutline(const LearntSphere& from, const LearntSphere& to,
+                                    const OffsetEstimate& from_offset);
 // The bouncing sphere's row from both transfers. They rest on different assumptions (the two
 // appearances alike, or the two outlines alike) and each fails where its own does: light from
-// one side or a soft box makes the appearances unlike (the registered row 0.15-0.22 px off on
-// the POV-Ray footage), a template framed far above its centre or a dark outline defeats the
-// outline fit. With both, their midpoint and half their difference in the uncertainty (source
-// "plate_contact_of_other_both"); else the one there is.
+// one side or a soft box makes the appearances unlike (the registered row 0.11-0.17 px off on
+// the POV-Ray footage), a template framed far above its centre or a faint outline defeats the
+// outline fit (0.4-0.6 px off on ring_light at lower levels). `mismatch` says how unlike the
+// two appearances are (AppearanceMismatch, appearance_mismatch.h). Each transfer's uncertainty
+// takes its model error in quadrature: the registered one RegisteredTransferModelErr(mismatch),
+// the outline one kOutlineTransferModelPx. With both, they are weighed by their inverse
+// variances, the uncertainty scaled up by the ratio of their difference to its own uncertainty
+// where that is above 1 (the Particle Data Group's scale factor for inconsistent measurements);
+// source "plate_contact_of_other_both". With `mismatch` unknown (NaN: no jackknife), their
+// midpoint and half their difference in the uncertainty. With one, that one.
 OffsetEstimate CombineRowTransfers(const OffsetEstimate& registered,
-                                   const OffsetEstimate& outline);
+                                   const OffsetEstimate& outline, double mismatch);
+// The outline transfer's own error where its outlines are clear, px: measured against the truth
+// on the POV-Ray films, 0.04-0.16 px (front_point 0.04, soft box 0.05, one-sided light 0.10, 0.1
+// and 0.4 mm/px 0.10 and 0.15, a camera rolled 8 degrees 0.13), beyond the noise its jackknife
+// states (docs/BENCHMARKS.md, "The row carried over, weighed by how alike the spheres look").
+inline constexpr double kOutlineTransferModelPx = 0.1;
 // Outline fits for the transfer reach Reach(kTransferOutlineMaxShiftPx, ...R, R) from the
 // reference: the bouncing sphere's template is framed on its lowest frames and can sit more
 // than the limb offset's reach above its centre (POV-Ray A_r 2.0, 40 frames: 4.4 px).

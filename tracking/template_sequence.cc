@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "tracking/appearance_mismatch.h"
 #include "tracking/highlight_seed.h"
 #include "tracking/parallel_for.h"
 #include "tracking/plate_edge.h"
@@ -176,15 +177,18 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
   // The sphere that rests longer (more frames in its contact cluster) sets the contact; the
   // other one, if it rests much less (it bounces: the frames near its impacts are flight, up to
   // a few tenths of a pixel above contact, and bias its own estimate upward), gets that offset
-  // carried over, by registering the two appearances and through their outlines
-  // (CombineRowTransfers).
+  // carried over, by registering the two appearances and through their outlines, weighed by
+  // how alike the two appearances are (CombineRowTransfers, appearance_mismatch.h).
   const int ref = o.row[1].n > o.row[0].n ? 1 : 0, other = 1 - ref;
   if (o.row[ref].source == "plate_contact" && o.row[ref].n >= kMinRestingFrames &&
       double(o.row[other].n) < kTransferBelowFraction * double(o.row[ref].n)) {
     const Appearance& from = m.learnt[ref].appearance;
     const Appearance& to = m.learnt[other].appearance;
+    o.appearance_mismatch = AppearanceMismatch(m.learnt[ref], m.learnt[other]);
     const OffsetEstimate t = CombineRowTransfers(TransferOffset(from, to, o.row[ref], 1),
-                                                 TransferRowByOutline(from, to, o.row[ref]));
+                                                 TransferRowByOutline(m.learnt[ref],
+                                                                      m.learnt[other], o.row[ref]),
+                                                 o.appearance_mismatch);
     if (t.source != "none") o.row[other] = t;
   }
   // Columns from the outline, whose row is then known (where only one side of it shows).

@@ -3,6 +3,7 @@
 // which frames the appearances are learnt from, the choice of method, and the offsets applied
 // to the template's positions once the whole sequence is tracked (appearance_model.h).
 #include <array>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -41,6 +42,9 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
 
 struct TemplateOffsets {
   std::array<OffsetEstimate, 2> col, row;  // per sphere (left, right): reference -> centre
+  // Where one sphere's row was carried over to the other: how unlike their appearances are once
+  // registered (AppearanceMismatch, appearance_mismatch.h); NaN where not measured.
+  double appearance_mismatch = std::numeric_limits<double>::quiet_NaN();
 };
 
 // From silhouettes when the footage has clean ones, else rows from the plate contact over the

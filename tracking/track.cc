@@ -455,6 +455,8 @@ void WriteTemplateGroup(H5Writer& w, const SequenceResult& r) {
   w.SetAttr("/template/offset", "description",
             "offset from each learnt appearance's reference point to the sphere centre, added to "
             "every located position (already applied to /pixels)");
+  // NaN (no row carried over) is written as such: the attribute is always there.
+  w.SetAttr("/template/offset", "appearance_mismatch", r.offsets.appearance_mismatch);
   w.WriteDoubles("/template/offset_err", err, {2, 2}, "px", "col,row");
   w.SetAttr("/template/offset_err", "description", "standard uncertainty of /template/offset");
   w.WriteInt64("/template/offset_frames", frames, {2, 2});

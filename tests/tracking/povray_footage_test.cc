@@ -532,23 +532,24 @@ TEST(PovrayQuarterRange, SixteenBitFramesOfAQuarterOfTheRangeTrackAsTheirEightBi
 // left out (tracking/highlight_seed.h). The cluttered backdrop also at x 0.5: there the
 // highlight floor, read from the levels' spread about their median (the backdrop's shading, in
 // whole levels), stood over the lamps' reflections, and the left sphere came out 22 px off, the
-// right not found; it is now read from the noise. Each film: both spheres found, no swap, each
-// bias within 3 of its stated uncertainties (the track file's word on its column), the plate
-// within the target; the bias target where the film as rendered meets it (under-exposed
-// and the cluttered backdrop; ring_light's left column misses it as rendered). CTest
-// `povray.lower_levels`.
+// right not found; it is now read from the noise. ring_light at x 0.7 and x 0.5: its bouncing
+// sphere's row, carried over from the resting one through the two faint outlines and midway with
+// the registered transfer, was 0.33 px off; the two transfers are now weighed by how alike the
+// two appearances are (tracking/appearance_mismatch.h). Each film: both spheres found, no swap,
+// each bias within 3 of its stated uncertainties (the track file's word on its column), the plate
+// within the target, and the bias target. CTest `povray.lower_levels`.
 TEST(PovrayLowerLevels, FrontLitSteelAtALowerGainIsFoundAndItsStatedUncertaintyHolds) {
   struct Lowered {
     Case c;
     double levels;
-    bool bias_target;
   };
   const std::vector<Lowered> cases = {
-      {Case{"ring_light", Lighting::kRingLight, 3.9}, 0.7, false},
-      {Case{"underexposed", Lighting::kUnderexposed, 3.9}, 0.7, true},
-      {Case{"cluttered_backdrop", Lighting::kClutteredBackdrop, 3.9}, 0.7, true},
-      {Case{"cluttered_backdrop", Lighting::kClutteredBackdrop, 3.9}, 0.5, true}};
-  for (const auto& [c, levels, bias_target] : cases) {
+      {Case{"ring_light", Lighting::kRingLight, 3.9}, 0.7},
+      {Case{"ring_light", Lighting::kRingLight, 3.9}, 0.5},
+      {Case{"underexposed", Lighting::kUnderexposed, 3.9}, 0.7},
+      {Case{"cluttered_backdrop", Lighting::kClutteredBackdrop, 3.9}, 0.7},
+      {Case{"cluttered_backdrop", Lighting::kClutteredBackdrop, 3.9}, 0.5}};
+  for (const auto& [c, levels] : cases) {
     const std::string src = Footage(c);
     dimer::testing::TempDir tmp;
     ASSERT_NO_FATAL_FAILURE(WriteLevelsCopy(src, tmp.path(), levels, CV_8U));
@@ -561,9 +562,7 @@ TEST(PovrayLowerLevels, FrontLitSteelAtALowerGainIsFoundAndItsStatedUncertaintyH
       EXPECT_GE(s.found_fraction, kFoundTarget) << c.name << " sphere " << k;
       EXPECT_LE(s.bias_sigmas.x(), 3.0) << c.name << " sphere " << k;
       EXPECT_LE(s.bias_sigmas.y(), 3.0) << c.name << " sphere " << k;
-      if (bias_target) {
-        EXPECT_LE(s.bias.norm(), kBiasTargetPx) << c.name << " sphere " << k;
-      }
+      EXPECT_LE(s.bias.norm(), kBiasTargetPx) << c.name << " sphere " << k;
     }
     EXPECT_EQ(a.identity_swaps, 0u) << c.name;
     EXPECT_LE(a.plate_max_error, kPlateTargetPx) << c.name;

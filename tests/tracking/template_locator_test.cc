@@ -9,6 +9,7 @@
 #include <functional>
 #include <random>
 
+#include "tracking/appearance_mismatch.h"
 #include "tracking/appearance_model.h"
 
 namespace dimer::tracking {
@@ -265,21 +266,56 @@ TEST(AppearanceOffset, WithoutTheUpperOutlineTheSymmetryIsCheckedByTheWholeOutli
   EXPECT_LE(std::abs(e.value - 0.3), e.err) << "the stated uncertainty covers the error";
 }
 
-// The bouncing sphere's row carried over two ways: one alone is taken as it is; two that disagree
-// give their midpoint, with an uncertainty that covers either being the right one.
+// The bouncing sphere's row carried over two ways: one alone is taken as it is; without the
+// appearances' mismatch, two that disagree give their midpoint, with an uncertainty that covers
+// either being the right one.
 TEST(AppearanceOffset, RowTransfersAreCombinedWithTheirDisagreementInTheUncertainty) {
   const OffsetEstimate none{0, NAN, 0, "none"};
   const OffsetEstimate reg{1.20, 0.03, 40, "plate_contact_of_other"};
   const OffsetEstimate out{0.90, 0.06, 40, "plate_contact_of_other_outline"};
-  EXPECT_EQ(CombineRowTransfers(reg, none).source, "plate_contact_of_other");
-  EXPECT_EQ(CombineRowTransfers(none, out).source, "plate_contact_of_other_outline");
-  EXPECT_EQ(CombineRowTransfers(none, none).source, "none");
-  const OffsetEstimate both = CombineRowTransfers(reg, out);
+  EXPECT_EQ(CombineRowTransfers(reg, none, NAN).source, "plate_contact_of_other");
+  EXPECT_EQ(CombineRowTransfers(none, out, NAN).source, "plate_contact_of_other_outline");
+  EXPECT_EQ(CombineRowTransfers(none, none, NAN).source, "none");
+  const OffsetEstimate both = CombineRowTransfers(reg, out, NAN);
   EXPECT_EQ(both.source, "plate_contact_of_other_both");
   EXPECT_NEAR(both.value, 1.05, 1e-12);
   EXPECT_NEAR(both.err, std::hypot(0.06, 0.15), 1e-12);
   EXPECT_GE(both.err, std::abs(both.value - reg.value));
   EXPECT_EQ(both.n, 40u);
+}
+
+// With the mismatch measured, each transfer carries its model error (the registered one's grows
+// with the mismatch, the outline one's is kOutlineTransferModelPx) and the two are weighed:
+// alike appearances (mismatch 1) leave the registration's precision to the row, unlike ones
+// (mismatch 10) hand it to the outline; where the two disagree beyond their uncertainties the
+// stated one is scaled up to cover the disagreement.
+TEST(AppearanceOffset, RowTransfersAreWeighedByHowAlikeTheAppearancesAre) {
+  const OffsetEstimate none{0, NAN, 0, "none"};
+  const OffsetEstimate reg{0.20, 0.03, 40, "plate_contact_of_other"};
+  const OffsetEstimate out{-0.40, 0.27, 40, "plate_contact_of_other_outline"};
+  // One alone carries its model error.
+  const OffsetEstimate alone = CombineRowTransfers(reg, none, 10.0);
+  EXPECT_EQ(alone.value, reg.value);
+  EXPECT_NEAR(alone.err, std::hypot(0.03, RegisteredTransferModelErr(10.0)), 1e-12);
+  EXPECT_NEAR(RegisteredTransferModelErr(10.0), 3 * kMismatchRowPx, 1e-12);
+  EXPECT_EQ(RegisteredTransferModelErr(0.5), 0.0);
+  EXPECT_NEAR(CombineRowTransfers(none, out, 1.0).err, std::hypot(0.27, kOutlineTransferModelPx),
+              1e-12);
+  // Alike: the weights 1 / 0.03^2 and 1 / (0.27^2 + 0.1^2).
+  const OffsetEstimate alike = CombineRowTransfers(reg, out, 1.0);
+  EXPECT_EQ(alike.source, "plate_contact_of_other_both");
+  const double so = std::hypot(0.27, kOutlineTransferModelPx);
+  const double wr = 1 / (0.03 * 0.03), wo = 1 / (so * so);
+  EXPECT_NEAR(alike.value, (0.20 * wr - 0.40 * wo) / (wr + wo), 1e-12);
+  EXPECT_LT(std::abs(alike.value - reg.value), 0.01);
+  // 0.6 apart against sqrt(0.03^2 + so^2) = 0.29: the uncertainty scaled by 2.1.
+  EXPECT_NEAR(alike.err, 0.6 / std::hypot(0.03, so) / std::sqrt(wr + wo), 1e-12);
+  // Unlike: the registration's 0.03 becomes hypot(0.03, 0.3); the outline now weighs more.
+  const OffsetEstimate unlike = CombineRowTransfers(reg, {-0.40, 0.05, 40, "x"}, 10.0);
+  EXPECT_LT(unlike.value, 0.5 * (reg.value - 0.40));
+  // Consistent estimates keep the weighted mean's own uncertainty, smaller than either's.
+  const OffsetEstimate agree = CombineRowTransfers(reg, {0.22, 0.05, 40, "x"}, 1.0);
+  EXPECT_LT(agree.err, 0.03);
 }
 
 TEST(AppearanceOffset, SilhouetteIsTheMedianDifference) {
