@@ -14,8 +14,7 @@
 namespace dimer::tracking {
 namespace {
 
-// Fewer learning frames than this with both spheres found by the silhouette methods, and the
-// rough centres come from the highlights instead.
+// Fewer learning frames than this with both spheres (seeded), and nothing is learnt.
 constexpr size_t kMinSeededFrames = 3;
 
 }  // namespace
@@ -66,15 +65,18 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
   }
   size_t seeded = 0, from_highlights = 0;
   for (const LearningSample& s : samples) seeded += s.found[0] && s.found[1];
-  if (seeded < kMinSeededFrames) {
-    // The frames the probe did not find both spheres in, each with its plate line and
-    // highlights; the film's seeds from those (highlight_seed.h, SeedFilm).
-    std::vector<size_t> frames;
+  // Rough centres from the highlights where the silhouette methods give both spheres in fewer
+  // than half the learning frames: at a lower gain front-lit steel shows parts of its outline
+  // in some frames, and a mean of those few (6 of 20 at 0.7 of front_point's levels) put the
+  // columns 0.18 px off; the highlights seed every frame there (docs/BENCHMARKS.md, "Seeding
+  // every learning frame from the highlights"). The film's seeds are of one kind: a highlight
+  // stands off the centre by as much as 12 px (the one-sided light), farther than the learning's
+  // search, so silhouette and highlight seeds are not mixed. The highlights are taken where they
+  // agree in more frames than the silhouettes give pairs.
+  if (2 * seeded < samples.size() || seeded < kMinSeededFrames) {
     std::vector<LearningSample> lines;
     std::vector<std::vector<HighlightBlob>> blobs;
-    for (size_t i = 0; i < samples.size(); ++i) {
-      const LearningSample& s = samples[i];
-      if (s.found[0] && s.found[1]) continue;
+    for (const LearningSample& s : samples) {
       // Where the probe found no plate, the coarse row at the frame's centre column.
       LearningSample line = s;
       if (!std::isfinite(s.plate_row)) {
@@ -83,7 +85,6 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
       }
       // Above the plate everywhere: its highest point where it slopes.
       const double highest = std::min(line.PlateRowAt(0), line.PlateRowAt(s.image.cols - 1));
-      frames.push_back(i);
       lines.push_back(line);
       blobs.push_back(FindHighlightBlobs(s.image, highest, reference.radius_px));
     }
@@ -95,28 +96,30 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
                                  : 2.0 * LearnSearchPx(reference.radius_px);
     const HighlightSeeds seeds =
         SeedFilm(blobs, reference.radius_px, agreement, kMinSeededFrames);
-    size_t left_out = 0;
-    for (size_t j = 0; j < frames.size(); ++j) {
-      if (!seeds.seeded[j]) continue;
-      if (!seeds.agrees[j]) {
-        ++left_out;
-        continue;
+    if (seeds.agreeing > seeded) {
+      size_t left_out = 0;
+      for (size_t i = 0; i < samples.size(); ++i) {
+        LearningSample& s = samples[i];
+        if (!seeds.seeded[i] || !seeds.agrees[i]) {
+          left_out += seeds.seeded[i];
+          // Not learnt from: no silhouette pair among the highlight seeds. A single sphere
+          // found stays for the plate's contact line (EstimatePlateShift).
+          if (s.found[0] && s.found[1]) s.found = {false, false};
+          continue;
+        }
+        s.centre = seeds.seeds[i];
+        s.found = {true, true};
+        s.plate_row = lines[i].plate_row;
+        s.plate_col = lines[i].plate_col;
+        ++from_highlights;
       }
-      LearningSample& s = samples[frames[j]];
-      s.centre = seeds.seeds[j];
-      s.found = {true, true};
-      s.plate_row = lines[j].plate_row;
-      s.plate_col = lines[j].plate_col;
-      ++from_highlights;
-    }
-    if (from_highlights > 0) {
-      char spread[240];
+      char spread[320];
       std::snprintf(spread, sizeof spread,
                     " (%s: %zu a dimer's length apart within %.0f px, %zu by the %s; %zu left "
-                    "out)",
+                    "out; the silhouettes gave both spheres in %zu)",
                     seeds.by_mass ? "weighed" : "split at the widest gap", seeds.agreeing,
                     agreement, seeds.other_agreeing, seeds.by_mass ? "widest gap" : "weighed",
-                    left_out);
+                    left_out, seeded);
       m.choice.reason += "; rough centres of " + std::to_string(from_highlights) +
                          " learning frames from the highlights" + spread;
     }
