@@ -26,11 +26,11 @@
 namespace dimer::tracking {
 
 // The registered transfer's error where the appearances are unlike, px: at most
-// kMismatchRowPx * sqrt(mismatch - 1). Measured against the truth: 0.04-0.08 px per unit of
+// kMismatchRowPx * sqrt(mismatch - 1). Measured against the truth: 0.04-0.085 px per unit of
 // sqrt(mismatch - 1) on the POV-Ray films (mismatch 1.4-14; nearer 1, the resting sphere's own
-// contact, +-0.03 px, is most of the error) and 0.04-0.054 on the synthetic ones (mismatch 3-41, tests/tracking/
-// appearance_mismatch_test.cc); the envelope taken is above both. It adds to the registration's
-// own uncertainty (TransferOffset) in quadrature.
+// contact, +-0.03 px, is most of the error) and 0.04-0.054 on the synthetic ones (mismatch
+// 3-41, tests/tracking/appearance_mismatch_test.cc); the envelope taken is above both. It adds
+// to the registration's own uncertainty (TransferOffset) in quadrature.
 inline constexpr double kMismatchRowPx = 0.1;
 inline double RegisteredTransferModelErr(double mismatch) {
   return kMismatchRowPx * std::sqrt(std::max(0.0, mismatch - 1.0));
