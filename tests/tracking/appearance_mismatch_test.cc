@@ -141,7 +141,9 @@ TEST(AppearanceMismatch, HighlightsMovedByALampToOneSideAreUnlike) {
                 move, mismatch, err, RegisteredTransferModelErr(mismatch));
     EXPECT_GT(mismatch, last) << move;
     EXPECT_LE(std::abs(err), RegisteredTransferModelErr(mismatch)) << move;
-    if (move >= 0.4) EXPECT_GT(std::abs(err), 0.05) << "the registration follows the highlight";
+    if (move >= 0.4) {
+      EXPECT_GT(std::abs(err), 0.05) << "the registration follows the highlight";
+    }
     last = mismatch;
   }
 }
