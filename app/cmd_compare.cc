@@ -81,9 +81,13 @@ void RegisterAnalyze(CLI::App& app) {
   c->add_option("--fps", t.fps, "frame rate, frames/s [a .cine's header, else 2000]");
   c->add_option("--m-per-px", t.m_per_px, "metres per pixel [from --diameter]");
   c->add_option("--diameter", t.diameter, "sphere diameter, m (calibrates m/px)")->capture_default_str();
+  c->add_option("--ar", t.ar,
+                "the dimer's aspect ratio, length / diameter: m/px from its centre distance "
+                "(A_r - 1) x diameter, tracked [not given: from the spheres' size]; with "
+                "--m-per-px, a check");
   c->add_option("--row0", t.row0, "row of z = 0, px [median plate row]");
   c->add_option("--plate-m-per-px", t.plate_m_per_px,
-                "metres per pixel at the plate edge seen; needs --m-per-px [the dimer plane's]");
+                "metres per pixel at the plate edge seen; needs --m-per-px or --ar [the dimer plane's]");
   c->add_option("--method", t.method, "tracking method: auto | centroid | discfit | template")->capture_default_str();
   c->add_option("--polarity", t.polarity, "auto | bright | dark")->capture_default_str();
   c->add_option("--bits", t.sequence.camera_bits,

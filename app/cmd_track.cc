@@ -17,10 +17,14 @@ void AddTrackOptions(CLI::App* sub, tracking::TrackArgs* a) {
   sub->add_option("--m-per-px", a->m_per_px, "metres per pixel [from --diameter]");
   sub->add_option("--diameter", a->diameter, "sphere diameter, m (calibrates m/px)")
       ->capture_default_str();
+  sub->add_option("--ar", a->ar,
+                  "the dimer's aspect ratio, length / diameter: m/px from its centre distance "
+                  "(A_r - 1) x diameter, tracked [not given: from the spheres' size]; with "
+                  "--m-per-px, a check");
   sub->add_option("--row0", a->row0, "row of z = 0, px [median plate row]");
   sub->add_option("--plate-m-per-px", a->plate_m_per_px,
                   "metres per pixel at the plate edge seen (nearer or further than the dimer); "
-                  "needs --m-per-px [the dimer plane's]");
+                  "needs --m-per-px or --ar [the dimer plane's]");
   sub->add_option("--method", a->method, "auto | centroid | discfit | template")->capture_default_str();
   sub->add_option("--polarity", a->polarity, "auto | bright | dark")->capture_default_str();
   sub->add_option("--radius-px", a->sequence.tracker.radius_px, "sphere radius, px [measured]");

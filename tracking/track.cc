@@ -18,6 +18,7 @@
 #include "common/stderr_capture.h"
 #include "common/provenance.h"
 #include "common/trajectory_io.h"
+#include "tracking/dimer_length_scale.h"
 #include "tracking/frame_range.h"
 
 namespace dimer::tracking {
@@ -346,9 +347,11 @@ void TrackArgs::Check() const {
        "--plate-m-per-px must be > 0 m/px");
   // The ratio of the two scales is what moves the plate rows, and it is needed while tracking
   // (the template's plate-contact offsets read them), before a scale from --diameter exists.
-  need(std::isnan(plate_m_per_px) || !std::isnan(m_per_px),
-       "--plate-m-per-px needs --m-per-px (the dimer plane's scale)");
+  need(std::isnan(plate_m_per_px) || !std::isnan(m_per_px) || !std::isnan(ar),
+       "--plate-m-per-px needs --m-per-px or --ar (the dimer plane's scale)");
   need(diameter > 0 && std::isfinite(diameter), "--diameter must be > 0 m");
+  need(std::isnan(ar) || (ar >= kMinAspectRatio && std::isfinite(ar)),
+       "--ar must be >= 2 (the dimer's length over a sphere's diameter; 2: spheres touching)");
   need(polarity == "auto" || polarity == "bright" || polarity == "dark",
        "--polarity '" + polarity + "': expected auto, bright or dark");
   try {
@@ -379,17 +382,33 @@ std::string PsfSource(const TrackArgs& args, const PlateClip& clip) {
 // the plate, z along its normal, about the plate's mean row `row0` at the frame's centre column
 // `col0`; with a level plate, x = col m_per_px and z = (row0 - row) m_per_px.
 struct Calibration {
-  double m_per_px, row0;
+  double m_per_px = kNaN, row0 = kNaN;
   double col0 = 0, cos_a = 1, sin_a = 0;  // pivot column; the slope's angle
+  // The track's median centre distance (offsets applied) and its frames: the scale with --ar
+  // and no --m-per-px, a check with both.
+  double length_px = kNaN;
+  size_t length_frames = 0;
+  LengthScale length_scale;  // the passes that chose the radius tracked with (--ar alone)
   Eigen::Vector2d ToMetres(const Eigen::Vector2d& px) const {
     const double dc = px.x() - col0, dr = px.y() - row0;
     return m_per_px * Eigen::Vector2d(col0 + dc * cos_a + dr * sin_a, dc * sin_a - dr * cos_a);
   }
 };
 
-Calibration Calibrate(const TrackArgs& args, const SequenceResult& r) {
-  Calibration cal{args.m_per_px, args.row0};
-  if (std::isnan(cal.m_per_px)) {
+Calibration Calibrate(const TrackArgs& args, const SequenceResult& r, const LengthScale& passes) {
+  Calibration cal;
+  cal.m_per_px = args.m_per_px;
+  cal.row0 = args.row0;
+  cal.length_scale = passes;
+  if (!std::isnan(args.ar)) cal.length_px = MedianDimerLength(r.frames, &cal.length_frames);
+  if (std::isnan(cal.m_per_px) && !std::isnan(args.ar)) {
+    if (!std::isfinite(cal.length_px)) {
+      throw InputError(args.input + ": cannot take the scale from the dimer's length (--ar): " +
+                       std::to_string(cal.length_frames) + " frames show both spheres (" +
+                       std::to_string(kLengthScaleMinFrames) + " needed); pass --m-per-px");
+    }
+    cal.m_per_px = ScaleFromDimerLength(cal.length_px, args.ar, args.diameter);
+  } else if (std::isnan(cal.m_per_px)) {
     std::vector<double> radii;
     for (const auto& f : r.frames) {
       for (int k = 0; k < 2 && radii.size() < kCalibrationSamples; ++k) {
@@ -565,7 +584,9 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                      {"stuck_pixels_frames", "1"}, {"matches_dropped_score_left", "1"},
                      {"matches_dropped_score_right", "1"}, {"matches_dropped_length_left", "1"},
                      {"matches_dropped_length_right", "1"}, {"dimer_length_px", "px"},
-                     {"m_per_px", "m/px"}, {"row0", "px"}, {"col0", "px"},
+                     {"m_per_px", "m/px"}, {"row0", "px"}, {"col0", "px"}, {"ar", "1"},
+                     {"ar_length_px", "px"}, {"ar_length_frames", "1"}, {"ar_radius_px", "px"},
+                     {"ar_passes", "1"}, {"ar_converged", "1"},
                      {"diameter", "m"},
                      {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
                      {"frames_tracked", "1"}, {"frames_skipped", "1"}};
@@ -604,14 +625,21 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
       {"diameter", args.diameter},
       {"polarity", std::string(r.polarity > 0 ? "bright" : "dark")},
       {"polarity_requested", args.polarity},
-      {"m_per_px_given", int64_t(!std::isnan(args.m_per_px))},
+      {"m_per_px_given", int64_t(!std::isnan(args.m_per_px) ? 1 : !std::isnan(args.ar) ? 2 : 0)},
+      {"ar", std::isnan(args.ar) ? 0.0 : args.ar},
+      {"ar_length_px", std::isfinite(cal.length_px) ? cal.length_px : 0.0},
+      {"ar_length_frames", int64_t(cal.length_frames)},
+      {"ar_radius_px", cal.length_scale.ok ? cal.length_scale.radius_px : 0.0},
+      {"ar_passes", int64_t(cal.length_scale.passes.size())},
+      {"ar_converged", int64_t(cal.length_scale.converged)},
       {"chunk_frames", int64_t(args.sequence.chunk_frames)},
       {"width", int64_t(r.width)}, {"height", int64_t(r.height)},
       {"frames_tracked", int64_t(n)}, {"frames_skipped", int64_t(r.skipped.size())},
       {"complete", int64_t(r.complete)}};
   attrs.insert(attrs.end(), rest.begin(), rest.end());
   WriteProvenance(w, "track", attrs, units,
-                  {{"m_per_px_given", "0=calibrated from --diameter,1=given by --m-per-px"},
+                  {{"m_per_px_given", "0=calibrated from --diameter,1=given by --m-per-px,"
+                                      "2=calibrated from --ar (the dimer's length)"},
                    {"complete", "0=interrupted (Ctrl-C): the frames tracked so far,1=complete"}});
   WriteTrajectory(w, traj);
   w.WriteDoubles("/pixels/left", px[0], {n, 2}, "px", "col,row");
@@ -712,6 +740,47 @@ Recording ResolveFps(const RecordingInfo& info, TrackArgs* args) {
   return rec;
 }
 
+// What --ar did: the scale and the radius it gave, or, beside --m-per-px, whether they agree.
+void ReportLengthScale(const TrackArgs& args, const Calibration& cal) {
+  if (std::isnan(args.m_per_px)) {
+    const LengthScale& ls = cal.length_scale;
+    if (!args.quiet) {
+      std::string radii;
+      for (const LengthScalePass& p : ls.passes) {
+        char b[64];
+        std::snprintf(b, sizeof b, "%s%.3f", radii.empty() ? "" : " -> ",
+                      RadiusFromDimerLength(p.length_px, args.ar));
+        radii += b;
+      }
+      std::fprintf(stderr,
+                   "dimerlab track: scale %.6g m/px from the dimer's length %.3f px (median of %zu "
+                   "frames, --ar %g, --diameter %g m); tracked with a sphere radius of %.3f px "
+                   "(over the first frames, pass by pass: %s px)\n",
+                   cal.m_per_px, cal.length_px, cal.length_frames, args.ar, args.diameter,
+                   ls.radius_px, radii.c_str());
+    }
+    if (!ls.converged) {
+      std::fprintf(stderr,
+                   "dimerlab track: warning: the radius had not settled to %.2f px after %d "
+                   "passes (last %.3f -> %.3f px); rows rest on it\n",
+                   kLengthScaleTolPx, int(ls.passes.size()),
+                   ls.passes.back().radius_px_used, ls.radius_px);
+    }
+    return;
+  }
+  if (!std::isfinite(cal.length_px)) return;
+  // Both given: the tracked length says which A_r the scale and diameter imply.
+  const double measured = cal.length_px * args.m_per_px / args.diameter + 1.0;
+  if (std::abs(measured - args.ar) > kLengthCheckTolerance * (args.ar - 1.0)) {
+    std::fprintf(stderr,
+                 "dimerlab track: warning: with --m-per-px %g and --diameter %g m the tracked "
+                 "length (%.3f px) gives A_r = %.4f, not --ar %g (A_r - 1 %+.1f %%): one of the "
+                 "three is off\n",
+                 args.m_per_px, args.diameter, cal.length_px, measured, args.ar,
+                 100.0 * (measured - args.ar) / (args.ar - 1.0));
+  }
+}
+
 }  // namespace
 
 void RunTrack(const TrackArgs& args) {
@@ -732,6 +801,26 @@ void RunTrack(const TrackArgs& args) {
                              args.input);
   TrackArgs resolved = args;
   const Recording rec = ResolveFps(source->recording(), &resolved);
+  // --ar without --m-per-px: the radius the film is tracked with comes from the dimer's length
+  // over its first frames (dimer_length_scale.h); the film's own length then sets the scale.
+  LengthScale length_scale;
+  if (!std::isnan(args.ar) && std::isnan(args.m_per_px)) {
+    if (!args.quiet) {
+      std::fprintf(stderr,
+                   "dimerlab track: scale from the dimer's length (--ar %g): tracking its first "
+                   "%zu frames until the radius settles\n",
+                   args.ar, kLengthScaleFrames);
+    }
+    length_scale = TrackedDimerLengthScale(args, seq);
+    if (!length_scale.ok) {
+      throw InputError(args.input + ": cannot take the scale from the dimer's length (--ar): " +
+                       length_scale.failure + "; pass --m-per-px");
+    }
+    seq.contact_radius_px = length_scale.radius_px;
+    if (!std::isnan(args.plate_m_per_px)) {
+      seq.plate_motion_scale = args.plate_m_per_px / (0.5 * args.diameter / length_scale.radius_px);
+    }
+  }
   // Lossy compression moves edges and smooths the noise the offsets are measured against: on
   // POV-Ray footage exported as H.264 the columns came out up to 3 px off while stating 0.2-0.4
   // px (docs/BENCHMARKS.md, "Compressed video"). Said before the work, and kept in the file.
@@ -893,7 +982,8 @@ void RunTrack(const TrackArgs& args) {
                    r.appearance[0].radius_px);
     }
   }
-  const Calibration cal = Calibrate(args, r);
+  const Calibration cal = Calibrate(args, r, length_scale);
+  if (!std::isnan(args.ar)) ReportLengthScale(args, cal);
   WriteTrackFile(out.temp_path(), resolved, r, cal, rec);
   out.Commit();
   // The one-line summary every subcommand ends with (stdout; -q silences progress only).

@@ -108,6 +108,10 @@ struct TrackArgs {
   double fps = std::numeric_limits<double>::quiet_NaN();
   double m_per_px = std::numeric_limits<double>::quiet_NaN();  // m/px; NaN: from --diameter
   double diameter = 9.5e-3;     // sphere diameter, m (calibration when m_per_px is not given)
+  // --ar: the dimer's aspect ratio, length / diameter (dimer_length_scale.h). With m_per_px not
+  // given, the scale is (ar - 1) diameter over the tracked centre distance, and the template
+  // tracks with the radius that implies; with m_per_px given, a check. NaN: not given.
+  double ar = std::numeric_limits<double>::quiet_NaN();
   double row0 = std::numeric_limits<double>::quiet_NaN();      // z = 0 row, px; NaN: plate median
   // The plate edge's own scale, m/px, where it is not in the dimer's plane (a plate's front
   // edge is nearer the camera); needs m_per_px. NaN: the dimer plane's.

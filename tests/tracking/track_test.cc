@@ -186,6 +186,53 @@ TEST(RunTrack, PlateScaleMovesOnlyThePlateRowsAboutTheirMedian) {
   }
 }
 
+// --ar (tracking/dimer_length_scale.h): the scale from the dimer's length, recorded as such,
+// with the passes that chose the radius; given beside --m-per-px it only checks; an aspect ratio
+// below two spheres touching is refused. The POV-Ray films where the spheres' size fails are in
+// povray_footage_test.cc (PovrayDimerLength).
+TEST(RunTrack, TheDimersLengthGivesTheScale) {
+  dimer::testing::TempDir dir;
+  RenderDrift(dir, 24, Lighting::kReflect);
+  TrackArgs t = Track(dir);
+  t.m_per_px = std::nan("");
+  t.ar = testing::kAspectRatio;
+  RunTrack(t);
+  H5Reader h(t.output);
+  const double scale = *h.AttrDouble("/", "m_per_px");
+  EXPECT_NEAR(scale / 2e-4, 1.0, 0.003) << "m/px from the length, against the renderer's";
+  EXPECT_EQ(*h.AttrDouble("/", "m_per_px_given"), 2.0);
+  EXPECT_EQ(*h.AttrDouble("/", "ar"), testing::kAspectRatio);
+  const double length = *h.AttrDouble("/", "ar_length_px");
+  // The scale is the length's, exactly: (A_r - 1) d / length.
+  EXPECT_DOUBLE_EQ(scale, (testing::kAspectRatio - 1.0) * 9.5e-3 / length);
+  EXPECT_GE(*h.AttrDouble("/", "ar_length_frames"), 20.0);
+  EXPECT_GE(*h.AttrDouble("/", "ar_passes"), 2.0);
+  EXPECT_EQ(*h.AttrDouble("/", "ar_converged"), 1.0);
+  EXPECT_NEAR(*h.AttrDouble("/", "ar_radius_px"), 23.75, 0.06);
+  // Beside --m-per-px the given scale stands; the length is still measured (the check).
+  TrackArgs both = t;
+  both.output = dir / "both.h5";
+  both.m_per_px = 2e-4;
+  both.ar = 5.0;  // wrong: a warning, not an error
+  RunTrack(both);
+  H5Reader b(both.output);
+  EXPECT_EQ(*b.AttrDouble("/", "m_per_px"), 2e-4);
+  EXPECT_EQ(*b.AttrDouble("/", "m_per_px_given"), 1.0);
+  EXPECT_EQ(*b.AttrDouble("/", "ar_passes"), 0.0);
+  EXPECT_NEAR(*b.AttrDouble("/", "ar_length_px"), length, 0.05);
+  // Spheres cannot overlap.
+  TrackArgs overlap = t;
+  overlap.output = dir / "overlap.h5";
+  overlap.ar = 1.5;
+  try {
+    RunTrack(overlap);
+    FAIL();
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("--ar must be >= 2"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(overlap.output));
+}
+
 TEST(RunTrack, UnusableInputsAreOneLineErrors) {
   dimer::testing::TempDir dir;
   TrackArgs t = Track(dir);
