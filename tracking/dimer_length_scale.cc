@@ -23,6 +23,16 @@ double MedianDimerLength(const std::vector<FrameTrack>& frames, size_t* used) {
   return *mid;
 }
 
+namespace {
+
+std::string FormatPx(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3f px", v);
+  return b;
+}
+
+}  // namespace
+
 double RadiusFromDimerLength(double length_px, double ar) {
   return length_px / (2.0 * (ar - 1.0));
 }
@@ -31,32 +41,66 @@ double ScaleFromDimerLength(double length_px, double ar, double diameter_m) {
   return (ar - 1.0) * diameter_m / length_px;
 }
 
+std::vector<double> DimerLengthRadiusGuesses(int width, double ar) {
+  std::vector<double> out;
+  for (double r = kGuessMinRadiusPx; 2.0 * ar * r <= double(width); r *= kGuessRatio) {
+    out.push_back(r);
+  }
+  return out;
+}
+
 LengthScale IterateDimerLengthScale(const std::function<double(double radius_px)>& length_of,
-                                    double ar) {
+                                    double ar,
+                                    const std::function<std::vector<double>()>& guesses) {
   LengthScale s;
-  double radius = std::numeric_limits<double>::quiet_NaN();  // the first pass measures it
-  for (int pass = 0; pass < kLengthScaleMaxPasses; ++pass) {
+  auto measure = [&](double radius) {
     LengthScalePass p;
     p.radius_px_used = radius;
     p.length_px = length_of(radius);
     s.passes.push_back(p);
-    if (!(std::isfinite(p.length_px) && p.length_px > 0)) {
-      s.ok = false;  // a radius that loses the spheres is no calibration
-      char r[32];
-      std::snprintf(r, sizeof r, "%.3f", radius);
-      s.failure = pass == 0 ? "too few frames show both spheres"
-                            : std::string("too few frames show both spheres once tracked with a "
-                                          "radius of ") + r + " px";
-      return s;
+    return std::isfinite(p.length_px) && p.length_px > 0;
+  };
+  // From a start (the radius measured as without a scale, then each guess): passes with the
+  // radius the last length implies. True once settled or after the last pass; false where a
+  // pass loses the spheres (a guess's length can be 13 % off, and the radius it implies then
+  // too far to find them: the POV-Ray camera turned 8 degrees).
+  std::string lost;
+  auto settle = [&](double start) {
+    if (!measure(start)) return false;
+    double radius = RadiusFromDimerLength(s.passes.back().length_px, ar);
+    for (int pass = 1; pass < kLengthScaleMaxPasses; ++pass) {
+      if (!measure(radius)) {
+        char r[32];
+        std::snprintf(r, sizeof r, "%.3f", radius);
+        lost = std::string("too few frames show both spheres once tracked with a radius of ") + r +
+               " px";
+        return false;
+      }
+      const double next = RadiusFromDimerLength(s.passes.back().length_px, ar);
+      const bool settled = std::abs(next - radius) < kLengthScaleTolPx;
+      radius = next;
+      if (settled) {
+        s.converged = true;
+        break;
+      }
     }
-    const double next = RadiusFromDimerLength(p.length_px, ar);
-    s.ok = true;
-    s.radius_px = next;
-    if (std::isfinite(radius) && std::abs(next - radius) < kLengthScaleTolPx) {
-      s.converged = true;
-      return s;
+    s.radius_px = radius;
+    return true;
+  };
+  size_t starts = 1;
+  s.ok = settle(std::numeric_limits<double>::quiet_NaN());
+  if (!s.ok && guesses) {
+    for (double g : guesses()) {
+      ++starts;
+      if ((s.ok = settle(g))) break;
     }
-    radius = next;
+  }
+  if (!s.ok) {
+    s.failure = starts > 1 ? "too few frames show both spheres, from the radius measured or any of " +
+                                 std::to_string(starts - 1) +
+                                 " guessed and the radii their lengths implied"
+                : !lost.empty() ? lost
+                                : "too few frames show both spheres";
   }
   return s;
 }
@@ -66,6 +110,8 @@ LengthScale TrackedDimerLengthScale(const TrackArgs& args, const SequenceOptions
   FrameRange first = film;
   first.end = film.first + kLengthScaleFrames;
   if (film.end) first.end = std::min(*film.end, *first.end);
+  int width = 0;  // the frames', from the first pass: bounds the guesses
+  size_t passes = 0;
   auto length_of = [&](double radius_px) {
     SequenceOptions o = seq;
     o.contact_radius_px = radius_px;
@@ -80,9 +126,20 @@ LengthScale TrackedDimerLengthScale(const TrackArgs& args, const SequenceOptions
       r = TrackSequence(*source, o);
     }
     if (!r.complete) throw Interrupted();
-    return MedianDimerLength(r.frames);
+    if (r.width > 0) width = r.width;
+    size_t both = 0;
+    const double length = MedianDimerLength(r.frames, &both);
+    if (!args.quiet) {
+      std::fprintf(stderr,
+                   "dimerlab track: --ar pass %zu, radius %s: both spheres in %zu of %zu frames, "
+                   "length %.3f px\n",
+                   ++passes, std::isnan(radius_px) ? "measured" : FormatPx(radius_px).c_str(),
+                   both, r.frames.size(), length);
+    }
+    return length;
   };
-  return IterateDimerLengthScale(length_of, args.ar);
+  return IterateDimerLengthScale(length_of, args.ar,
+                                 [&] { return DimerLengthRadiusGuesses(width, args.ar); });
 }
 
 }  // namespace dimer::tracking

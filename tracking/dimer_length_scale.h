@@ -64,16 +64,29 @@ struct LengthScale {
   bool ok = false;
   double radius_px = std::numeric_limits<double>::quiet_NaN();  // what the film is tracked with
   bool converged = false;  // the last two passes' radii within kLengthScaleTolPx
-  std::vector<LengthScalePass> passes;
+  std::vector<LengthScalePass> passes;  // every pass, guesses included
   std::string failure;  // why not ok (no length measured)
 };
 
+// Where the radius measured as without a scale loses the spheres (a silhouette radius of 8 px on
+// the under-exposed POV-Ray film, whose spheres are 23.75 px; none through a camera turned 8
+// degrees), radii are guessed: geometric from kGuessMinRadiusPx by kGuessRatio, while the dimer,
+// 2 A_r R long, fits in the frame's `width`. A guess within ~20 % of the radius finds both
+// spheres there (the two films: from 18 to 28 px, and from 14 to 23.75), and the passes after
+// it correct it.
+inline constexpr double kGuessMinRadiusPx = 6.0;
+inline constexpr double kGuessRatio = 1.25;
+std::vector<double> DimerLengthRadiusGuesses(int width, double ar);
+
 // The fixed point: `length_of(radius_px)` tracks the calibration frames with that radius (NaN:
 // measured as without a scale) and returns their median centre distance (NaN where too few
-// frames show both spheres). Stops at convergence, after kLengthScaleMaxPasses, or at the first
-// pass with no length.
+// frames show both spheres). From the radius measured, then from each of `guesses()` (may be
+// empty) in turn: passes with the radius the last length implies, until it settles
+// (kLengthScaleTolPx) or kLengthScaleMaxPasses have run from that start. A start whose pass
+// shows no length, or whose later pass loses the spheres, gives way to the next.
 LengthScale IterateDimerLengthScale(const std::function<double(double radius_px)>& length_of,
-                                    double ar);
+                                    double ar,
+                                    const std::function<std::vector<double>()>& guesses = {});
 
 // The calibration passes of `track --ar` over the first kLengthScaleFrames frames of
 // args.frames (`seq` as the film will be tracked, its contact radius replaced by each pass's):

@@ -745,19 +745,12 @@ void ReportLengthScale(const TrackArgs& args, const Calibration& cal) {
   if (std::isnan(args.m_per_px)) {
     const LengthScale& ls = cal.length_scale;
     if (!args.quiet) {
-      std::string radii;
-      for (const LengthScalePass& p : ls.passes) {
-        char b[64];
-        std::snprintf(b, sizeof b, "%s%.3f", radii.empty() ? "" : " -> ",
-                      RadiusFromDimerLength(p.length_px, args.ar));
-        radii += b;
-      }
       std::fprintf(stderr,
                    "dimerlab track: scale %.6g m/px from the dimer's length %.3f px (median of %zu "
-                   "frames, --ar %g, --diameter %g m); tracked with a sphere radius of %.3f px "
-                   "(over the first frames, pass by pass: %s px)\n",
+                   "frames, --ar %g, --diameter %g m); tracked with a sphere radius of %.3f px, "
+                   "settled in %zu passes over the first frames\n",
                    cal.m_per_px, cal.length_px, cal.length_frames, args.ar, args.diameter,
-                   ls.radius_px, radii.c_str());
+                   ls.radius_px, ls.passes.size());
     }
     if (!ls.converged) {
       std::fprintf(stderr,

@@ -101,6 +101,43 @@ TEST(DimerLengthScale, AnUnsettledRadiusIsSaidAfterTheLastPass) {
   EXPECT_EQ(t.calls, kLengthScaleMaxPasses);
 }
 
+TEST(DimerLengthScale, GuessesRunFromSixPixelsWhileTheDimerFitsTheFrame) {
+  const std::vector<double> g = DimerLengthRadiusGuesses(640, 3.9);
+  ASSERT_FALSE(g.empty());
+  EXPECT_EQ(g.front(), kGuessMinRadiusPx);
+  for (size_t i = 1; i < g.size(); ++i) EXPECT_NEAR(g[i] / g[i - 1], kGuessRatio, 1e-12);
+  EXPECT_LE(2.0 * 3.9 * g.back(), 640.0);
+  EXPECT_GT(2.0 * 3.9 * g.back() * kGuessRatio, 640.0) << "the next guess would not fit";
+  EXPECT_TRUE(DimerLengthRadiusGuesses(40, 3.9).empty()) << "no sphere of 6 px fits";
+}
+
+TEST(DimerLengthScale, WhereTheMeasuredRadiusLosesTheSpheresTheGuessesFindThem) {
+  // A tracker that finds both spheres only with a radius within 20 % of the true one (the
+  // under-exposed POV-Ray film: none with its measured 8 px, both from 18 px to 28 px).
+  const double truth = 23.75, ar = 3.9, nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> tried;
+  auto length_of = [&](double r) {
+    tried.push_back(r);
+    if (std::isnan(r) || std::abs(r / truth - 1.0) > 0.2) return nan;
+    return 2.0 * (ar - 1.0) * truth + 0.3 * (r - truth);
+  };
+  const LengthScale s = IterateDimerLengthScale(
+      length_of, ar, [&] { return DimerLengthRadiusGuesses(640, ar); });
+  ASSERT_TRUE(s.ok) << s.failure;
+  EXPECT_TRUE(s.converged);
+  EXPECT_NEAR(s.radius_px, truth, 0.01);
+  // Measured, then 6, 7.5, 9.4, 11.7, 14.6 lose them; 18.3 finds them; two passes settle.
+  ASSERT_GE(tried.size(), 7u);
+  EXPECT_TRUE(std::isnan(tried[0]));
+  EXPECT_NEAR(tried[6], 6.0 * std::pow(kGuessRatio, 5), 1e-9);
+  EXPECT_EQ(s.passes.size(), tried.size());
+  // No guess finds them: the failure says how many were tried.
+  const LengthScale none = IterateDimerLengthScale(
+      [&](double) { return nan; }, ar, [&] { return DimerLengthRadiusGuesses(640, ar); });
+  EXPECT_FALSE(none.ok);
+  EXPECT_NE(none.failure.find("guessed"), std::string::npos) << none.failure;
+}
+
 TEST(DimerLengthScale, NoLengthIsAFailureThatSaysWhy) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const LengthScale none = IterateDimerLengthScale([&](double) { return nan; }, 3.9);
