@@ -10,6 +10,7 @@
 //   bench_tracking_footage --exposure [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --seeds [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --seed-agreement [frames] [subframes] [cache_dir]
+//   bench_tracking_footage --scale [frames] [subframes] [cache_dir]
 // (--ecc: what ECC's stopping rule trades, tracking/template_locator.h EccStop; --learn-passes:
 // what the template learning's passes trade, tracking/appearance_model.h LearnOptions. Every
 // case tracked by `auto` with each rule; the accuracy, how far the answers move from the first
@@ -23,7 +24,8 @@
 // frames, 2 slices; it writes the lowered films into CACHE/levels, as --exposure does.
 // --seed-agreement: what leaving out the learning frames whose highlight seeds are not a
 // dimer's length apart trades, on the films seeded from their highlights; defaults 20 frames, 2
-// slices.)
+// slices. --scale: every lighting and camera with the scale given, from the spheres' size and
+// from the dimer's length (--ar), through the command; defaults 20 frames, 2 slices.)
 // Defaults: 40 frames of the hop motion, 6 exposure slices (300 us at 2000 frames/s), cache
 // folder bench_footage_cache (footage is reused while its scenes are unchanged), methods
 // "auto,centroid,template" (comma-separated `--method` names of tracking/refiner.h; auto is the
@@ -51,6 +53,7 @@
 #include "tracking/mosaic_grey.h"
 #include "tracking/plate_edge.h"
 #include "tests/footage/povray_footage.h"
+#include "tests/footage/scaled_track.h"
 #include "tests/footage/track_accuracy.h"
 
 using namespace dimer::footage;
@@ -498,6 +501,55 @@ int ExposureTrade(size_t frames, int slices, const std::string& cache) {
   return 0;
 }
 
+// --scale: where the scale comes from, against the truth. Every lighting and camera tracked
+// through the command's whole path (tests/footage/scaled_track.h) with the scale given
+// (--m-per-px, the truth's), from the spheres' size (--diameter alone, the default) and from
+// the dimer's length (--ar): the scale's error, the passes --ar ran, the command's wall time,
+// and each sphere's mean error (the rows rest on the radius the scale implies).
+int ScaleTrade(size_t frames, int slices, const std::string& cache) {
+  std::printf("Where the scale comes from: %zu frames per case, `auto`, %u cores, load average "
+              "%.1f at start\n\n",
+              frames, std::thread::hardware_concurrency(), LoadAverage());
+  std::printf("| footage | scale from | m/px error | --ar passes | s | left mean error (col, row) "
+              "px | right mean error (col, row) px |\n|---|---|---|---|---|---|---|\n");
+  std::vector<Case> cases = AllCases();
+  for (const Case& c : CameraCases()) cases.push_back(c);
+  const std::string out = cache + "/scale_trade.h5";
+  for (const Case& c : cases) {
+    const std::string dir = Footage(c, frames, slices, cache, nullptr);
+    const double truth = CaseFootageOptions(c.lighting, c.camera).camera.m_per_px;
+    const double nan = std::nan("");
+    const struct {
+      const char* name;
+      double m_per_px, ar;
+    } sources[] = {{"`--m-per-px` (true)", truth, nan},
+                   {"the spheres' size", nan, nan},
+                   {"`--ar`", nan, c.aspect_ratio}};
+    for (const auto& src : sources) {
+      // The row is printed whole after the command, whose own summary line goes to stdout.
+      char row[256];
+      std::string line = "| " + c.name + " | " + src.name + " | ";
+      try {
+        const ScaledTrack t = TrackScaled(dir, out, src.m_per_px, src.ar);
+        std::snprintf(row, sizeof row, "%+.3f %% | %.0f | %.2f |",
+                      100.0 * (t.m_per_px / truth - 1.0), t.ar_passes, t.seconds);
+        line += row;
+        for (int k = 0; k < 2; ++k) {
+          std::snprintf(row, sizeof row, " (%+.3f, %+.3f) |", t.bias[k].x(), t.bias[k].y());
+          line += t.found[k] == 0 ? std::string(" not found |") : std::string(row);
+        }
+      } catch (const std::exception& e) {
+        line += std::string("fails: ") + e.what() + " | | | | |";
+      }
+      std::printf("%s\n", line.c_str());
+      std::fflush(stdout);
+    }
+  }
+  std::filesystem::remove(out);
+  std::printf("\nload average at the end %.1f\n", LoadAverage());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -510,6 +562,7 @@ int main(int argc, char** argv) {
   using ShortMode = int (*)(size_t, int, const std::string&);
   const std::vector<std::pair<std::string, ShortMode>> short_modes = {
       {"--exposure", ExposureTrade},
+      {"--scale", ScaleTrade},
       {"--seed-agreement", SeedAgreementTrade},
       {"--seeds", SeedsTrade}};
   for (const auto& [flag, run] : short_modes) {

@@ -417,7 +417,9 @@ Calibration Calibrate(const TrackArgs& args, const SequenceResult& r, const Leng
     }
     const double radius = Median(radii);
     if (!std::isfinite(radius)) {
-      throw InputError(args.input + ": no sphere found, cannot calibrate; pass --m-per-px");
+      throw InputError(args.input +
+                       ": no sphere found, cannot calibrate; pass --m-per-px, or --ar with the "
+                       "dimer's aspect ratio");
     }
     cal.m_per_px = args.diameter / (2.0 * radius);
   }
@@ -964,14 +966,15 @@ void RunTrack(const TrackArgs& args) {
       std::fprintf(stderr,
                    "dimerlab track: sphere radius %.2f px from the spheres' outline (no "
                    "--m-per-px); on mirror spheres it can be ~0.5 px short, which lowers every "
-                   "row by as much: pass --m-per-px when the scale is known\n",
+                   "row by as much and enlarges the scale by ~2 %%: pass --m-per-px when the "
+                   "scale is known, or --ar with the dimer's aspect ratio\n",
                    r.appearance[0].radius_px);
     } else if (r.radius_source == "silhouette" && r.method == Method::kTemplate &&
                !r.method_reason.empty() && r.appearance[0].valid()) {
       std::fprintf(stderr,
                    "dimerlab track: warning: sphere radius %.2f px from the silhouette methods, "
-                   "not the outline (the two spheres' outlines disagree); rows rest on it: "
-                   "pass --m-per-px\n",
+                   "not the outline (the two spheres' outlines disagree); rows and the scale "
+                   "rest on it: pass --m-per-px, or --ar with the dimer's aspect ratio\n",
                    r.appearance[0].radius_px);
     }
   }
