@@ -50,6 +50,19 @@ std::string ModeText(const ModeSummary& m) {
 
 // How the tracked plate's motion became metres: a Γ read off a plate edge that is not in the
 // dimer's plane is off by the ratio of the two scales, so the summary says which was used.
+// Where a track's scale came from: what its lengths, speeds and Γ rest on.
+std::string ScaleRow(const SampledRun& r) {
+  if (r.kind != "track" || r.scale_source.empty()) return "";
+  const std::string scale = Num(r.m_per_px * 1e3, "%.6g") + " mm/px";
+  const std::string from =
+      r.scale_source == "--m-per-px" ? "given (track --m-per-px)"
+      : r.scale_source == "--ar"
+          ? "from the dimer's length and A_r (track --ar): to ~0.2 %"
+          : "from the sphere diameter over the measured radius (on mirror steel ~2 % large, more "
+            "where one side is dark; track --ar or --m-per-px fixes it)";
+  return "| scale | " + scale + ", " + from + " |\n";
+}
+
 std::string PlateScaleRow(const Analysis& a) {
   const SampledRun& r = a.run;
   if (r.kind != "track" || a.plate.source != "fit" || r.plate_scale_source.empty()) return "";
@@ -84,7 +97,10 @@ void Drive(const Analysis& a, std::ostringstream& o) {
     << "| harmonics 2f, 3f, 4f (of the amplitude) | " << Percent(d.harmonic_rel[0]) << ", "
     << Percent(d.harmonic_rel[1]) << ", " << Percent(d.harmonic_rel[2]) << " |\n"
     << "| sphere diameter d | " << Num(r.diameter_m * kMm) << " mm |\n"
-    << "| A_r (measured) | " << Num(r.ar, "%.3f") << " |\n\n";
+    << ScaleRow(r)
+    << (r.scale_source == "--ar" ? "| A_r (given to track --ar, which set the scale by it) | "
+                                 : "| A_r (measured) | ")
+    << Num(r.ar, "%.3f") << " |\n\n";
 }
 
 void Settled(const Analysis& a, std::ostringstream& o) {

@@ -130,6 +130,11 @@ SampledRun LoadSampledRun(const std::string& path) {
   SampledRun run = SampleTrajectory(traj, fps, d, path, kind);
   if (kind == "track") {
     run.m_per_px = r.AttrDouble("/", "m_per_px").value_or(kNaN);
+    const double given = r.AttrDouble("/", "m_per_px_given").value_or(kNaN);
+    run.scale_source = given == 1   ? "--m-per-px"
+                       : given == 2 ? "--ar"
+                       : given == 0 ? "--diameter"
+                                    : "";
     run.row0_px = r.AttrDouble("/", "row0").value_or(kNaN);
     run.plate_slope = r.AttrDouble("/", "plate_slope").value_or(0.0);
     run.col0_px = r.AttrDouble("/", "col0").value_or(0.0);

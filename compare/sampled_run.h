@@ -31,6 +31,10 @@ struct SampledRun {
   double diameter_m = kNaN;    // sphere diameter d (file attribute), m
   double ar = kNaN;            // A_r measured as median |c_r - c_l| / d + 1
   double m_per_px = kNaN;      // track files: calibration, m/px (col = x / m_per_px)
+  // Track files: where that scale came from (`track`'s m_per_px_given): "--m-per-px",
+  // "--diameter" (the measured sphere radius) or "--ar" (the dimer's length, A_r given: the
+  // measured `ar` is then the given one); "" for sim files and older tracks.
+  std::string scale_source;
   double row0_px = kNaN;       // track files: row of z = 0 (row = row0 - z / m_per_px)
   // Track files whose plate edge sloped (`track`'s plate_slope, rows per column, and the pivot
   // column col0): x and z run along the plate and its normal; 0 and 0 when level or older.

@@ -404,6 +404,34 @@ TEST_F(ReportTest, SummarySaysWhichScaleThePlatesMotionWasReadAt) {
   EXPECT_EQ(row(), "");
 }
 
+// The summary says where a track's scale came from (track's m_per_px_given), and that A_r was
+// given rather than measured when the scale rests on it (track --ar).
+TEST_F(ReportTest, SummarySaysWhereTheScaleCameFrom) {
+  auto rows = [&]() {
+    ReportInputs in;
+    in.track = &track_;
+    WriteReport(dir_.path().string(), in);
+    const std::string md = ReadText(dir_ / "summary.md");
+    const size_t at = md.find("| scale |");
+    const size_t ar = md.find("| A_r (");
+    return std::make_pair(
+        at == std::string::npos ? std::string() : md.substr(at, md.find('\n', at) - at),
+        ar == std::string::npos ? std::string() : md.substr(ar, md.find('\n', ar) - ar));
+  };
+  EXPECT_EQ(rows().first, "") << "a track file from before the attribute: nothing claimed";
+  track_.run.m_per_px = 2e-4;
+  track_.run.scale_source = "--diameter";
+  EXPECT_NE(rows().first.find("0.2 mm/px, from the sphere diameter over the measured radius"),
+            std::string::npos) << rows().first;
+  EXPECT_NE(rows().second.find("A_r (measured)"), std::string::npos) << rows().second;
+  track_.run.scale_source = "--ar";
+  EXPECT_NE(rows().first.find("from the dimer's length and A_r (track --ar)"), std::string::npos)
+      << rows().first;
+  EXPECT_NE(rows().second.find("A_r (given to track --ar"), std::string::npos) << rows().second;
+  track_.run.scale_source = "--m-per-px";
+  EXPECT_NE(rows().first.find("given (track --m-per-px)"), std::string::npos) << rows().first;
+}
+
 TEST_F(ReportTest, FigureWithoutDataIsSkippedAndSaidSo) {
   track_.slip = SlipResult();  // no resting sphere
   ReportInputs in;
