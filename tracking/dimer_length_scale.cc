@@ -111,6 +111,7 @@ LengthScale TrackedDimerLengthScale(const TrackArgs& args, const SequenceOptions
   first.end = film.first + kLengthScaleFrames;
   if (film.end) first.end = std::min(*film.end, *first.end);
   int width = 0;  // the frames', from the first pass: bounds the guesses
+  size_t readable = 0;  // frames a pass could read
   size_t passes = 0;
   auto length_of = [&](double radius_px) {
     SequenceOptions o = seq;
@@ -127,6 +128,7 @@ LengthScale TrackedDimerLengthScale(const TrackArgs& args, const SequenceOptions
     }
     if (!r.complete) throw Interrupted();
     if (r.width > 0) width = r.width;
+    readable = std::max(readable, r.frames.size());
     size_t both = 0;
     const double length = MedianDimerLength(r.frames, &both);
     if (!args.quiet) {
@@ -138,8 +140,16 @@ LengthScale TrackedDimerLengthScale(const TrackArgs& args, const SequenceOptions
     }
     return length;
   };
-  return IterateDimerLengthScale(length_of, args.ar,
-                                 [&] { return DimerLengthRadiusGuesses(width, args.ar); });
+  // Guesses cannot help a film too short for a length.
+  LengthScale s = IterateDimerLengthScale(length_of, args.ar, [&] {
+    return readable < kLengthScaleMinFrames ? std::vector<double>{}
+                                            : DimerLengthRadiusGuesses(width, args.ar);
+  });
+  if (!s.ok && readable < kLengthScaleMinFrames) {
+    s.failure = std::to_string(readable) + " readable frames, and a length needs " +
+                std::to_string(kLengthScaleMinFrames) + " showing both spheres";
+  }
+  return s;
 }
 
 }  // namespace dimer::tracking

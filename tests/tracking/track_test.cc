@@ -220,6 +220,18 @@ TEST(RunTrack, TheDimersLengthGivesTheScale) {
   EXPECT_EQ(*b.AttrDouble("/", "m_per_px_given"), 1.0);
   EXPECT_EQ(*b.AttrDouble("/", "ar_passes"), 0.0);
   EXPECT_NEAR(*b.AttrDouble("/", "ar_length_px"), length, 0.05);
+  // Too few frames for a length: said at once, without guessing radii.
+  TrackArgs few = t;
+  few.output = dir / "few.h5";
+  few.frames = "0:7";
+  try {
+    RunTrack(few);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("7 readable frames, and a length needs 10"),
+              std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(few.output));
   // Spheres cannot overlap.
   TrackArgs overlap = t;
   overlap.output = dir / "overlap.h5";
