@@ -47,8 +47,8 @@ demo() {
   $D sim --scene samples/drift_ar3.9.scene --cycles 30 -o "$out/sim.h5" --force -q
   echo "== 2. render it as 2000 frames/s footage of polished steel (our renderer, sensor noise 2 grey levels) =="
   $D render "$out/sim.h5" -o "$out/frames" --force --quiet
-  echo "== 3. analyze the footage: track, fit the drive, modes, drift, slip, simulate it beside the track =="
-  $D analyze "$out/frames" -o "$out/report" --force -q
+  echo "== 3. analyze the footage: track (the scale from the dimer's length, A_r 3.9), fit the drive, modes, drift, slip, simulate it beside the track =="
+  $D analyze "$out/frames" --ar 3.9 -o "$out/report" --force -q
   echo "== the report: $out/report/summary.md (figures in $out/report/figures/, overlay.avi, compare.h5) =="
 }
 

@@ -28,8 +28,9 @@ sim::SimOptions SceneFromTrack(const Analysis& track, const sim::SimOptions& giv
                             : sim::InitKind::kDrift;
   o.init_state.reset();
   if (notes) {
-    notes->push_back("simulated scene: A_r " + Num(o.ar) + " (measured), d " + Num(o.diameter_m * 1e3) +
-                     " mm (file), f " + Num(o.freq_hz) + " Hz and Gamma " + Num(o.gamma) + " (" +
+    const char* ar_from = track.run.scale_source == "--ar" ? " (track --ar)" : " (measured)";
+    notes->push_back("simulated scene: A_r " + Num(o.ar) + ar_from + ", d " +
+                     Num(o.diameter_m * 1e3) + " mm (file), f " + Num(o.freq_hz) + " Hz and Gamma " + Num(o.gamma) + " (" +
                      track.plate.source +
                      (std::isfinite(track.plate.gamma_plate) ? ", Gamma from --gamma" : "") +
                      "), init " + sim::ToString(o.init) + " (observed " + mode +
