@@ -66,7 +66,17 @@ struct LengthScale {
   bool converged = false;  // the last two passes' radii within kLengthScaleTolPx
   std::vector<LengthScalePass> passes;  // every pass, guesses included
   std::string failure;  // why not ok (no length measured)
+  // The radius the first pass measured from the spheres' outline, or from clean silhouettes
+  // where those methods were chosen: a check on --ar. NaN where the silhouette methods' radius
+  // stood beside a template (20-65 % short there) or nothing was found.
+  double outline_radius_px = std::numeric_limits<double>::quiet_NaN();
 };
+
+// That radius (outline_radius_px) is within 4.1 % of the one --ar settles on for every POV-Ray
+// film where it is measured (docs/BENCHMARKS.md, "The scale from the dimer's length"); a radius
+// from --ar further from it than this fraction is warned about (A_r - 1, the centre distance
+// over the diameter, given for A_r puts it 53 % off at A_r 3.9).
+inline constexpr double kOutlineRadiusCheck = 0.10;
 
 // Where the radius measured as without a scale loses the spheres (a silhouette radius of 8 px on
 // the under-exposed POV-Ray film, whose spheres are 23.75 px; none through a camera turned 8

@@ -588,6 +588,7 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                      {"matches_dropped_length_right", "1"}, {"dimer_length_px", "px"},
                      {"m_per_px", "m/px"}, {"row0", "px"}, {"col0", "px"}, {"ar", "1"},
                      {"ar_length_px", "px"}, {"ar_length_frames", "1"}, {"ar_radius_px", "px"},
+                     {"ar_outline_radius_px", "px"},
                      {"ar_passes", "1"}, {"ar_converged", "1"},
                      {"diameter", "m"},
                      {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
@@ -632,6 +633,9 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
       {"ar_length_px", std::isfinite(cal.length_px) ? cal.length_px : 0.0},
       {"ar_length_frames", int64_t(cal.length_frames)},
       {"ar_radius_px", cal.length_scale.ok ? cal.length_scale.radius_px : 0.0},
+      {"ar_outline_radius_px", std::isfinite(cal.length_scale.outline_radius_px)
+                                   ? cal.length_scale.outline_radius_px
+                                   : 0.0},
       {"ar_passes", int64_t(cal.length_scale.passes.size())},
       {"ar_converged", int64_t(cal.length_scale.converged)},
       {"chunk_frames", int64_t(args.sequence.chunk_frames)},
@@ -753,6 +757,14 @@ void ReportLengthScale(const TrackArgs& args, const Calibration& cal) {
                    "settled in %zu passes over the first frames\n",
                    cal.m_per_px, cal.length_px, cal.length_frames, args.ar, args.diameter,
                    ls.radius_px, ls.passes.size());
+    }
+    const double outline = ls.outline_radius_px;
+    if (std::abs(ls.radius_px / outline - 1.0) > kOutlineRadiusCheck) {
+      std::fprintf(stderr,
+                   "dimerlab track: warning: the spheres' outline gives a radius of %.2f px, the "
+                   "dimer's length with --ar %g one of %.2f px (%+.0f %%): check --ar (the length "
+                   "over the diameter, not the centre distance over it)\n",
+                   outline, args.ar, ls.radius_px, 100.0 * (ls.radius_px / outline - 1.0));
     }
     if (!ls.converged) {
       std::fprintf(stderr,

@@ -38,6 +38,7 @@
 #include "tests/footage/scaled_track.h"
 #include "tests/footage/track_accuracy.h"
 #include "tracking/cine_writer.h"
+#include "tracking/dimer_length_scale.h"
 #include "tracking/frame_source.h"
 #include "tracking/mosaic_grey.h"
 #include "tracking/track.h"
@@ -642,6 +643,27 @@ TEST_P(PovrayDimerLength, TheDimersLengthGivesTheScaleAndTheRows) {
         << (k == 0 ? "left" : "right") << " sphere's mean row error, px (with the scale given "
         << given.bias[k].y() << ")";
   }
+}
+
+// A mistaken --ar (A_r - 1, the centre distance over the diameter, given for A_r) is caught by
+// the radius the first pass measured from the outline: the radius the length implies is 53 %
+// larger, past kOutlineRadiusCheck (stderr warns), while the right A_r is within 4.1 % of it.
+// CTest `povray.dimer_length.mistaken_ar`.
+TEST(PovrayDimerLengthCheck, AMistakenAspectRatioIsCaughtByTheOutline) {
+  const std::string dir = Footage(Case{"front_point", Lighting::kFrontPoint, 3.9});
+  dimer::testing::TempDir tmp;
+  auto radii = [&](double ar) {
+    TrackScaled(dir, tmp / "track.h5", std::nan(""), ar);
+    H5Reader h(tmp / "track.h5");
+    return std::make_pair(*h.AttrDouble("/", "ar_radius_px"),
+                          *h.AttrDouble("/", "ar_outline_radius_px"));
+  };
+  const auto right = radii(3.9), mistaken = radii(2.9);
+  std::printf("[ stats    ] outline radius %.3f px; from the length with A_r 3.9 %.3f px, with "
+              "2.9 %.3f px\n", right.second, right.first, mistaken.first);
+  ASSERT_GT(right.second, 0) << "front-lit steel: the radius from the outline";
+  EXPECT_LE(std::abs(right.first / right.second - 1.0), tracking::kOutlineRadiusCheck);
+  EXPECT_GT(std::abs(mistaken.first / mistaken.second - 1.0), tracking::kOutlineRadiusCheck);
 }
 
 // The films where the spheres' size failed worst, and the two where it found no sphere at all
