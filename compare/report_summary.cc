@@ -48,8 +48,6 @@ std::string ModeText(const ModeSummary& m) {
                                 : m.label;
 }
 
-// How the tracked plate's motion became metres: a Γ read off a plate edge that is not in the
-// dimer's plane is off by the ratio of the two scales, so the summary says which was used.
 // Where a track's scale came from: what its lengths, speeds and Γ rest on.
 std::string ScaleRow(const SampledRun& r) {
   if (r.kind != "track" || r.scale_source.empty()) return "";
@@ -63,6 +61,8 @@ std::string ScaleRow(const SampledRun& r) {
   return "| scale | " + scale + ", " + from + " |\n";
 }
 
+// How the tracked plate's motion became metres: a Γ read off a plate edge that is not in the
+// dimer's plane is off by the ratio of the two scales, so the summary says which was used.
 std::string PlateScaleRow(const Analysis& a) {
   const SampledRun& r = a.run;
   if (r.kind != "track" || a.plate.source != "fit" || r.plate_scale_source.empty()) return "";

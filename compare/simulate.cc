@@ -30,7 +30,8 @@ sim::SimOptions SceneFromTrack(const Analysis& track, const sim::SimOptions& giv
   if (notes) {
     const char* ar_from = track.run.scale_source == "--ar" ? " (track --ar)" : " (measured)";
     notes->push_back("simulated scene: A_r " + Num(o.ar) + ar_from + ", d " +
-                     Num(o.diameter_m * 1e3) + " mm (file), f " + Num(o.freq_hz) + " Hz and Gamma " + Num(o.gamma) + " (" +
+                     Num(o.diameter_m * 1e3) + " mm (file), f " + Num(o.freq_hz) +
+                     " Hz and Gamma " + Num(o.gamma) + " (" +
                      track.plate.source +
                      (std::isfinite(track.plate.gamma_plate) ? ", Gamma from --gamma" : "") +
                      "), init " + sim::ToString(o.init) + " (observed " + mode +

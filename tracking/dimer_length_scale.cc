@@ -7,6 +7,7 @@
 #include "common/error.h"
 #include "common/stderr_capture.h"
 #include "tracking/frame_range.h"
+#include "tracking/median.h"
 
 namespace dimer::tracking {
 
@@ -16,11 +17,8 @@ double MedianDimerLength(const std::vector<FrameTrack>& frames, size_t* used) {
     if (f.found[0] && f.found[1]) len.push_back((f.centre[1] - f.centre[0]).norm());
   }
   if (used) *used = len.size();
-  if (len.size() < kLengthScaleMinFrames) return std::numeric_limits<double>::quiet_NaN();
-  // The lower median for an even count: the same value whatever the frames' order.
-  auto mid = len.begin() + std::ptrdiff_t((len.size() - 1) / 2);
-  std::nth_element(len.begin(), mid, len.end());
-  return *mid;
+  return len.size() < kLengthScaleMinFrames ? std::numeric_limits<double>::quiet_NaN()
+                                            : MedianOf(len);
 }
 
 namespace {
@@ -48,10 +46,7 @@ double CheckRadius(const SequenceResult& r) {
       if (f.found[k] && f.radius_px[k] > 0) radii.push_back(f.radius_px[k]);
     }
   }
-  if (radii.empty()) return std::numeric_limits<double>::quiet_NaN();
-  auto mid = radii.begin() + std::ptrdiff_t((radii.size() - 1) / 2);
-  std::nth_element(radii.begin(), mid, radii.end());
-  return *mid;
+  return MedianOf(radii);
 }
 
 }  // namespace

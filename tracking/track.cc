@@ -628,7 +628,8 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
       {"diameter", args.diameter},
       {"polarity", std::string(r.polarity > 0 ? "bright" : "dark")},
       {"polarity_requested", args.polarity},
-      {"m_per_px_given", int64_t(!std::isnan(args.m_per_px) ? 1 : !std::isnan(args.ar) ? 2 : 0)},
+      {"m_per_px_given",
+       int64_t(!std::isnan(args.m_per_px) ? 1 : !std::isnan(args.ar) ? 2 : 0)},
       {"ar", std::isnan(args.ar) ? 0.0 : args.ar},
       {"ar_length_px", std::isfinite(cal.length_px) ? cal.length_px : 0.0},
       {"ar_length_frames", int64_t(cal.length_frames)},
@@ -808,6 +809,17 @@ void RunTrack(const TrackArgs& args) {
                              args.input);
   TrackArgs resolved = args;
   const Recording rec = ResolveFps(source->recording(), &resolved);
+  // Lossy compression moves edges and smooths the noise the offsets are measured against: on
+  // POV-Ray footage exported as H.264 the columns came out up to 3 px off while stating 0.2-0.4
+  // px (docs/BENCHMARKS.md, "Compressed video"). Said before the work, and kept in the file.
+  if (!rec.info.video_codec.empty() && !LosslessVideoCodec(rec.info.video_codec)) {
+    std::fprintf(stderr,
+                 "dimerlab: warning: %s: video codec '%s' is taken as lossy: compression moves the "
+                 "spheres' edges by tenths of a pixel to pixels, beyond the offsets' stated "
+                 "uncertainties; track the camera's own files (.cine) or lossless frames where you "
+                 "can\n",
+                 args.input.c_str(), rec.info.video_codec.c_str());
+  }
   // --ar without --m-per-px: the radius the film is tracked with comes from the dimer's length
   // over its first frames (dimer_length_scale.h); the film's own length then sets the scale.
   LengthScale length_scale;
@@ -825,19 +837,9 @@ void RunTrack(const TrackArgs& args) {
     }
     seq.contact_radius_px = length_scale.radius_px;
     if (!std::isnan(args.plate_m_per_px)) {
-      seq.plate_motion_scale = args.plate_m_per_px / (0.5 * args.diameter / length_scale.radius_px);
+      seq.plate_motion_scale =
+          args.plate_m_per_px / (0.5 * args.diameter / length_scale.radius_px);
     }
-  }
-  // Lossy compression moves edges and smooths the noise the offsets are measured against: on
-  // POV-Ray footage exported as H.264 the columns came out up to 3 px off while stating 0.2-0.4
-  // px (docs/BENCHMARKS.md, "Compressed video"). Said before the work, and kept in the file.
-  if (!rec.info.video_codec.empty() && !LosslessVideoCodec(rec.info.video_codec)) {
-    std::fprintf(stderr,
-                 "dimerlab: warning: %s: video codec '%s' is taken as lossy: compression moves the "
-                 "spheres' edges by tenths of a pixel to pixels, beyond the offsets' stated "
-                 "uncertainties; track the camera's own files (.cine) or lossless frames where you "
-                 "can\n",
-                 args.input.c_str(), rec.info.video_codec.c_str());
   }
   const SequenceResult r = TrackWithLibraryMessagesCaptured(resolved, seq, *source);
   if (r.frames.empty()) {

@@ -114,7 +114,7 @@ struct TrackArgs {
   double ar = std::numeric_limits<double>::quiet_NaN();
   double row0 = std::numeric_limits<double>::quiet_NaN();      // z = 0 row, px; NaN: plate median
   // The plate edge's own scale, m/px, where it is not in the dimer's plane (a plate's front
-  // edge is nearer the camera); needs m_per_px. NaN: the dimer plane's.
+  // edge is nearer the camera); needs m_per_px or ar. NaN: the dimer plane's.
   double plate_m_per_px = std::numeric_limits<double>::quiet_NaN();
   std::string method = "auto";  // auto | centroid | discfit | template
   std::string polarity = "auto";  // auto | bright | dark
