@@ -5,12 +5,13 @@
 # simulation. Prints the tracker's accuracy against the scene's truth, then the compare table
 # (track against simulation), then Gamma again with the plate edge's own scale given.
 # docs/BENCHMARKS.md, "The whole pipeline on a POV-Ray film".
-#   bench/povray_film.sh [BUILD_DIR] [WORK_DIR] [CYCLES] [ROLL_DEG] [TILT_DEG] [INIT]
+#   bench/povray_film.sh [BUILD_DIR] [WORK_DIR] [CYCLES] [ROLL_DEG] [TILT_DEG] [INIT] [LIGHTING]
 # Defaults: build, povray_film, 30 plate periods (2401 frames at 2000 frames/s), a level camera
 # (ROLL_DEG: the camera turned about its axis, the plate's edge sloping) and a level plate
 # (TILT_DEG: the plate tilted, > 0 rising toward +x, simulated so and seen by a level camera;
 # compare takes the tilt from the sim file and compares in the plate's frame) and the scene's
-# release, drift (INIT jump: both ends fly, and the flights give the plate's tilt back). The frames are
+# release, drift (INIT jump: both ends fly, and the flights give the plate's tilt back), and
+# front_point lighting (LIGHTING: any of make_povray_footage --lighting's). The frames are
 # 320x160 at 0.4 mm/px, one exposure slice, noise 2 grey levels; the footage is kept in
 # WORK_DIR/frames and reused while its scenes are unchanged (POV-Ray: ~6 min on 2 cores).
 set -euo pipefail
@@ -21,6 +22,7 @@ cycles=${3:-30}
 roll=${4:-0}
 tilt=${5:-0}
 init=${6:-drift}
+lighting=${7:-front_point}
 dimerlab="$build/app/dimerlab"
 footage="$build/tests/footage/make_povray_footage"
 scale=4e-4
@@ -29,7 +31,7 @@ mkdir -p "$work"
 "$dimerlab" sim --scene samples/drift_ar3.9.scene --cycles "$cycles" --tilt-deg "$tilt" --init "$init" \
   -o "$work/sim.h5" --force -q
 frames=$((cycles * 80 + 1))  # 25 Hz at 2000 samples/s, both ends
-"$footage" --sim "$work/sim.h5" --frames "$frames" --lighting front_point --subframes 1 \
+"$footage" --sim "$work/sim.h5" --frames "$frames" --lighting "$lighting" --subframes 1 \
   --width 320 --height 160 --m-per-px "$scale" --horizon-row 124.5 --roll-deg "$roll" \
   -o "$work/frames" --reuse -q
 start=$(date +%s.%N)
@@ -37,8 +39,8 @@ start=$(date +%s.%N)
 end=$(date +%s.%N)
 "$dimerlab" compare "$work/track.h5" --sim "$work/sim.h5" -o "$work/compare" --force -q
 
-printf 'POV-Ray film: %s frames, 320x160, %s m/px, front_point, camera roll %s deg, plate tilt %s deg, %s; %s cores, ' \
-  "$frames" "$scale" "$roll" "$tilt" "$init" "$(nproc)"
+printf 'POV-Ray film: %s frames, 320x160, %s m/px, %s, camera roll %s deg, plate tilt %s deg, %s; %s cores, ' \
+  "$frames" "$scale" "$lighting" "$roll" "$tilt" "$init" "$(nproc)"
 printf 'load average %s;\n' "$(cut -d' ' -f1 /proc/loadavg)"
 printf 'dimerlab track: %.1f s (the scene: Gamma 0.9, f 25 Hz)\n' "$(echo "$end - $start" | bc)"
 echo

@@ -81,8 +81,17 @@ struct LearnOptions {
   // (each seed then possibly within the learning's search). PrepareSequenceMethod uses it.
   double seed_agreement_px = 0;
 };
-// Frames whose reference row is within this of the lowest (relative to the plate) rest, px.
+// Frames whose reference row is within this of the lowest (relative to the plate) rest, px;
+// where the gap's noise (impact_vertex.h, GapNoise) is larger than a third of it, within
+// kContactBandNoise times the noise.
 inline constexpr double kContactBandPx = 0.3;
+inline constexpr double kContactBandNoise = 3.0;
+// The resting cluster's window is moved to its mean at most this many times, until it moves by
+// less than kContactWindowSettledPx, and never reaches above kContactCeilingBands bands over
+// the lowest value (ContactRowOffset).
+inline constexpr int kContactWindowSteps = 20;
+inline constexpr double kContactWindowSettledPx = 1e-4;
+inline constexpr double kContactCeilingBands = 3.0;
 
 // One learning frame with the rough centres of the existing methods (left, right).
 struct LearningSample {
@@ -220,10 +229,14 @@ OffsetEstimate SilhouetteOffset(const LearntSphere& s, int axis);
 // cluster: the jump and flutter modes, a bouncing end) touches the plate only between two
 // frames, and the cluster holds the frames next to its impacts, spread over the band above the
 // contact: their mean leans off it by up to half the band (+0.09 to +0.12 px on POV-Ray films
-// of the jump mode, stated +-0.03 before). Its source is then "plate_contact_bounces" and its
-// uncertainty at least the cluster's standard deviation.
+// of the jump mode, stated +-0.03 before). Its impacts give the contact instead: the vertices
+// where each impact's approach and rebound meet (impact_vertex.h; the arms bent by the plate's
+// acceleration and by gravity, `gravity_px` = g in px per frame^2, NaN: left out), source
+// "plate_contact_impacts". Where no impact draws a clear V, the source is
+// "plate_contact_bounces" and the uncertainty at least the cluster's standard deviation.
 OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
-                                const std::vector<double>& plate_rows, double radius_px);
+                                const std::vector<double>& plate_rows, double radius_px,
+                                double gravity_px = std::numeric_limits<double>::quiet_NaN());
 // Centre column of the appearance's outline (limb_fit.h), relative to its reference column;
 // `row_offset` (reference -> centre, NaN: unknown) holds the circle's row where only one side of
 // the outline shows. Its uncertainty: the outline model's (LimbFit::col_model_err) with the

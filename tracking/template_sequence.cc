@@ -158,7 +158,7 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
 }
 
 TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<FrameTrack>& frames,
-                                double contact_radius_px) {
+                                double contact_radius_px, double gravity_px) {
   TemplateOffsets o;
   for (int k = 0; k < 2; ++k) {
     if (m.choice.silhouettes) {
@@ -174,16 +174,19 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
     // On a sloping plate the centre stands R along the plate's normal: R sqrt(1 + slope^2)
     // above the plate's row at its column (0.23 px at 8 degrees and R = 23.75 px).
     const double slope = frames.empty() ? 0.0 : frames.front().plate_slope;
-    o.row[k] = ContactRowOffset(rows, plate, contact_radius_px * std::hypot(1.0, slope));
+    o.row[k] =
+        ContactRowOffset(rows, plate, contact_radius_px * std::hypot(1.0, slope), gravity_px);
   }
   if (m.choice.silhouettes) return o;
   // The sphere that rests longer (more frames in its contact cluster) sets the contact; the
   // other one, if it rests much less (it bounces: the frames near its impacts are flight, up to
   // a few tenths of a pixel above contact, and bias its own estimate upward), gets that offset
   // carried over, by registering the two appearances and through their outlines, weighed by
-  // how alike the two appearances are (CombineRowTransfers, appearance_mismatch.h).
+  // how alike the two appearances are (CombineRowTransfers, appearance_mismatch.h). Not where
+  // its impacts gave its own contact (plate_contact_impacts): that needs no likeness.
   const int ref = o.row[1].n > o.row[0].n ? 1 : 0, other = 1 - ref;
   if (o.row[ref].source == "plate_contact" && o.row[ref].n >= kMinRestingFrames &&
+      o.row[other].source != "plate_contact_impacts" &&
       double(o.row[other].n) < kTransferBelowFraction * double(o.row[ref].n)) {
     const Appearance& from = m.learnt[ref].appearance;
     const Appearance& to = m.learnt[other].appearance;

@@ -48,9 +48,12 @@ struct TemplateOffsets {
 };
 
 // From silhouettes when the footage has clean ones, else rows from the plate contact over the
-// whole track (`contact_radius_px`) and columns from the appearance's mirror symmetry.
+// whole track (`contact_radius_px`; `gravity_px`, g in px per frame^2, bends the arms of a
+// bouncing sphere's impacts: ContactRowOffset, NaN: left out) and columns from the appearance's
+// outline.
 TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<FrameTrack>& frames,
-                                double contact_radius_px);
+                                double contact_radius_px,
+                                double gravity_px = std::numeric_limits<double>::quiet_NaN());
 void ApplyOffsets(const TemplateOffsets& o, std::vector<FrameTrack>* frames);
 
 }  // namespace dimer::tracking

@@ -20,6 +20,7 @@
 #include "common/trajectory_io.h"
 #include "tracking/dimer_length_scale.h"
 #include "tracking/frame_range.h"
+#include "tracking/impact_vertex.h"
 
 namespace dimer::tracking {
 namespace {
@@ -316,7 +317,8 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
   }
   if (chunk_opts.appearance) {
     result.appearance = *chunk_opts.appearance;
-    result.offsets = EstimateOffsets(prepared, result.frames, ref.radius_px);
+    result.offsets = EstimateOffsets(prepared, result.frames, ref.radius_px,
+                                     options.gravity_per_radius_px * ref.radius_px);
     ApplyOffsets(result.offsets, &result.frames);
   }
   result.polarity = ref.polarity;
@@ -487,7 +489,8 @@ void WriteTemplateGroup(H5Writer& w, const SequenceResult& r) {
   w.WriteStrings("/template/offset_source", sources);
   w.SetAttr("/template/offset_source", "description",
             "left col, left row, right col, right row: silhouette, plate_contact, "
-            "plate_contact_bounces, plate_contact_of_other(_outline|_both), limb, "
+            "plate_contact_impacts, plate_contact_bounces, "
+            "plate_contact_of_other(_outline|_both), limb, "
             "symmetry(_and_whole_outline) or none");
   for (int k = 0; k < 2; ++k) {
     const Appearance& a = r.appearance[k];
@@ -809,6 +812,8 @@ void RunTrack(const TrackArgs& args) {
                              args.input);
   TrackArgs resolved = args;
   const Recording rec = ResolveFps(source->recording(), &resolved);
+  // g in px per frame^2 is this times the radius in px (whichever the film is tracked with).
+  seq.gravity_per_radius_px = 2.0 * kGravity / (args.diameter * resolved.fps * resolved.fps);
   // Lossy compression moves edges and smooths the noise the offsets are measured against: on
   // POV-Ray footage exported as H.264 the columns came out up to 3 px off while stating 0.2-0.4
   // px (docs/BENCHMARKS.md, "Compressed video"). Said before the work, and kept in the file.

@@ -48,6 +48,10 @@ struct SequenceOptions {
   // The camera's bits per pixel for 16-bit frames (level_scale.h): 0, the .cine header's;
   // 8..15 scale such levels to the 16-bit range; 16, never scaled.
   int camera_bits = 0;
+  // Template method: gravity in the frames per px of sphere radius, 2 g / (diameter × fps^2),
+  // 1/frame^2: times the radius in px, g in px per frame^2, which bends a bouncing sphere's
+  // approach and rebound (impact_vertex.h). NaN: left out of them.
+  double gravity_per_radius_px = std::numeric_limits<double>::quiet_NaN();
   void Check() const;
 };
 
