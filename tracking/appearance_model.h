@@ -19,8 +19,9 @@
 //     of (silhouette centre - registered position);
 //   - plate contact (rows): a sphere resting on the plate has its centre R above the plate's top
 //     surface; over the whole track, the frames whose reference row is lowest relative to the
-//     plate (within kContactBandPx of the lowest) are taken as resting, offset = mean of
-//     (plate - R - reference row);
+//     plate (the cluster within a band of the lowest, kContactBandPx or 3 noise sigmas) are
+//     taken as resting, offset = mean of (plate - R - reference row); a sphere that never rests
+//     touches the plate where its impacts' approach and rebound meet (impact_vertex.h);
 //   - limb (columns): the centre of the sphere's outline in the appearance (limb_fit.h), which
 //     does not depend on where the lamps are;
 //   - symmetry (columns, where the outline cannot be fitted; checked against the whole outline,
