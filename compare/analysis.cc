@@ -120,6 +120,12 @@ std::vector<std::string> AnalysisOptions::Check() const {
   return e;
 }
 
+AnalysisOptions SeenAsTrack(const Analysis& track, AnalysisOptions base) {
+  for (int s = 0; s < 2; ++s) base.min_contact_threshold_m[s] = track.contacts.sphere[s].threshold_m;
+  base.slip_half_window = track.slip.half_window;
+  return base;
+}
+
 Analysis Analyze(const SampledRun& input, const AnalysisOptions& options) {
   Analysis a;
   a.run = input;

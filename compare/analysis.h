@@ -58,4 +58,9 @@ struct Analysis {
 // no --freq/--gamma, or shorter than 2 plate periods.
 Analysis Analyze(const SampledRun& run, const AnalysisOptions& options);
 
+// `base` with a track's eyes: each sphere's contact threshold at least the track's and its slip
+// filter, so that a simulation analysed with them is read over the frames and at the noise the
+// camera allowed (compare --sim and --simulate, and every trial of the fit).
+AnalysisOptions SeenAsTrack(const Analysis& track, AnalysisOptions base);
+
 }  // namespace dimer::compare

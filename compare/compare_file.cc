@@ -267,6 +267,10 @@ AttrList Headline(const Analysis& a, const Comparison* c) {
   if (c) {
     h.push_back({"sim_settled_mode", c->sim.periods.settled.summary.label});
     h.push_back({"sim_drift_speed", c->sim.drift.speed});
+    h.push_back({"sim_slip_after", c->sim.slip.after});
+    h.push_back({"sim_slip_after_err", c->sim.slip.after_err});
+    h.push_back({"sim_slip_before", c->sim.slip.before});
+    h.push_back({"sim_slip_before_err", c->sim.slip.before_err});
     h.push_back({"sim_tilt_deg", c->sim.run.sim_tilt_deg});
     h.push_back({"modes_agree", int64_t{c->modes_agree}});
     h.push_back({"time_offset", c->time_offset_s});
@@ -285,7 +289,8 @@ AttrUnits HeadlineUnits() {
           {"diameter", "m"}, {"fps", "1/s"}, {"g_fit", "m/s^2"}, {"g_fit_err", "m/s^2"}, {"tilt_fit_deg", "deg"},
           {"tilt_fit_deg_err", "deg"}, {"slip_after", "m/s"},
           {"slip_after_err", "m/s"}, {"slip_before", "m/s"}, {"slip_before_err", "m/s"}, {"outliers", "1"},
-          {"sim_drift_speed", "m/s"}, {"sim_tilt_deg", "deg"}, {"time_offset", "s"}, {"x_offset", "m"},
+          {"sim_drift_speed", "m/s"}, {"sim_slip_after", "m/s"}, {"sim_slip_after_err", "m/s"},
+          {"sim_slip_before", "m/s"}, {"sim_slip_before_err", "m/s"}, {"sim_tilt_deg", "deg"}, {"time_offset", "s"}, {"x_offset", "m"},
           // parameters (run_compare.cc)
           {"mode_window", "periods"}, {"phase_bins", "1"}, {"option_freq", "Hz"}, {"option_gamma", "1"},
           {"transient_periods", "periods"}, {"scene_tilt_deg", "deg"}, {"scene_eps", "1"}, {"scene_mu", "1"}, {"scene_mu_s", "1"},

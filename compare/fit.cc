@@ -46,8 +46,7 @@ class Objective {
   Objective(const Analysis& track, const sim::SimOptions& scene, const FitOptions& fo)
       : track_(track), scene_(scene), fo_(fo), observed_(FitObservables(track)) {
     // See the simulation as the camera saw the track: its contact thresholds and slip filter.
-    for (int s = 0; s < 2; ++s) view_.min_contact_threshold_m[s] = track.contacts.sphere[s].threshold_m;
-    view_.slip_half_window = track.slip.half_window;
+    view_ = SeenAsTrack(track, view_);
     view_.phase_bins = track.options.phase_bins;
     view_.window_periods = track.options.window_periods;
     view_.travel_mm = track.options.travel_mm;

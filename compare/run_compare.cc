@@ -28,11 +28,18 @@ void Say(bool quiet, const std::string& line) {
 }
 
 // The simulation beside the track: from --sim, or simulated here (written as sim.h5 in `dir`).
+// It is analysed as the camera saw the track (SeenAsTrack), as the fit sees its trials: each
+// sphere's contact threshold at least the track's (4 sigma of its gap noise) and the track's
+// slip filter. Otherwise the two slips are read over different frames: the drift's resting end
+// lifts by up to 84 um at fixed plate phases, within a track's threshold (~140 um at 0.4 mm/px)
+// and outside the simulation's own (0.01 d, 95 um), and the slip before the impact read off
+// POV-Ray films was 2.7-3.7 mm/s against the simulation's 2.30 (docs/BENCHMARKS.md).
 Analysis SimulationFor(const CompareArgs& args, const Analysis& track, const std::string& dir,
                        std::vector<std::string>* notes) {
+  const AnalysisOptions seen = SeenAsTrack(track, args.analysis);
   if (!args.sim_path.empty()) {
     Say(args.quiet, "analysing the simulation " + args.sim_path);
-    return Analyze(LoadSampledRun(args.sim_path), args.analysis);
+    return Analyze(LoadSampledRun(args.sim_path), seen);
   }
   const sim::SimOptions o = SceneFromTrack(track, args.scene, args.transient_periods, notes);
   ProgressMeter meter("simulate", "periods", o.cycles, !args.quiet);
@@ -40,7 +47,7 @@ Analysis SimulationFor(const CompareArgs& args, const Analysis& track, const std
   controls.progress = [&](double done, double) { meter.Update(done); };
   controls.should_stop = [] { return InterruptRequested(); };
   sim::SimResult r;
-  Analysis a = SimulateAndAnalyze(o, args.analysis, "sim.h5", &r, controls);
+  Analysis a = SimulateAndAnalyze(o, seen, "sim.h5", &r, controls);
   meter.Finish(static_cast<double>(r.periods.size()));
   if (r.interrupted) throw Interrupted();
   sim::WriteSimFile(dir + "/sim.h5", false, o, r);
