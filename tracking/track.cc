@@ -21,6 +21,8 @@
 #include "tracking/dimer_length_scale.h"
 #include "tracking/frame_range.h"
 #include "tracking/impact_vertex.h"
+#include "tracking/precision_bound.h"
+#include "tracking/track_precision.h"
 
 namespace dimer::tracking {
 namespace {
@@ -189,6 +191,7 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
   bool exhausted = false;
   TrackerOptions chunk_opts = options.tracker;
   SequenceMethod prepared;
+  cv::Mat first_frame;  // the first readable frame, stuck pixels replaced: its noise
   const bool sequence_level = options.tracker.method == Method::kTemplate ||
                               options.tracker.method == Method::kAuto;
   std::deque<std::future<ChunkResult>> inflight;
@@ -225,7 +228,8 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
         }
         result.defects = FindDefectPixels(probe);
         for (cv::Mat& p : probe) p = RepairDefectPixels(p, result.defects);
-        ref = MakeReference(RepairDefectPixels(first, result.defects), options.tracker);
+        first_frame = RepairDefectPixels(first, result.defects);
+        ref = MakeReference(first_frame, options.tracker);
         result.plate_slope = EstimatePlateSlope(probe, ref.polarity);
         chunk_opts.plate_slope = result.plate_slope.value;
       }
@@ -317,10 +321,15 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
   }
   if (chunk_opts.appearance) {
     result.appearance = *chunk_opts.appearance;
+    result.frame_noise = FrameNoiseSigma(first_frame);
+    for (int k = 0; k < 2; ++k) {
+      result.precision_bound[k] = TranslationBound(result.appearance[k], result.frame_noise);
+    }
     result.offsets = EstimateOffsets(prepared, result.frames, ref.radius_px,
                                      options.gravity_per_radius_px * ref.radius_px);
     ApplyOffsets(result.offsets, &result.frames);
   }
+  result.precision = MeasurePrecision(result.frames, result.precision_bound);
   result.polarity = ref.polarity;
   result.width = ref.width;
   result.height = ref.height;
@@ -458,6 +467,42 @@ std::string TriggerTimeText(int64_t seconds, int64_t fraction) {
   char out[64];
   std::snprintf(out, sizeof out, "%s.%09lldZ", day, ns);
   return out;
+}
+
+// How precisely each sphere was followed, beside the footage's bound (track_precision.h).
+void WritePrecisionGroup(H5Writer& w, const SequenceResult& r) {
+  std::vector<double> scatter, bound;
+  std::vector<int64_t> followed, poor;
+  for (int k = 0; k < 2; ++k) {
+    const SpherePrecision& p = r.precision[k];
+    scatter.insert(scatter.end(), {p.measured.x(), p.measured.y()});
+    bound.insert(bound.end(), {p.bound.x(), p.bound.y()});
+    followed.push_back(p.followed);
+    poor.push_back(p.poor);
+  }
+  w.WriteDoubles("/precision/scatter", scatter, {2, 2}, "px", "col,row");
+  w.SetAttr("/precision/scatter", "rows", "left,right");
+  w.SetAttr("/precision/scatter", "description",
+            "each sphere's centres' scatter from frame to frame: the median absolute second "
+            "difference / 0.6745 / sqrt(6) (NaN: fewer than 3 consecutive found frames)");
+  w.WriteDoubles("/precision/bound", bound, {2, 2}, "px", "col,row");
+  w.SetAttr("/precision/bound", "rows", "left,right");
+  w.SetAttr("/precision/bound", "description",
+            "Cramer-Rao bound on placing each sphere's learnt appearance in the first frame's "
+            "noise (template method; NaN otherwise)");
+  w.SetAttr("/precision/bound", "frame_noise", r.frame_noise);
+  w.SetAttr("/precision/bound", "frame_noise_units", "grey levels");
+  w.WriteInt64("/precision/followed", followed, {2});
+  w.SetAttr("/precision/followed", "codes", "0=not followed as the footage allows,1=followed");
+  w.SetAttr("/precision/followed", "rows", "left,right");
+  w.SetAttr("/precision/followed", "description",
+            "whether each sphere was followed as the footage allows: not where its scatter is "
+            "above 4 times the bound and 0.15 px");
+  w.WriteInt64("/precision/poor_footage", poor, {2});
+  w.SetAttr("/precision/poor_footage", "codes", "0=no,1=the bound is above 0.15 px");
+  w.SetAttr("/precision/poor_footage", "rows", "left,right");
+  w.SetAttr("/precision/poor_footage", "description",
+            "whether the footage shows each sphere with too little contrast for sub-pixel work");
 }
 
 // The template method's learnt appearances and offsets (docs/FORMATS.md).
@@ -675,6 +720,7 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
   w.SetAttr("/found", "codes", "0=not found (its tips and pixels are NaN),1=found");
   w.SetAttr("/found", "description", "whether each sphere was found in the frame");
   if (r.method == Method::kTemplate) WriteTemplateGroup(w, r);
+  WritePrecisionGroup(w, r);
   std::vector<int64_t> stuck;
   for (const cv::Point& p : r.defects.at) stuck.insert(stuck.end(), {p.x, p.y});
   w.WriteInt64("/stuck_pixels", stuck, {r.defects.at.size(), 2});
@@ -751,6 +797,49 @@ Recording ResolveFps(const RecordingInfo& info, TrackArgs* args) {
 }
 
 // What --ar did: the scale and the radius it gave, or, beside --m-per-px, whether they agree.
+// Each sphere's frame-to-frame scatter beside the footage's bound; a warning where the tracker
+// did not follow a sphere as the footage allows (track_precision.h): its positions are then not
+// what a sub-pixel tracker gives, whatever "found" says.
+void ReportPrecision(const TrackArgs& args, const SequenceResult& r) {
+  for (int k = 0; k < 2; ++k) {
+    const SpherePrecision& p = r.precision[k];
+    const char* side = k == 0 ? "left" : "right";
+    if (!args.quiet && p.measured.allFinite()) {
+      if (p.bound.allFinite()) {
+        std::fprintf(stderr,
+                     "dimerlab track: %s sphere: centres scatter %.3f / %.3f px (col / row) "
+                     "from frame to frame; the footage allows %.3f / %.3f (noise %.2f grey "
+                     "levels)\n",
+                     side, p.measured.x(), p.measured.y(), p.bound.x(), p.bound.y(),
+                     r.frame_noise);
+      } else {
+        std::fprintf(stderr,
+                     "dimerlab track: %s sphere: centres scatter %.3f / %.3f px (col / row) "
+                     "from frame to frame\n",
+                     side, p.measured.x(), p.measured.y());
+      }
+    }
+    if (p.poor) {
+      std::fprintf(stderr,
+                   "dimerlab track: warning: %s: the footage places the %s sphere to %.2f / "
+                   "%.2f px (col / row) at best: too little contrast for sub-pixel work; its "
+                   "offset to the centre, estimated on the same footage, may be off by more "
+                   "than it states; more light or a larger image of the spheres helps\n",
+                   args.input.c_str(), side, p.bound.x(), p.bound.y());
+    }
+    if (!p.followed) {
+      std::fprintf(stderr,
+                   "dimerlab track: warning: %s: the %s sphere's centres scatter %.2f / %.2f px "
+                   "from frame to frame, more than %.0f times what the footage allows (%.3f / "
+                   "%.3f px): it is not followed as a sub-pixel tracker should, and many "
+                   "frames may be pixels off; more light, a larger image of the spheres or "
+                   "--method centroid/discfit may help\n",
+                   args.input.c_str(), side, p.measured.x(), p.measured.y(),
+                   kNotFollowedFactor, p.bound.x(), p.bound.y());
+    }
+  }
+}
+
 void ReportLengthScale(const TrackArgs& args, const Calibration& cal) {
   if (std::isnan(args.m_per_px)) {
     const LengthScale& ls = cal.length_scale;
@@ -997,6 +1086,7 @@ void RunTrack(const TrackArgs& args) {
                    r.appearance[0].radius_px);
     }
   }
+  ReportPrecision(args, r);
   const Calibration cal = Calibrate(args, r, length_scale);
   if (!std::isnan(args.ar)) ReportLengthScale(args, cal);
   WriteTrackFile(out.temp_path(), resolved, r, cal, rec);

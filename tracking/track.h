@@ -20,6 +20,7 @@
 #include "tracking/frame_source.h"
 #include "tracking/level_scale.h"
 #include "tracking/match_scores.h"
+#include "tracking/track_precision.h"
 #include "tracking/plate_slope.h"
 #include "tracking/template_sequence.h"
 #include "tracking/tracker.h"
@@ -90,6 +91,14 @@ struct SequenceResult {
   PlateSlope plate_slope;        // the plate edge's slope in the image (plate_slope.h)
   DefectPixels defects;          // the sensor's stuck pixels, replaced in every frame
   MatchScores scores;            // template: matches far below their sphere's scores, dropped
+  // Template: the first readable frame's noise (grey levels, precision_bound.h) and each
+  // sphere's bound (col, row; px) on how precisely its learnt appearance can be placed in it.
+  double frame_noise = std::numeric_limits<double>::quiet_NaN();
+  std::array<Eigen::Vector2d, 2> precision_bound{
+      Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN()),
+      Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN())};
+  // Each sphere's centres' scatter from frame to frame beside that bound (track_precision.h).
+  std::array<SpherePrecision, 2> precision;
   LevelScale level_scale;        // a 10- or 12-bit camera's levels, scaled (level_scale.h)
 };
 

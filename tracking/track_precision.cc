@@ -1,0 +1,34 @@
+#include "tracking/track_precision.h"
+
+#include <cmath>
+
+#include "tracking/impact_vertex.h"
+
+namespace dimer::tracking {
+
+std::array<SpherePrecision, 2> MeasurePrecision(const std::vector<FrameTrack>& frames,
+                                                const std::array<Eigen::Vector2d, 2>& bound) {
+  std::array<SpherePrecision, 2> out;
+  for (int k = 0; k < 2; ++k) {
+    SpherePrecision& p = out[k];
+    p.bound = bound[k];
+    for (int axis = 0; axis < 2; ++axis) {
+      std::vector<double> v;
+      v.reserve(frames.size());
+      for (const FrameTrack& f : frames) {
+        v.push_back(f.found[k] ? f.centre[k][axis] : std::numeric_limits<double>::quiet_NaN());
+      }
+      // The second difference of a flight or a rest is ~0.01 px at most (gravity at 0.2 mm/px,
+      // 2000 frames/s); an impact's kink is a few frames of hundreds, which the median passes.
+      p.measured[axis] = GapNoise(v);
+      if (p.measured[axis] > kNotFollowedFactor * p.bound[axis] &&
+          p.measured[axis] > kNotFollowedMinPx) {
+        p.followed = false;
+      }
+      if (p.bound[axis] > kPoorFootageBoundPx) p.poor = true;
+    }
+  }
+  return out;
+}
+
+}  // namespace dimer::tracking

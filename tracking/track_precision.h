@@ -1,0 +1,48 @@
+#pragma once
+// How precisely `track` followed each sphere, said to the user: the centres' scatter from frame
+// to frame, measured on the track itself (the median second difference, impact_vertex.h's
+// GapNoise), beside the footage's own bound for the template method (the Cramér-Rao bound of
+// the learnt appearance in the first frame's noise, precision_bound.h). Where the scatter is
+// far above the bound the tracker is not following the sphere as the footage allows: on a
+// POV-Ray film at a quarter of the light and 0.4 mm/px (spheres of 11.9 px) both spheres were
+// "found" in 95-99 % of the frames and more than a pixel off in 44 and 75 % of them, with no
+// word of it (docs/BENCHMARKS.md, "Every lighting through the pipeline").
+#include <Eigen/Core>
+#include <array>
+#include <limits>
+#include <vector>
+
+#include "tracking/tracker.h"
+
+namespace dimer::tracking {
+
+// A sphere is reported as not followed where its measured scatter is above this many times
+// the bound on either axis and above kNotFollowedMinPx (a matte sphere's bound, 0.005 px, is
+// met at 0.02: the method's own error is a few hundredths of a pixel whatever the footage).
+inline constexpr double kNotFollowedFactor = 4.0;
+inline constexpr double kNotFollowedMinPx = 0.15;
+// The footage itself is too poor for sub-pixel work where the bound on either axis is above
+// this, px: three times the 0.05 px target. The POV-Ray test footage's bounds are
+// 0.003-0.09 px per axis; the quarter-light film at 0.4 mm/px, 0.26-0.31 px, and there the
+// offsets estimated from the same footage were 0.7 and 1.5 px off, stating 0.08-0.16.
+inline constexpr double kPoorFootageBoundPx = 0.15;
+
+struct SpherePrecision {
+  // Frame-to-frame scatter of the centre (col, row), px; NaN with fewer than 3 triples of
+  // consecutive found frames.
+  Eigen::Vector2d measured{std::numeric_limits<double>::quiet_NaN(),
+                           std::numeric_limits<double>::quiet_NaN()};
+  // The footage's bound (col, row), px; NaN where not known (not the template method, a
+  // frame too small or clipped for its noise).
+  Eigen::Vector2d bound{std::numeric_limits<double>::quiet_NaN(),
+                        std::numeric_limits<double>::quiet_NaN()};
+  bool followed = true;  // false: measured beyond kNotFollowedFactor x bound and kNotFollowedMinPx
+  bool poor = false;     // the bound beyond kPoorFootageBoundPx
+};
+
+// The measured scatter of each sphere's centres in `frames` (frame order), with `bound` (per
+// sphere, px; NaN: unknown) beside it.
+std::array<SpherePrecision, 2> MeasurePrecision(const std::vector<FrameTrack>& frames,
+                                                const std::array<Eigen::Vector2d, 2>& bound);
+
+}  // namespace dimer::tracking
