@@ -1061,6 +1061,15 @@ void RunTrack(const TrackArgs& args) {
     for (int k = 0; k < 2; ++k) {
       for (int axis = 0; axis < 2; ++axis) {
         const OffsetEstimate& e = axis == 0 ? r.offsets.col[k] : r.offsets.row[k];
+        if (std::isnan(e.err)) {  // source "none": nothing on the footage gave it
+          std::fprintf(stderr,
+                       "dimerlab track: warning: the %s sphere's %s offset could not be "
+                       "estimated (no outline, symmetry or plate contact to measure it on): its "
+                       "absolute position is the learnt appearance's reference point, possibly "
+                       "pixels off; its motion is not\n",
+                       k == 0 ? "left" : "right", axis == 0 ? "column" : "row");
+          continue;
+        }
         if (!(e.err > kOffsetWarnPx)) continue;
         std::fprintf(stderr,
                      "dimerlab track: warning: the %s sphere's %s is uncertain by %.2f px (%s): "
