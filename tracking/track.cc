@@ -495,11 +495,15 @@ void WritePrecisionGroup(H5Writer& w, const SequenceResult& r) {
   w.WriteInt64("/precision/followed", followed, {2});
   w.SetAttr("/precision/followed", "codes", "0=not followed as the footage allows,1=followed");
   w.SetAttr("/precision/followed", "rows", "left,right");
-  w.SetAttr("/precision/followed", "description",
-            "whether each sphere was followed as the footage allows: not where its scatter is "
-            "above 4 times the bound and 0.15 px");
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "whether each sphere was followed as the footage allows: not where its scatter "
+                "is above %g times the bound and %g px",
+                kNotFollowedFactor, kNotFollowedMinPx);
+  w.SetAttr("/precision/followed", "description", text);
   w.WriteInt64("/precision/poor_footage", poor, {2});
-  w.SetAttr("/precision/poor_footage", "codes", "0=no,1=the bound is above 0.15 px");
+  std::snprintf(text, sizeof text, "0=no,1=the bound is above %g px", kPoorFootageBoundPx);
+  w.SetAttr("/precision/poor_footage", "codes", text);
   w.SetAttr("/precision/poor_footage", "rows", "left,right");
   w.SetAttr("/precision/poor_footage", "description",
             "whether the footage shows each sphere with too little contrast for sub-pixel work");

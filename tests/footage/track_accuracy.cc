@@ -11,7 +11,6 @@
 #include "common/error.h"
 #include "tracking/frame_source.h"
 #include "tracking/track.h"
-#include "tracking/precision_bound.h"
 
 namespace dimer::footage {
 namespace {
@@ -193,14 +192,11 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
   for (int k = 0; k < 2; ++k) a.sphere[k] = Summarise(errors[k], good[k]);
   a.template_run = res.method == tracking::Method::kTemplate;
   if (a.template_run) {
-    // The first frame as the tracker saw it: its noise in the levels of the appearance the
-    // bound is computed on (16-bit levels of fewer bits are scaled, tracking/level_scale.h).
-    const tracking::Frame first =
-        tracking::ScaledLevels(*source, res.level_scale.factor)->Read(0);
-    const double noise = first.error.empty() ? tracking::FrameNoiseSigma(first.image) : kNaN;
+    // The tracker's own bound (track.h, precision_bound): its first readable frame's noise in
+    // the levels of the appearance (16-bit levels of fewer bits scaled, level_scale.h).
     for (int k = 0; k < 2; ++k) {
       SphereAccuracy& s = a.sphere[k];
-      s.scatter_bound = tracking::TranslationBound(res.appearance[k], noise).norm();
+      s.scatter_bound = res.precision_bound[k].norm();
       s.stated_err = Eigen::Vector2d(res.offsets.col[k].err, res.offsets.row[k].err);
       for (int c = 0; c < 2; ++c) {
         s.bias_sigmas(c) = std::abs(s.bias(c)) / std::hypot(s.stated_err(c), s.bias_sampling(c));
