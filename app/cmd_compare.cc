@@ -88,6 +88,9 @@ void RegisterAnalyze(CLI::App& app) {
   c->add_option("--row0", t.row0, "row of z = 0, px [median plate row]");
   c->add_option("--plate-m-per-px", t.plate_m_per_px,
                 "metres per pixel at the plate edge seen; needs --m-per-px or --ar [the dimer plane's]");
+  c->add_option("--lens", t.lens,
+                "the lens's calibration (OpenCV YAML/XML: camera_matrix, "
+                "distortion_coefficients): frames undistorted before tracking [as recorded]");
   c->add_option("--method", t.method, "tracking method: auto | centroid | discfit | template")->capture_default_str();
   c->add_option("--polarity", t.polarity, "auto | bright | dark")->capture_default_str();
   c->add_option("--bits", t.sequence.camera_bits,

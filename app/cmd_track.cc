@@ -25,6 +25,9 @@ void AddTrackOptions(CLI::App* sub, tracking::TrackArgs* a) {
   sub->add_option("--plate-m-per-px", a->plate_m_per_px,
                   "metres per pixel at the plate edge seen (nearer or further than the dimer); "
                   "needs --m-per-px or --ar [the dimer plane's]");
+  sub->add_option("--lens", a->lens,
+                  "the lens's calibration (OpenCV YAML/XML: camera_matrix, "
+                  "distortion_coefficients): frames undistorted before tracking [as recorded]");
   sub->add_option("--method", a->method, "auto | centroid | discfit | template")->capture_default_str();
   sub->add_option("--polarity", a->polarity, "auto | bright | dark")->capture_default_str();
   sub->add_option("--radius-px", a->sequence.tracker.radius_px, "sphere radius, px [measured]");

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "common/error.h"
 #include "common/interrupt.h"
@@ -17,6 +18,7 @@
 #include "compare/report_parts.h"
 #include "tracking/frame_source.h"
 #include "tracking/image_codecs.h"
+#include "tracking/lens_undistortion.h"
 
 namespace dimer::compare {
 namespace {
@@ -206,12 +208,29 @@ void WriteOverlay(const std::string& dir, const Analysis& track, const Compariso
   size_t i0 = 0, i1 = 0;
   FramesIn(r, w.t_start, w.t_end, &i0, &i1);
   i1 = std::min(i1, i0 + static_cast<size_t>(o.max_frames));
+  // A track made through `--lens` has its centres in the undistorted frames: the recorded frames
+  // are undistorted alike before anything is drawn on them.
+  std::optional<tracking::LensUndistortion> undistort;
+  cv::Size undistort_size;
+  tracking::LensCalibration lens;
+  if (r.lens_camera.size() == 9 && !r.lens_distortion.empty()) {
+    lens.path = r.path;
+    lens.camera = cv::Matx33d(r.lens_camera.data());
+    lens.distortion = r.lens_distortion;
+  }
   auto load = [&](size_t i, cv::Mat* out) {
     std::string error = r.frame_files[i].empty() ? "not in the track" : "";
     cv::Mat img = error.empty() ? reader.Read(r.frame_files[i], &error) : cv::Mat();
     if (img.empty()) {
       missing.Add(i, r.frame_files[i], error.empty() ? "empty image" : error);
       return false;
+    }
+    if (!lens.distortion.empty()) {
+      if (!undistort || undistort_size != img.size()) {
+        undistort.emplace(lens, img.size());
+        undistort_size = img.size();
+      }
+      img = undistort->Apply(img);
     }
     *out = ToBgr8(img, &scale16);
     return true;

@@ -142,6 +142,10 @@ SampledRun LoadSampledRun(const std::string& path) {
     run.plate_scale_source = r.AttrString("/", "plate_motion_scale_source").value_or("");
     run.video_codec = r.AttrString("/", "video_codec").value_or("");
     run.video_lossy = !run.video_codec.empty() && r.AttrDouble("/", "video_codec_lossless").value_or(0) == 0;
+    if (r.Has("/lens/camera_matrix") && r.Has("/lens/distortion")) {
+      run.lens_camera = r.ReadDoubles("/lens/camera_matrix");
+      run.lens_distortion = r.ReadDoubles("/lens/distortion");
+    }
     if (r.Has("/frame_files") && r.Has("/frame_index")) {
       const std::vector<std::string> files = r.ReadStrings("/frame_files");
       run.frame_files.assign(run.n, "");

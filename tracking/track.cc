@@ -7,6 +7,7 @@
 #include <deque>
 #include <future>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <thread>
 
@@ -46,9 +47,18 @@ struct ChunkResult {
 
 std::string SizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
+// A frame as the tracker measures it: the sensor's stuck pixels replaced first (they are the
+// sensor's, and undistortion would smear them), then the lens's distortion taken out.
+cv::Mat CleanFrame(const cv::Mat& image, const DefectPixels& defects,
+                   const LensUndistortion* lens) {
+  cv::Mat repaired = RepairDefectPixels(image, defects);
+  return lens ? lens->Apply(repaired) : repaired;
+}
+
 ChunkResult TrackChunk(const FrameSource& source, size_t start, size_t count,
                        std::vector<Frame> prefetched, const TrackerOptions& opts,
-                       const Reference& ref, const DefectPixels& defects) {
+                       const Reference& ref, const DefectPixels& defects,
+                       const LensUndistortion* lens) {
   ChunkResult out;
   TrackerOptions o = opts;
   o.polarity = ref.polarity;
@@ -69,7 +79,7 @@ ChunkResult TrackChunk(const FrameSource& source, size_t start, size_t count,
       out.skipped.push_back({f.index, f.name, f.error});
       continue;
     }
-    out.frames.push_back(tracker.Process(RepairDefectPixels(f.image, defects), f.index));
+    out.frames.push_back(tracker.Process(CleanFrame(f.image, defects, lens), f.index));
     out.names.push_back(f.name);
   }
   return out;
@@ -192,6 +202,7 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
   TrackerOptions chunk_opts = options.tracker;
   SequenceMethod prepared;
   cv::Mat first_frame;  // the first readable frame, stuck pixels replaced: its noise
+  std::optional<LensUndistortion> lens;  // made for the first readable frame's size
   const bool sequence_level = options.tracker.method == Method::kTemplate ||
                               options.tracker.method == Method::kAuto;
   std::deque<std::future<ChunkResult>> inflight;
@@ -227,8 +238,14 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
           if (f.error.empty() && f.image.size() == first.size()) probe.push_back(f.image);
         }
         result.defects = FindDefectPixels(probe);
-        for (cv::Mat& p : probe) p = RepairDefectPixels(p, result.defects);
-        first_frame = RepairDefectPixels(first, result.defects);
+        if (options.lens) {
+          lens.emplace(*options.lens, first.size());
+          result.lens = options.lens;
+          result.lens_max_shift_px = lens->max_shift_px();
+        }
+        const LensUndistortion* undistort = lens ? &*lens : nullptr;
+        for (cv::Mat& p : probe) p = CleanFrame(p, result.defects, undistort);
+        first_frame = CleanFrame(first, result.defects, undistort);
         ref = MakeReference(first_frame, options.tracker);
         result.plate_slope = EstimatePlateSlope(probe, ref.polarity);
         chunk_opts.plate_slope = result.plate_slope.value;
@@ -240,7 +257,7 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
         for (size_t i : LearningIndices(buffer.empty() ? source.size() : buffer.size())) {
           Frame f = buffer.empty() ? source.Read(i) : buffer[i];
           if (f.error.empty() && f.image.cols == ref.width && f.image.rows == ref.height) {
-            f.image = RepairDefectPixels(f.image, result.defects);
+            f.image = CleanFrame(f.image, result.defects, lens ? &*lens : nullptr);
             learning.push_back(std::move(f));
           }
         }
@@ -270,7 +287,8 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
       }
     }
     inflight.push_back(std::async(std::launch::async, TrackChunk, std::cref(source), next, count,
-                                  std::move(buffer), chunk_opts, ref, std::cref(result.defects)));
+                                  std::move(buffer), chunk_opts, ref, std::cref(result.defects),
+                                  lens ? &*lens : nullptr));
     next += count;
     if (source.random_access() && next >= source.size()) exhausted = true;
   };
@@ -650,6 +668,9 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
     attrs.push_back({"video_codec_lossless", int64_t{LosslessVideoCodec(rec.info.video_codec)}});
     units["video_codec_lossless"] = "1";
   }
+  attrs.push_back({"lens", r.lens ? r.lens->path : std::string()});
+  attrs.push_back({"lens_max_shift_px", r.lens_max_shift_px});
+  units["lens_max_shift_px"] = "px";
   attrs.push_back({"level_scale", r.level_scale.factor});
   attrs.push_back({"level_scale_bits", int64_t(r.level_scale.bits)});
   attrs.push_back({"level_scale_clipped_frames", int64_t(r.level_scale.clipped_frames)});
@@ -734,6 +755,18 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
             "the sensor's stuck (hot or dead) pixels, found on the frames spread over the first "
             "chunk and replaced in every frame, before tracking, by the mean of their sound "
             "opposite neighbours");
+  if (r.lens) {
+    const LensCalibration& c = *r.lens;
+    w.WriteDoubles("/lens/camera_matrix", std::vector<double>(c.camera.val, c.camera.val + 9),
+                   {3, 3}, "px");
+    w.SetAttr("/lens/camera_matrix", "description",
+              "the lens calibration's camera matrix (fx 0 cx; 0 fy cy; 0 0 1), kept by the "
+              "undistortion: every position in this file is in the undistorted frame");
+    w.WriteDoubles("/lens/distortion", c.distortion, {c.distortion.size()}, "1");
+    w.SetAttr("/lens/distortion", "description",
+              "the lens's distortion coefficients in OpenCV's order (k1 k2 p1 p2 k3 ...), taken "
+              "out of every frame before tracking");
+  }
   w.WriteStrings("/skipped/files", skipped_names);
   w.SetAttr("/skipped/files", "description", "frames that could not be used");
   w.WriteStrings("/skipped/reasons", skipped_reasons);
@@ -900,6 +933,10 @@ void RunTrack(const TrackArgs& args) {
   if (!std::isnan(args.plate_m_per_px)) {
     seq.plate_motion_scale = args.plate_m_per_px / args.m_per_px;
   }
+  // Read before any work: a bad calibration file is said at once.
+  if (!args.lens.empty()) {
+    seq.lens = std::make_shared<const LensCalibration>(ReadLensCalibration(args.lens));
+  }
   AtomicOutput out(args.output, args.force);  // refuses an existing output before any work
   auto source = SelectFrames(FrameSource::Open(args.input), ParseFrameRange(args.frames),
                              args.input);
@@ -1004,6 +1041,14 @@ void RunTrack(const TrackArgs& args) {
                  "%.2f px (a sphere at the frame's edge, or beside itself); those spheres are "
                  "not found there\n",
                  by_score + by_length, by_score, by_length, r.scores.length_px);
+  }
+  // The lens's distortion, taken out of every frame (lens_undistortion.h).
+  if (r.lens && !args.quiet) {
+    std::fprintf(stderr,
+                 "dimerlab track: lens: every frame undistorted with %s (%zu coefficients, k1 "
+                 "%.4g); it moves pixels by up to %.2f px in these frames\n",
+                 r.lens->path.c_str(), r.lens->distortion.size(), r.lens->distortion[0],
+                 r.lens_max_shift_px);
   }
   // Stuck pixels of the sensor, replaced before tracking (defect_pixels.h).
   if (!r.defects.at.empty() && !args.quiet) {

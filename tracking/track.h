@@ -12,12 +12,14 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "tracking/defect_pixels.h"
 #include "tracking/frame_source.h"
+#include "tracking/lens_undistortion.h"
 #include "tracking/level_scale.h"
 #include "tracking/match_scores.h"
 #include "tracking/track_precision.h"
@@ -53,6 +55,9 @@ struct SequenceOptions {
   // 1/frame^2: times the radius in px, g in px per frame^2, which bends a bouncing sphere's
   // approach and rebound (impact_vertex.h). NaN: left out of them.
   double gravity_per_radius_px = std::numeric_limits<double>::quiet_NaN();
+  // The lens's calibration (`track --lens`, lens_undistortion.h): every frame is undistorted,
+  // after its stuck pixels are replaced, before anything is measured on it. Null: none.
+  std::shared_ptr<const LensCalibration> lens;
   void Check() const;
 };
 
@@ -100,6 +105,10 @@ struct SequenceResult {
   // Each sphere's centres' scatter from frame to frame beside that bound (track_precision.h).
   std::array<SpherePrecision, 2> precision;
   LevelScale level_scale;        // a 10- or 12-bit camera's levels, scaled (level_scale.h)
+  // The lens calibration the frames were undistorted with (null: none), and the largest shift
+  // its undistortion made in these frames, px.
+  std::shared_ptr<const LensCalibration> lens;
+  double lens_max_shift_px = 0;
 };
 
 // Tracks every frame of `source`. `on_progress(done)` is called from the calling thread.
@@ -129,6 +138,8 @@ struct TrackArgs {
   // The plate edge's own scale, m/px, where it is not in the dimer's plane (a plate's front
   // edge is nearer the camera); needs m_per_px or ar. NaN: the dimer plane's.
   double plate_m_per_px = std::numeric_limits<double>::quiet_NaN();
+  // --lens: an OpenCV camera calibration file (lens_undistortion.h); empty: frames as recorded.
+  std::string lens;
   std::string method = "auto";  // auto | centroid | discfit | template
   std::string polarity = "auto";  // auto | bright | dark
   SequenceOptions sequence;

@@ -122,9 +122,13 @@ bool ParseAccuracy(const std::string& text, TrackAccuracy* out) {
 }
 
 TrackAccuracy CachedTrackAccuracy(const std::string& folder, const std::string& method,
-                                  int threads, const std::string& cache_file) {
-  if (cache_file.empty()) return MeasureTrackAccuracy(folder, method, threads);
-  const std::string request = Request(folder, method, threads);
+                                  int threads, const std::string& cache_file,
+                                  const std::string& lens) {
+  TrackerKnobs knobs;
+  knobs.lens = lens;
+  if (cache_file.empty()) return MeasureTrackAccuracy(folder, method, threads, true, knobs);
+  const std::string request =
+      Request(folder, method, threads) + (lens.empty() ? "" : "lens " + lens + "\n");
   if (!Stale(cache_file, folder)) {
     std::ifstream in(cache_file, std::ios::binary);
     std::stringstream text;
@@ -135,7 +139,7 @@ TrackAccuracy CachedTrackAccuracy(const std::string& folder, const std::string& 
       return a;
     }
   }
-  const TrackAccuracy a = MeasureTrackAccuracy(folder, method, threads);
+  const TrackAccuracy a = MeasureTrackAccuracy(folder, method, threads, true, knobs);
   const std::filesystem::path dir = std::filesystem::path(cache_file).parent_path();
   std::error_code made;
   if (!dir.empty()) std::filesystem::create_directories(dir, made);

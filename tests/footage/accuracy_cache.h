@@ -15,10 +15,12 @@
 
 namespace dimer::footage {
 
-// MeasureTrackAccuracy(folder, method, threads) (scale given, the tracker's defaults), through
-// `cache_file`. `cache_file` empty: measured every time.
+// MeasureTrackAccuracy(folder, method, threads) (scale given, the tracker's defaults, the lens's
+// calibration file `lens` if not empty), through `cache_file`. `cache_file` empty: measured
+// every time.
 TrackAccuracy CachedTrackAccuracy(const std::string& folder, const std::string& method,
-                                  int threads, const std::string& cache_file);
+                                  int threads, const std::string& cache_file,
+                                  const std::string& lens = "");
 
 // The accuracy as text and back, every double exact; Parse returns false on any malformed or
 // missing field (the cache is then ignored, never trusted in part).

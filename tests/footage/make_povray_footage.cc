@@ -42,6 +42,9 @@ const char* kUsage =
     "  --seed N            noise seed (1)\n"
     "  --flicker A         lamps on the mains: each frame's light times 1 + A sin(2 pi F t) (0)\n"
     "  --flicker-hz F      their flicker frequency, Hz (100: 50 Hz mains)\n"
+    "  --lens-k1 K         pincushion distortion of the lens (OpenCV's k1, >= 0; 0: a pinhole);\n"
+    "                      the folder gets its calibration as lens.yml\n"
+    "  --off-axis M        the dimer's mean x this far right of the optical axis, m (0)\n"
     "  --width W --height H  frame size, px (640 x 320)\n"
     "  --m-per-px S        scale at the dimer plane, m/px (2e-4)\n"
     "  --distance M        pinhole to dimer plane, m (0.7)\n"
@@ -108,6 +111,8 @@ int Run(int argc, char** argv) {
       {"--seed", [&](const std::string& v) { o.seed = uint64_t(ToInt("--seed", v)); }},
       {"--flicker", [&](const std::string& v) { o.flicker = ToDouble("--flicker", v); }},
       {"--flicker-hz", [&](const std::string& v) { o.flicker_hz = ToDouble("--flicker-hz", v); }},
+      {"--lens-k1", [&](const std::string& v) { o.lens_k1 = ToDouble("--lens-k1", v); }},
+      {"--off-axis", [&](const std::string& v) { o.dimer_off_axis = ToDouble("--off-axis", v); }},
       {"--width", [&](const std::string& v) { o.camera.width = int(ToInt("--width", v)); }},
       {"--height", [&](const std::string& v) { o.camera.height = int(ToInt("--height", v)); }},
       {"--m-per-px", [&](const std::string& v) { o.camera.m_per_px = ToDouble("--m-per-px", v); }},

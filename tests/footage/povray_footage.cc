@@ -1,5 +1,6 @@
 #include "tests/footage/povray_footage.h"
 
+#include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -97,7 +98,31 @@ std::vector<Instant> Slices(const Motion& m, size_t i, double exposure_s, int n)
   return out;
 }
 
-// Averaged slices -> gain -> PSF -> noise -> quantisation.
+// Where each pixel of the distorted image comes from in the pinhole one: the undistorted
+// position of its own (x_d = x_u (1 + k1 r_u^2) about the axis), by OpenCV's undistortPoints.
+std::pair<cv::Mat, cv::Mat> DistortionMaps(const FootageOptions& o) {
+  const cv::Matx33d k = CameraMatrix(o.camera);
+  const std::vector<double> d = {o.lens_k1, 0, 0, 0, 0};
+  const int w = o.camera.width, h = o.camera.height;
+  std::vector<cv::Point2d> at;
+  at.reserve(size_t(w) * size_t(h));
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) at.emplace_back(x, y);
+  }
+  std::vector<cv::Point2d> from;
+  cv::undistortPoints(at, from, k, d, cv::noArray(), k,
+                      cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 50, 1e-9));
+  cv::Mat mx(h, w, CV_32F), my(h, w, CV_32F);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      mx.at<float>(y, x) = float(from[size_t(y) * size_t(w) + size_t(x)].x);
+      my.at<float>(y, x) = float(from[size_t(y) * size_t(w) + size_t(x)].y);
+    }
+  }
+  return {mx, my};
+}
+
+// Averaged slices -> gain -> lens distortion -> PSF -> noise -> quantisation.
 cv::Mat PostProcess(const std::vector<cv::Mat>& slices, const FootageOptions& o, size_t frame,
                     double t) {
   cv::Mat sum = cv::Mat::zeros(slices[0].size(), CV_32F);
@@ -108,6 +133,13 @@ cv::Mat PostProcess(const std::vector<cv::Mat>& slices, const FootageOptions& o,
   for (int col = 0; col < grey.cols; ++col) {
     const double gain = LightingGain(o.lighting, col, grey.cols);
     if (gain != 1.0) grey.col(col) *= gain;
+  }
+  if (o.lens_k1 != 0) {
+    // The optical image, antialiased and not yet blurred: Lanczos keeps its detail.
+    const auto [mx, my] = DistortionMaps(o);
+    cv::Mat bent;
+    cv::remap(grey, bent, mx, my, cv::INTER_LANCZOS4, cv::BORDER_REPLICATE);
+    grey = bent;
   }
   if (o.psf_sigma_px > 0) {
     const int k = 2 * int(std::ceil(3 * o.psf_sigma_px)) + 1;
@@ -172,7 +204,8 @@ std::string PostProcessKey(const FootageOptions& o, const std::string& version) 
          std::to_string(o.camera.width) + "x" + std::to_string(o.camera.height) + "|fps=" +
          Num(o.fps) + "|gain=" + Num(LightingGain(o.lighting, 0, o.camera.width)) + "," +
          Num(LightingGain(o.lighting, o.camera.width - 1, o.camera.width)) +
-         (o.flicker == 0 ? "" : "|flicker=" + Num(o.flicker) + "@" + Num(o.flicker_hz));
+         (o.flicker == 0 ? "" : "|flicker=" + Num(o.flicker) + "@" + Num(o.flicker_hz)) +
+         (o.lens_k1 == 0 ? "" : "|lens_k1=" + Num(o.lens_k1));
 }
 
 std::string Sidecar(const Motion& m, const FootageOptions& o, const std::string& version,
@@ -216,6 +249,7 @@ std::string Sidecar(const Motion& m, const FootageOptions& o, const std::string&
   add("seed", std::to_string(o.seed));
   add("flicker", Num(o.flicker));
   add("flicker_hz", Num(o.flicker_hz));
+  add("lens_k1", Num(o.lens_k1));
   add("aa_depth", std::to_string(o.aa_depth));
   add("gain_left", Num(LightingGain(o.lighting, 0, c.width)));
   add("gain_right", Num(LightingGain(o.lighting, c.width - 1, c.width)));
@@ -274,6 +308,8 @@ void FootageOptions::Check() const {
   need(aa_depth >= 0 && aa_depth <= 7, "--aa-depth must be 0..7");
   need(flicker >= 0 && flicker < 1, "--flicker must be in [0, 1)");
   need(flicker_hz > 0 && std::isfinite(flicker_hz), "--flicker-hz must be > 0");
+  need(lens_k1 >= 0 && lens_k1 <= 2, "--lens-k1 must be in [0, 2] (pincushion)");
+  need(std::isfinite(dimer_off_axis), "--off-axis must be finite");
   if (!bad.empty()) throw UsageError(bad);
 }
 
@@ -370,6 +406,10 @@ std::vector<cv::Mat> RenderPov(const std::string& scene_text, const Camera& came
   return out;
 }
 
+cv::Matx33d CameraMatrix(const Camera& c) {
+  return {c.FocalPx(), 0, 0.5 * (c.width - 1), 0, c.FocalPx(), c.horizon_row, 0, 0, 1};
+}
+
 FootageResult WriteFootage(const Motion& motion, const FootageOptions& options_in,
                            const std::string& output) {
   options_in.Check();
@@ -382,7 +422,7 @@ FootageResult WriteFootage(const Motion& motion, const FootageOptions& options_i
       const Instant s = motion.at(t);
       sum += 0.5 * (s.left.x() + s.right.x());
     }
-    o.camera.centre_x = sum / double(motion.t.size());
+    o.camera.centre_x = sum / double(motion.t.size()) - o.dimer_off_axis;
   }
   const std::string version = PovrayVersion(o.povray);
   if (version.empty()) {
@@ -453,6 +493,12 @@ FootageResult WriteFootage(const Motion& motion, const FootageOptions& options_i
   progress.Finish(double(n));
   result.povray_cpu_seconds_per_frame = (ChildCpuSeconds() - cpu_start) / double(n);
   std::ofstream(out.temp_path() + "/truth.csv") << truth;
+  if (o.lens_k1 != 0) {  // the lens's calibration, as OpenCV's calibration sample writes it
+    cv::FileStorage lens(out.temp_path() + "/lens.yml", cv::FileStorage::WRITE);
+    lens << "image_width" << o.camera.width << "image_height" << o.camera.height;
+    lens << "camera_matrix" << cv::Mat(CameraMatrix(o.camera));
+    lens << "distortion_coefficients" << cv::Mat(std::vector<double>{o.lens_k1, 0, 0, 0, 0});
+  }
   std::ofstream(out.temp_path() + "/footage.json")
       << Sidecar(motion, o, version, result.scene_hash, result.povray_cpu_seconds_per_frame);
   out.Commit();

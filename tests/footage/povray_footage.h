@@ -42,6 +42,15 @@ struct FootageOptions {
   // frame's sample time (a lamp's flicker is slow against the exposure). 0: steady light.
   double flicker = 0;
   double flicker_hz = 100;
+  // A lens that is not a pinhole: radial distortion (OpenCV's k1, about the optical axis's
+  // pixel, normalised by the focal length in px), applied to the optical image before the PSF;
+  // truth.csv stays the pinhole's, and the folder gets the lens's calibration as `lens.yml`
+  // (OpenCV's calibration sample's layout). 0: a pinhole. Pincushion only (>= 0): a barrel lens
+  // would need pixels from outside the rendered frame.
+  double lens_k1 = 0;
+  // The dimer's mean x this far to the right of the optical axis, m, when camera.centre_x is NaN
+  // (where distortion is large); 0: on the axis.
+  double dimer_off_axis = 0;
   int aa_depth = 4;            // POV-Ray adaptive antialiasing depth (+AM2 +R4: up to 17x17
                                // rays per pixel at edges, no jitter); 0: none
   int jobs = 0;                // POV-Ray processes at once (each single-threaded); 0: three
@@ -64,6 +73,10 @@ struct FootageResult {
   double povray_cpu_seconds_per_frame = 0;  // CPU time of POV-Ray per frame (all slices)
   double wall_seconds = 0;          // the whole call
 };
+
+// The pinhole camera matrix of `camera` (fx = fy = FocalPx(), the optical axis's pixel): the
+// calibration a lab would find for the POV-Ray camera, with the lens's distortion beside it.
+cv::Matx33d CameraMatrix(const Camera& camera);
 
 FootageResult WriteFootage(const Motion& motion, const FootageOptions& options,
                            const std::string& output);

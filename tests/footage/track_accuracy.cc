@@ -140,6 +140,10 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
   opt.jackknife_groups = knobs.jackknife_groups;
   opt.seed_agreement_px = knobs.seed_agreement_px;
   if (scale_given) opt.contact_radius_px = radius;
+  if (!knobs.lens.empty()) {
+    opt.lens = std::make_shared<const tracking::LensCalibration>(
+        tracking::ReadLensCalibration(knobs.lens));
+  }
   auto source = tracking::FrameSource::Open(input.empty() ? folder : input);
   const auto start = std::chrono::steady_clock::now();
   const tracking::SequenceResult res = tracking::TrackSequence(*source, opt);

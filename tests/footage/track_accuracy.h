@@ -101,6 +101,7 @@ struct TrackerKnobs {
   int learn_passes = tracking::kLearnPasses;          // the learning's passes
   int jackknife_groups = tracking::kJackknifeGroups;  // of the column offset's uncertainty
   double seed_agreement_px = 0;  // highlight seeds' agreement with the dimer's length; 0: default
+  std::string lens;  // the lens's calibration file (track --lens); empty: frames as recorded
 };
 TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string& method,
                                    int threads = 0, bool scale_given = true,

@@ -269,6 +269,58 @@ TEST(RunTrack, UnusableInputsAreOneLineErrors) {
   }
 }
 
+// --lens: the calibration is read before any work (a bad file is a one-line error naming it,
+// and no output is left), and the track file says which lens the frames were undistorted with.
+TEST(RunTrack, TheLensCalibrationIsCheckedFirstAndRecorded) {
+  dimer::testing::TempDir dir;
+  RenderDrift(dir, 12, Lighting::kBacklit);
+  TrackArgs t = Track(dir);
+  t.lens = dir / "missing.yml";
+  try {
+    RunTrack(t);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(dir / "missing.yml"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(t.output));
+  // Our renderer's frames are 512 x 256; a lens of 0.2 % at the corner, centred on the frame.
+  std::ofstream(dir / "lens.yml")
+      << "%YAML:1.0\n---\nimage_width: 512\nimage_height: 256\n"
+         "camera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+         "   data: [ 2000., 0., 255.5, 0., 2000., 127.5, 0., 0., 1. ]\n"
+         "distortion_coefficients: !!opencv-matrix\n   rows: 5\n   cols: 1\n   dt: d\n"
+         "   data: [ 0.1, 0., 0., 0., 0. ]\n";
+  t.lens = dir / "lens.yml";
+  RunTrack(t);
+  H5Reader h(t.output);
+  EXPECT_EQ(h.AttrString("/", "lens"), dir / "lens.yml");
+  EXPECT_GT(*h.AttrDouble("/", "lens_max_shift_px"), 0.1);
+  const auto k = h.ReadDoubles("/lens/camera_matrix");
+  ASSERT_EQ(k.size(), 9u);
+  EXPECT_EQ(k[0], 2000.0);
+  EXPECT_EQ(k[2], 255.5);
+  const auto d = h.ReadDoubles("/lens/distortion");
+  ASSERT_EQ(d.size(), 5u);
+  EXPECT_EQ(d[0], 0.1);
+  // Made for other frames: said, with both sizes.
+  std::ofstream(dir / "other.yml")
+      << "%YAML:1.0\n---\nimage_width: 640\nimage_height: 480\n"
+         "camera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+         "   data: [ 2000., 0., 319.5, 0., 2000., 239.5, 0., 0., 1. ]\n"
+         "distortion_coefficients: !!opencv-matrix\n   rows: 5\n   cols: 1\n   dt: d\n"
+         "   data: [ 0.1, 0., 0., 0., 0. ]\n";
+  t.lens = dir / "other.yml";
+  t.force = true;
+  try {
+    RunTrack(t);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("calibrated for 640x480 images, the frames are 512x256"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(RunTrack, SixteenBitTiffFramesAndMultiPageTiff) {
   dimer::testing::TempDir dir;
   const RenderArgs r = RenderDrift(dir, 6, Lighting::kBacklit, "tiff", 16);
