@@ -608,9 +608,20 @@ int main(int argc, char** argv) {
     try {
       double cpu = 0;
       const std::string dir = Footage(c, frames, slices, cache, &cpu);
+      // A camera with a lens (pincushion_lens) is tracked with its calibration, as `track
+      // --lens` (its lens.yml), and as recorded beside it.
+      TrackerKnobs lens;
+      lens.lens = c.camera >= 0 && CameraVariants()[size_t(c.camera)].lens_k1 != 0
+                      ? dir + "/lens.yml"
+                      : "";
       for (const std::string& m : methods) {
-        const TrackAccuracy a = MeasureTrackAccuracy(dir, m);
-        std::printf("| %s | %.2f %s", c.name.c_str(), cpu, AccuracyRow(a).c_str());
+        const TrackAccuracy a = MeasureTrackAccuracy(dir, m, 0, true, lens);
+        std::printf("| %s%s | %.2f %s", c.name.c_str(), lens.lens.empty() ? "" : " --lens", cpu,
+                    AccuracyRow(a).c_str());
+        if (!lens.lens.empty()) {
+          std::printf("| %s as recorded | %.2f %s", c.name.c_str(), cpu,
+                      AccuracyRow(MeasureTrackAccuracy(dir, m)).c_str());
+        }
         std::fflush(stdout);
       }
     } catch (const std::exception& e) {

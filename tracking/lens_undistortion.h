@@ -42,7 +42,8 @@ class LensUndistortion {
   LensUndistortion(const LensCalibration& calibration, cv::Size frame_size);
 
   // The frame as the pinhole camera would have taken it: same size and type, each pixel
-  // interpolated (Lanczos, 8 x 8) from where the lens put it; outside the frame, its border.
+  // interpolated (bicubic, at OpenCV's 1/32 px steps) from where the lens put it; outside the
+  // frame, its border.
   cv::Mat Apply(const cv::Mat& frame) const;
 
   // The largest distance between a pixel and where its light was recorded, px: how much the
