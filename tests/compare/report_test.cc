@@ -17,6 +17,7 @@
 #include "compare/overlay.h"
 #include "compare/report.h"
 #include "tests/common/test_tmpdir.h"
+#include "tracking/lens_undistortion.h"
 
 namespace dimer::compare {
 namespace {
@@ -500,6 +501,39 @@ TEST_F(ReportTest, OverlayWritesAVideoAndStillsSkippingMissingFrames) {
     const cv::Vec3b px = still.at<cv::Vec3b>(row, int(std::lround(track_.run.x[0][i] / kMPerPx)));
     EXPECT_FALSE(px[0] == px[1] && px[1] == px[2]) << "still " << k << " has no cross";
   }
+}
+
+// A track made through `track --lens` has its centres in the undistorted frames: the overlay
+// undistorts the recorded frames alike before drawing (a strong lens here: 13 px at the corners).
+TEST_F(ReportTest, OverlayUndistortsTheFramesOfATrackMadeThroughALens) {
+  track_.run.lens_camera = {50, 0, 31.5, 0, 50, 23.5, 0, 0, 1};
+  track_.run.lens_distortion = {0.5, 0, 0, 0, 0};
+  const std::string folder = dir_ / "frames";
+  fs::create_directories(folder);
+  cv::Mat gradient(kFrameRows, kFrameCols, CV_8UC1);
+  for (int r = 0; r < kFrameRows; ++r) {
+    for (int c = 0; c < kFrameCols; ++c) gradient.at<uint8_t>(r, c) = uint8_t(3 * c + r);
+  }
+  for (size_t i = kPeriods / 2 * kFramesPerPeriod; i < track_.run.n; ++i) {
+    ASSERT_TRUE(cv::imwrite(folder + "/" + track_.run.frame_files[i], gradient));
+  }
+  OverlayOptions o;
+  o.frames_dir = folder;
+  o.max_frames = 4;
+  o.stills = 1;
+  o.quiet = true;
+  fs::create_directories(dir_ / "out");
+  WriteOverlay(dir_ / "out", track_, nullptr, o);
+  const cv::Mat still = cv::imread(dir_ / "out/stills/still_0.png", cv::IMREAD_COLOR);
+  ASSERT_FALSE(still.empty());
+  tracking::LensCalibration lens;
+  lens.camera = cv::Matx33d(50, 0, 31.5, 0, 50, 23.5, 0, 0, 1);
+  lens.distortion = {0.5, 0, 0, 0, 0};
+  const cv::Mat undistorted = tracking::LensUndistortion(lens, gradient.size()).Apply(gradient);
+  const cv::Point corner(56, 42);  // right of the dimer, below the text: nothing is drawn there
+  EXPECT_EQ(int(still.at<cv::Vec3b>(corner)[1]), int(undistorted.at<uint8_t>(corner)));
+  EXPECT_GT(std::abs(int(undistorted.at<uint8_t>(corner)) - int(gradient.at<uint8_t>(corner))),
+            10);
 }
 
 TEST_F(ReportTest, OverlayNeedsACalibratedTrack) {
