@@ -50,11 +50,11 @@ struct SampledRun {
   // Track files of a video: its codec (`track`'s video_codec) and whether it keeps every pixel;
   // a lossy one moves the spheres' edges (analysis.h warns). "" and false otherwise.
   std::string video_codec;
+  bool video_lossy = false;
   // Track files made with `track --lens`: the calibration its frames were undistorted with
   // (/lens/camera_matrix, 9 values row by row, and /lens/distortion); empty otherwise. The
   // overlay undistorts the recorded frames the same way, so that the centres land on them.
   std::vector<double> lens_camera, lens_distortion;
-  bool video_lossy = false;
   // Sim files only (empty or NaN for tracks).
   // A simulation of a tilted plate (its `tilt_deg`) is turned into the plate's frame (x along
   // the plate, z along its normal: common/plate_frame.h), the frame a track of it is in.

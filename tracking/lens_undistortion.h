@@ -1,11 +1,11 @@
 #pragma once
 // A real lens bends straight lines: a lens with 1 % of barrel distortion at the frame's corner
-// moves a point 300 px from the optical axis by ~1 px, and its scale there differs from the
-// axis's by ~2 %. A plate edge across the frame bows by a pixel, and a dimer that drifts across
-// the frame changes its length and speed in pixels as it goes. Labs calibrate their lens with a
-// chessboard (OpenCV's calibration sample or tutorial) and keep the result as an OpenCV
-// FileStorage file; `track --lens FILE` reads it and undistorts every frame before anything is
-// measured on it, so the tracker sees the pinhole camera it assumes.
+// (360 px from the optical axis) moves a point 300 px from the axis by ~2 px, and its scale
+// there differs from the axis's by ~2 %. A plate edge across the frame bows by a pixel, and a
+// dimer that drifts across the frame changes its length and speed in pixels as it goes. Labs
+// calibrate their lens with a chessboard (OpenCV's calibration sample or tutorial) and keep the
+// result as an OpenCV FileStorage file; `track --lens FILE` reads it and undistorts every frame
+// before anything is measured on it, so the tracker sees the pinhole camera it assumes.
 //
 // The undistorted frame keeps the calibration's camera matrix (cv::initUndistortRectifyMap with
 // newCameraMatrix = the camera matrix): the scale at the optical axis, where `--m-per-px` is
@@ -42,7 +42,7 @@ class LensUndistortion {
   LensUndistortion(const LensCalibration& calibration, cv::Size frame_size);
 
   // The frame as the pinhole camera would have taken it: same size and type, each pixel
-  // interpolated (bicubic, at OpenCV's 1/32 px steps) from where the lens put it; outside the
+  // interpolated (Lanczos, at OpenCV's 1/32 px steps) from where the lens put it; outside the
   // frame, its border.
   cv::Mat Apply(const cv::Mat& frame) const;
 

@@ -1,9 +1,9 @@
 #pragma once
 // Cameras the tracker was not tuned on: the front-lit steel scene (Lighting::kFrontPoint) filmed
 // at another scale, out of focus, at 16 bits, through a camera not quite level, under lamps
-// that flicker with the mains, or through a lens that is not a pinhole. Every other POV-Ray case is 0.2 mm/px
-// (sphere radius 23.75 px), PSF 0.5 px, 8 bit; a lab's lens and camera give other figures, and
-// the tracker's reaches, bands and thresholds were set there. Used by the tests
+// that flicker with the mains, or through a lens that is not a pinhole. Every other POV-Ray
+// case is 0.2 mm/px (sphere radius 23.75 px), PSF 0.5 px, 8 bit; a lab's lens and camera give
+// other figures, and the tracker's reaches, bands and thresholds were set there. Used by the tests
 // (tests/tracking/povray_footage_test.cc) and the bench (bench_tracking_footage --camera).
 #include <vector>
 
@@ -39,7 +39,7 @@ inline std::vector<CameraVariant> CameraVariants() {
       {"mains_flicker", 2.0e-4, 0.5, 8, 0.0, 0.3},
       // A lens with 0.67 % of pincushion distortion at the frame's far corner (k1 = 0.5; zoom
       // lenses at their long end show as much), the dimer 35 mm right of the optical axis, where
-      // the lens moves the right sphere by 0.6 px and the left by 0.05: tracked with the lens's
+      // the lens moves the right sphere by 0.6 px and the left by 0.06: tracked with the lens's
       // calibration (`track --lens`, the folder's lens.yml).
       {"pincushion_lens", 2.0e-4, 0.5, 8, 0.0, 0.0, 0.5, 0.035},
   };

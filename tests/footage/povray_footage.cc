@@ -98,11 +98,11 @@ std::vector<Instant> Slices(const Motion& m, size_t i, double exposure_s, int n)
   return out;
 }
 
-// A lens bends the optical image, which the sensor then integrates over each pixel. Bending an
-// image already sampled at the pixels instead (interpolating it) moved a point-lit sphere's
-// highlights, a pixel or two across, by ~0.05 px against its outline: the footage's own error,
-// not the lens's. So a film with a lens is rendered at kLensSupersample times the resolution,
-// bent there, and averaged down over each pixel (INTER_AREA: exact box sums).
+// A lens bends the optical image, which the sensor then integrates over each pixel. So a film
+// with a lens is rendered at kLensSupersample times the resolution, bent there and averaged
+// over each pixel (INTER_AREA: exact box sums). Bending the 1x render instead (interpolating
+// between its pixels) put the plate edge 0.072 px off at worst against 0.033; the spheres'
+// mean errors were the same within 0.01 px (docs/BENCHMARKS.md, "A lens that is not a pinhole").
 constexpr int kLensSupersample = 3;
 
 // The camera that renders `c`'s frame at `s` times its resolution: pixel centre u of `c` is
