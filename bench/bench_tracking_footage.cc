@@ -611,9 +611,7 @@ int main(int argc, char** argv) {
       // A camera with a lens (pincushion_lens) is tracked with its calibration, as `track
       // --lens` (its lens.yml), and as recorded beside it.
       TrackerKnobs lens;
-      lens.lens = c.camera >= 0 && CameraVariants()[size_t(c.camera)].lens_k1 != 0
-                      ? dir + "/lens.yml"
-                      : "";
+      lens.lens = LensFileOf(c.camera, dir);
       for (const std::string& m : methods) {
         const TrackAccuracy a = MeasureTrackAccuracy(dir, m, 0, true, lens);
         std::printf("| %s%s | %.2f %s", c.name.c_str(), lens.lens.empty() ? "" : " --lens", cpu,

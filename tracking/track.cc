@@ -203,6 +203,7 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
   SequenceMethod prepared;
   cv::Mat first_frame;  // the first readable frame, stuck pixels replaced: its noise
   std::optional<LensUndistortion> lens;  // made for the first readable frame's size
+  const LensUndistortion* undistort = nullptr;  // &*lens once made, for CleanFrame
   const bool sequence_level = options.tracker.method == Method::kTemplate ||
                               options.tracker.method == Method::kAuto;
   std::deque<std::future<ChunkResult>> inflight;
@@ -242,8 +243,8 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
           lens.emplace(*options.lens, first.size());
           result.lens = options.lens;
           result.lens_max_shift_px = lens->max_shift_px();
+          undistort = &*lens;
         }
-        const LensUndistortion* undistort = lens ? &*lens : nullptr;
         for (cv::Mat& p : probe) p = CleanFrame(p, result.defects, undistort);
         first_frame = CleanFrame(first, result.defects, undistort);
         ref = MakeReference(first_frame, options.tracker);
@@ -257,7 +258,7 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
         for (size_t i : LearningIndices(buffer.empty() ? source.size() : buffer.size())) {
           Frame f = buffer.empty() ? source.Read(i) : buffer[i];
           if (f.error.empty() && f.image.cols == ref.width && f.image.rows == ref.height) {
-            f.image = CleanFrame(f.image, result.defects, lens ? &*lens : nullptr);
+            f.image = CleanFrame(f.image, result.defects, undistort);
             learning.push_back(std::move(f));
           }
         }
@@ -288,7 +289,7 @@ SequenceResult TrackSequenceOf(FrameSource& source, const SequenceOptions& optio
     }
     inflight.push_back(std::async(std::launch::async, TrackChunk, std::cref(source), next, count,
                                   std::move(buffer), chunk_opts, ref, std::cref(result.defects),
-                                  lens ? &*lens : nullptr));
+                                  undistort));
     next += count;
     if (source.random_access() && next >= source.size()) exhausted = true;
   };

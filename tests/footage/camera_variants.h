@@ -5,6 +5,7 @@
 // case is 0.2 mm/px (sphere radius 23.75 px), PSF 0.5 px, 8 bit; a lab's lens and camera give
 // other figures, and the tracker's reaches, bands and thresholds were set there. Used by the tests
 // (tests/tracking/povray_footage_test.cc) and the bench (bench_tracking_footage --camera).
+#include <string>
 #include <vector>
 
 #include "tests/footage/povray_footage.h"
@@ -56,6 +57,21 @@ inline FootageOptions FootageFor(const CameraVariant& v) {
   o.lens_k1 = v.lens_k1;
   o.dimer_off_axis = v.off_axis;
   return o;
+}
+
+// The index of the variant called `name` in CameraVariants(), -1 if none.
+inline int CameraIndex(const std::string& name) {
+  const std::vector<CameraVariant> v = CameraVariants();
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (name == v[i].name) return int(i);
+  }
+  return -1;
+}
+
+// The lens calibration the footage of camera `camera` in `dir` is tracked with (`track --lens`,
+// the folder's lens.yml), or "" for a pinhole (or no camera variant, -1).
+inline std::string LensFileOf(int camera, const std::string& dir) {
+  return camera >= 0 && CameraVariants()[size_t(camera)].lens_k1 != 0 ? dir + "/lens.yml" : "";
 }
 
 // A case's footage options: its lighting's own camera, or (camera >= 0) front_point through

@@ -97,11 +97,10 @@ std::string Footage(const Case& c) {
 TrackAccuracy Accuracy(const Case& c) {
   const std::string method = TestMethod();
   const std::string dir = Footage(c);
-  const bool lens = c.camera >= 0 && CameraVariants()[size_t(c.camera)].lens_k1 != 0;
   return CachedTrackAccuracy(dir, method, 2,
                              std::string(DIMERLAB_POVRAY_ACCURACY_CACHE) + "/" + c.name + "." +
                                  method,
-                             lens ? dir + "/lens.yml" : "");
+                             LensFileOf(c.camera, dir));
 }
 
 class PovrayFootage : public ::testing::TestWithParam<Case> {};
@@ -198,10 +197,9 @@ TEST_P(PovrayFootage, ScatterWithinTheTargetOrTheFootagesBound) {
 }
 
 // The footage of `c` tracked with 1 and with 2 threads, in chunks of 6 frames (4 chunks, each
-// acquiring afresh), the method `track` runs by default; through its folder's lens.yml when
-// `lens` (track --lens).
-std::array<tracking::SequenceResult, 2> TrackWithOneAndTwoThreads(const Case& c,
-                                                                  bool lens = false) {
+// acquiring afresh), the method `track` runs by default; through its lens's calibration when
+// its camera has one (track --lens).
+std::array<tracking::SequenceResult, 2> TrackWithOneAndTwoThreads(const Case& c) {
   const std::string dir = Footage(c);
   double radius = 0;
   ReadTruthCsv(dir + "/truth.csv", &radius);
@@ -212,9 +210,9 @@ std::array<tracking::SequenceResult, 2> TrackWithOneAndTwoThreads(const Case& c,
     o.chunk_frames = 6;
     o.tracker.method = tracking::Method::kAuto;
     o.contact_radius_px = radius;
-    if (lens) {
+    if (const std::string lens = LensFileOf(c.camera, dir); !lens.empty()) {
       o.lens = std::make_shared<const tracking::LensCalibration>(
-          tracking::ReadLensCalibration(dir + "/lens.yml"));
+          tracking::ReadLensCalibration(lens));
     }
     auto source = tracking::FrameSource::Open(dir);
     r[threads - 1] = tracking::TrackSequence(*source, o);
@@ -271,13 +269,10 @@ TEST(PovrayFootageThreads, HighlightSeededLearningIdenticalForOneAndTwoThreads) 
 
 // And where every frame is undistorted by the lens's calibration first (track --lens).
 TEST(PovrayFootageThreads, UndistortedFramesIdenticalForOneAndTwoThreads) {
-  int camera = -1;
-  for (size_t i = 0; i < CameraVariants().size(); ++i) {
-    if (std::string(CameraVariants()[i].name) == "pincushion_lens") camera = int(i);
-  }
+  const int camera = CameraIndex("pincushion_lens");
   ASSERT_GE(camera, 0);
   const auto r =
-      TrackWithOneAndTwoThreads(Case{"pincushion_lens", Lighting::kFrontPoint, 3.9, camera}, true);
+      TrackWithOneAndTwoThreads(Case{"pincushion_lens", Lighting::kFrontPoint, 3.9, camera});
   ASSERT_TRUE(r[0].lens);
   EXPECT_GT(r[0].lens_max_shift_px, 2.0);
   ExpectIdentical(r);
@@ -470,15 +465,12 @@ TEST(PovrayCine, TenBitAndColourPhantomFilesMeetTheTargets) {
 // column, 0.101 px, is at the target and the case is registered short of it (5 of 9 noise seeds
 // meet it); the scatter, rows, plate and stated uncertainties all hold.
 TEST(PovrayLens, TheLensCalibrationTakesTheBendOut) {
-  int camera = -1;
-  for (size_t i = 0; i < CameraVariants().size(); ++i) {
-    if (std::string(CameraVariants()[i].name) == "pincushion_lens") camera = int(i);
-  }
+  const int camera = CameraIndex("pincushion_lens");
   ASSERT_GE(camera, 0);
   const std::string dir = Footage(Case{"pincushion_lens", Lighting::kFrontPoint, 3.9, camera});
-  ASSERT_TRUE(std::filesystem::exists(dir + "/lens.yml"));
   TrackerKnobs with_lens;
-  with_lens.lens = dir + "/lens.yml";
+  with_lens.lens = LensFileOf(camera, dir);
+  ASSERT_TRUE(std::filesystem::exists(with_lens.lens));
   const TrackAccuracy bent = MeasureTrackAccuracy(dir, TestMethod(), 2);
   const TrackAccuracy straight = MeasureTrackAccuracy(dir, TestMethod(), 2, true, with_lens);
   std::printf("pincushion_lens, as recorded and with --lens\n%s%s%s", AccuracyHeader().c_str(),
