@@ -20,6 +20,9 @@ inline constexpr int kMaxImpactSegments = 64;
 inline constexpr int kMaxLocateIterations = 100;
 // Relative size below which a slip velocity counts as zero (of the velocity scale g/f).
 inline constexpr double kSlipZeroRel = 1e-12;
+// Round-off of a position, relative to R (64 ulp): a sphere deeper than gap_tol plus this is
+// a missed impact, and the run stops with an error (SimulatorTest.NoSphereThroughThePlate*).
+inline constexpr double kPositionRoundoffRel = 64 * 2.220446049250313e-16;
 // Relative size of a kinetic-energy change that is round-off, not physics (64 ulp).
 inline constexpr double kEnergyRoundoffRel = 64 * 2.220446049250313e-16;
 // Persistent-contact integration: smallest and largest step, as fractions of the plate period.

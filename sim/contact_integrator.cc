@@ -267,6 +267,17 @@ ContactRun IntegrateContact(const Model& m, const ContactConfig& cfg, double t0,
       const double ts = sink->Next();
       sink->Record(ts, ts == t ? q : st.At(ts - t));
     }
+    if (which < 0) {
+      for (int s = 0; s < 2; ++s) {
+        if (!cfg.resting[s] && !(ev1.v[2 + s] > 0)) {  // gap + gap_tol: positive when watched
+          run.t = t + hs;
+          run.q = q1;
+          run.event = ContactEvent::kPenetration;
+          run.sphere = s;
+          return run;
+        }
+      }
+    }
     if (which >= 0) {
       run.t = t + tau_ev;
       run.q = st.At(tau_ev);

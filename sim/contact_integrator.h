@@ -16,7 +16,10 @@
 
 namespace dimer::sim {
 
-enum class ContactEvent { kEnd, kImpact, kLiftoff, kSlipStops, kSlipStarts };
+// kPenetration: a sphere not resting is found below -gap_tol at a step's end without having
+// crossed it inside the step (it started the phase below it): the run stops there, since every
+// impact after it would be missed; the simulator reports it as its own error.
+enum class ContactEvent { kEnd, kImpact, kLiftoff, kSlipStops, kSlipStarts, kPenetration };
 
 // Receives output samples: Next() is the next wanted sample time (+inf when none).
 class SampleSink {

@@ -290,4 +290,16 @@ void ProjectOnContacts(const Model& m, const ContactConfig& cfg, State* q) {
   }
 }
 
+bool LayFlatOnTouchingSphere(const Model& m, const ContactConfig& cfg, State* q) {
+  if (cfg.Count() != 1) return false;
+  const int other = cfg.resting[0] ? 1 : 0;
+  const double gap = Gap(m, *q, other);
+  // Deeper than the touching band is a missed impact, not this: left for the penetration check.
+  if (!(gap < 0 && gap >= -kTouchTol_m)) return false;
+  q->th = std::round(q->th / M_PI) * M_PI;
+  q->z = m.R;
+  ProjectOnContacts(m, cfg, q);
+  return true;
+}
+
 }  // namespace dimer::sim

@@ -51,4 +51,12 @@ ModeChoice ChooseContactMode(const Model& m, double t, const State& q,
 // the integrator drifts by its tolerance; this keeps the drift from accumulating.
 void ProjectOnContacts(const Model& m, const ContactConfig& cfg, State* q);
 
+// With one sphere resting: putting it on the plate (ProjectOnContacts) lowers the other sphere
+// by as much as the resting one stood above the plate, up to kTouchTol_m when it was taken
+// into contact there. A sphere that has just left an impact at the surface then starts its
+// next flight below -gap_tol, where the impact event cannot see it cross (it sank through
+// the plate: SimulatorTest.ResettledSphereNextToARestingOneIsStillWatched). The dimer is then
+// flat with both spheres at the plate: lay it flat. Returns whether it did.
+bool LayFlatOnTouchingSphere(const Model& m, const ContactConfig& cfg, State* q);
+
 }  // namespace dimer::sim

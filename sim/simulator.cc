@@ -26,6 +26,41 @@ struct EventStorm : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The deepest penetration of a sphere that is not resting, at every state the run evaluates
+// and keeps (samples, step ends, events). Past gap_tol (and round-off) an impact was missed:
+// the first such state is kept for the error message, and the run stops there.
+struct PenetrationWatch {
+  double limit_m = 0;
+  double* max_depth_m = nullptr;  // SimDiagnostics::max_penetration_m
+  bool fault = false;  // the first state past the limit:
+  double t = 0, depth_m = 0;
+  int sphere = -1;
+  State q;
+  void See(const Model& m, double t_abs, const State& qs, std::array<bool, 2> resting) {
+    for (int s = 0; s < 2; ++s) {
+      if (resting[s]) continue;
+      const double depth = -Gap(m, qs, s);
+      *max_depth_m = std::max(*max_depth_m, depth);
+      if (depth > limit_m && !fault) {
+        fault = true;
+        t = t_abs;
+        depth_m = depth;
+        sphere = s;
+        q = qs;
+      }
+    }
+  }
+  std::string Message() const {
+    std::ostringstream msg;
+    msg.precision(17);
+    msg << "simulator error: the " << (sphere == kLeft ? "left" : "right")
+        << " sphere passed through the plate (" << depth_m << " m deep, tolerance " << limit_m
+        << " m) at t = " << t << " s; plate-frame state x,z,theta,u,v,omega = " << q.x << ","
+        << q.z << "," << q.th << "," << q.u << "," << q.v << "," << q.w;
+    return msg.str();
+  }
+};
+
 // Output samples k = 0 .. n-1 at exactly t_start + k / fps (absolute times, never accumulated;
 // n = SimOptions::SampleCount(), defined once). The runner works in a local time that is
 // re-based every period (see Runner), so Next() and Record() speak local time and `offset`
@@ -38,12 +73,14 @@ class Sampler : public SampleSink {
   }
   double Next() const override { return next_ - *offset_; }
   void Record(double t_local, const State& q) override {
+    if (watch_) watch_->See(*m_, next_, q, {false, false});  // resting spheres are at 0 exactly
     res_->t.push_back(next_);
     res_->lab.push_back(LabFromPlate(*m_, t_local, q));
     ++k_;
     next_ = k_ < n_ ? t0_ + k_ / fps_ : kInf;
   }
   long pending() const { return n_ - k_; }
+  void Watch(PenetrationWatch* w) { watch_ = w; }
 
  private:
   const Model* m_;
@@ -51,6 +88,7 @@ class Sampler : public SampleSink {
   long n_;
   const double* offset_;
   SimResult* res_;
+  PenetrationWatch* watch_ = nullptr;
   long k_ = 0;
   double next_;
 };
@@ -71,6 +109,7 @@ class Runner {
   void StartPeriod();
   void FinishSamples();
   void TrackPenetration(const State& q, const ContactConfig& cfg);
+  PenetrationWatch watch_;
 
   const SimOptions& o_;
   const RunControls& c_;
@@ -132,6 +171,7 @@ void Runner::Settle(std::array<bool, 2> candidates, int force_slide_sphere) {
       }
       cfg_ = mc.cfg;
       ProjectOnContacts(m_, cfg_, &q_);
+      LayFlatOnTouchingSphere(m_, cfg_, &q_);
       return;
     }
     // Painleve: impact without collision at the sliding contact (impact_law.h).
@@ -148,11 +188,7 @@ void Runner::Settle(std::array<bool, 2> candidates, int force_slide_sphere) {
 }
 
 void Runner::TrackPenetration(const State& q, const ContactConfig& cfg) {
-  for (int s = 0; s < 2; ++s) {
-    if (!cfg.resting[s]) {
-      res_.diag.max_penetration_m = std::max(res_.diag.max_penetration_m, -Gap(m_, q, s));
-    }
-  }
+  watch_.See(m_, offset_ + t_, q, cfg.resting);
 }
 
 void Runner::FlightStage(double t_lim) {
@@ -169,9 +205,7 @@ void Runner::FlightStage(double t_lim) {
   }
   while (sampler_.Next() <= t_ + dt_max) {
     const double ts = sampler_.Next();
-    const State qs = FlightPropagate(m_, q_, t_, ts - t_);
-    TrackPenetration(qs, cfg_);
-    sampler_.Record(ts, qs);
+    sampler_.Record(ts, FlightPropagate(m_, q_, t_, ts - t_));
   }
   q_ = FlightPropagate(m_, q_, t_, dt_max);
   t_ = hitter >= 0 ? t_ + dt_max : t_lim;
@@ -275,6 +309,8 @@ void Runner::ContactStage(double t_lim) {
       Settle(cfg_.resting, s);
       Log(EventKind::kSlip, s, before);
       return;
+    case ContactEvent::kPenetration:  // TrackPenetration above has seen it: the run stops
+      return;
   }
 }
 
@@ -309,6 +345,9 @@ SimResult Runner::Run() {
   res_.t_start = t_;
   res_.t_end = t_ + o_.Duration();
   sampler_ = Sampler(m_, t_, o_.SampleCount(), o_.fps, &offset_, &res_);
+  watch_.limit_m = m_.gap_tol + kPositionRoundoffRel * m_.R;
+  watch_.max_depth_m = &res_.diag.max_penetration_m;
+  sampler_.Watch(&watch_);
   h_ = 1e-3 * m_.period;
   StartPeriod();
   std::array<bool, 2> touching{};
@@ -345,6 +384,10 @@ SimResult Runner::Run() {
       }
     } catch (const EventStorm& e) {
       res_.error = e.what();  // the run stops; what it computed so far is kept
+      break;
+    }
+    if (watch_.fault) {  // a missed impact: every state after it would be wrong
+      res_.error = watch_.Message();
       break;
     }
     if (t_ >= period_end_) {

@@ -53,8 +53,11 @@ PointResult RunSweepPoint(const SweepSpec& spec, size_t i,
     const double dx = TipLab(r.model, lab, s).x() - TipLab(r.model, lab, 1 - s).x();
     dir[s] = dx >= 0 ? 1 : -1;
   }
+  // The drift is measured along the plate, as the simulator measures it (PeriodStats::x_start is
+  // the plate frame's x): the window's end in the same frame (SweepTest.PointEqualsSimulation*).
+  const double x_end = PlateFromLab(r.model, r.t[first + count], lab).x;
   const ModeSummary ms = ClassifyPeriods(r.periods, static_cast<int>(first),
-                                         static_cast<int>(count), r.model.period, lab.x, dir);
+                                         static_cast<int>(count), r.model.period, x_end, dir);
   p.mode = ms.label;
   p.bouncing_sphere = static_cast<int8_t>(ms.bouncing_sphere);
   p.drift_speed = ms.drift_speed;

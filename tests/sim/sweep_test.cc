@@ -9,7 +9,9 @@
 #include <iterator>
 
 #include "common/error.h"
+#include "sim/simulator.h"
 #include "sim/state.h"
+#include "sim/sweep_point.h"
 #include "sim/sweep_file.h"
 #include "sim/sweep_journal.h"
 #include "sim/sweep_run.h"
@@ -290,6 +292,28 @@ TEST_F(SweepFiles, ForwardDriftAt3_9BackwardAt6_1AndUphillOnASmallTilt) {
   EXPECT_NE(c.rows[0].impact_type, "slip_stick");
   // Uphill: the lab x velocity toward the bouncing (right, uphill) end is positive.
   EXPECT_GT(c.rows[1].drift_speed, 0.0);
+}
+
+// A sweep point is the simulation `dimerlab sim` runs with the same settings: the same drift
+// speed over the same window, measured along the plate in both (a point once took the window's
+// end in the lab frame, which on a tilted plate mixed the frames). Level and tilted plates, two
+// frequencies; the window is the simulator's settled one (the last half of 2 x 40 periods).
+TEST(SweepPoint, PointEqualsSimulationOnLevelAndTiltedPlatesAtTwoFrequencies) {
+  const SweepSpec spec = Spec({{"ar", "9,3.9"}, {"tilt_deg", "0,0.5,-2"}, {"freq", "25,50"},
+                               {"periods", "40"}, {"transient", "40"}});
+  for (size_t i = 0; i < spec.PointCount(); ++i) {
+    const auto v = spec.PointValues(i);
+    SCOPED_TRACE("point " + std::to_string(i));
+    const PointResult p = RunSweepPoint(spec, i);
+    ASSERT_TRUE(p.error.empty()) << p.error;
+    SimOptions o = spec.PointOptions(i);
+    o.fps = 2000;  // as `dimerlab sim` samples by default: sampling does not move the run
+    const SimResult r = RunSimulation(o);
+    ASSERT_EQ(r.periods.size(), 80u);
+    EXPECT_EQ(p.mode, r.mode.label);
+    ASSERT_TRUE(std::isfinite(p.drift_speed));
+    EXPECT_NEAR(p.drift_speed, r.mode.drift_speed, 1e-12 * std::abs(r.mode.drift_speed) + 1e-15);
+  }
 }
 
 // Dynamic similarity (docs/MODEL.md, check 7): with d ∝ 1/f² every length scales as g T², so
