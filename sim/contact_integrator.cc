@@ -172,36 +172,46 @@ double SlipRestartPoint(const StepView& st, int k, double* f) {
   return 0;
 }
 
-// A gap that is positive at both ends may still dip below zero inside the step (grazing):
-// look at the minimum of the cubic Hermite interpolant of (h, h'). Returns the point where the
-// gap event is <= 0 (and its value in *f), or hs if there is none.
-double GrazingPoint(const StepView& st, int k, const State& q0, const State& q1, double f0,
-                    double f1, double* f) {
+// A gap that is positive at both ends of [0, span] may still dip below zero inside it:
+// look at the interior minimum of the cubic Hermite interpolant of (h, h'), whichever way the
+// sphere moves at the ends (grazing on the way down and up; or a sphere that has just
+// bounced, rising and falling back within the span, as at Gamma 1.4 in the mode map:
+// Penetration.ShortFlightsNextToARestingSphereAreSeen). Returns the point where the gap event
+// is <= 0 (and its value in *f), or span if there is none.
+double GrazingPoint(const StepView& st, int k, const State& q0, const State& q1, double span,
+                    double f0, double f1, double* f) {
   const int s = k - 2;
-  const double d0 = NormalV(ContactArm(st.m, q0.th, s), q0) * st.hs;
-  const double d1 = NormalV(ContactArm(st.m, q1.th, s), q1) * st.hs;
+  const double d0 = NormalV(ContactArm(st.m, q0.th, s), q0) * span;
+  const double d1 = NormalV(ContactArm(st.m, q1.th, s), q1) * span;
   const double c3 = 2 * f0 - 2 * f1 + d0 + d1, c2 = -3 * f0 + 3 * f1 - 2 * d0 - d1;
   const double disc = c2 * c2 - 3 * c3 * d0;
   *f = f1;
-  if (!(d0 < 0 && d1 > 0 && disc >= 0 && c3 != 0)) return st.hs;
-  const double xm = (-c2 + std::sqrt(disc)) / (3 * c3);
-  if (!(xm > 0 && xm < 1)) return st.hs;
-  const double fm = st.Event(k, xm * st.hs);
-  if (fm > 0) return st.hs;
+  // The minimum of f0 + d0 x + c2 x^2 + c3 x^3: where its second derivative is positive.
+  double xm = -1;
+  if (c3 != 0) {
+    if (disc >= 0) xm = (-c2 + std::sqrt(disc)) / (3 * c3);
+  } else if (c2 > 0) {
+    xm = -d0 / (2 * c2);
+  }
+  if (!(xm > 0 && xm < 1)) return span;
+  const double fm = st.Event(k, xm * span);
+  if (fm > 0) return span;
   *f = fm;
-  return xm * st.hs;
+  return xm * span;
 }
 
-// Time from the step start of event k inside the step, or +inf.
+// Time from the step start of event k inside [0, span] (f1, q1 at span), or +inf.
 double EventTime(const StepView& st, int k, ContactEvent kind, double f0, double f1,
-                 const State& q0, const State& q1) {
-  double lo = 0, hi = st.hs;
+                 const State& q0, const State& q1, double span) {
+  double lo = 0, hi = span;
   if (!(f0 > 0)) {
     if (kind != ContactEvent::kSlipStops || !(f1 < 0)) return kInf;
     lo = SlipRestartPoint(st, k, &f0);
     if (!(f0 > 0)) return 0.0;
   }
-  if (f1 > 0 && kind == ContactEvent::kImpact) hi = GrazingPoint(st, k, q0, q1, f0, f1, &f1);
+  if (f1 > 0 && kind == ContactEvent::kImpact) {
+    hi = GrazingPoint(st, k, q0, q1, span, f0, f1, &f1);
+  }
   if (f1 > 0) return kInf;
   return lo + LocateRoot([&](double x) { return st.Event(k, lo + x); }, f0, hi - lo, f1);
 }
@@ -253,11 +263,24 @@ ContactRun IntegrateContact(const Model& m, const ContactConfig& cfg, double t0,
     st.end = q1;  // = st.At(hs)
     st.has_end = true;
     const EventValues ev1 = Events(m, cfg, step.end_phase, q1);  // phase at t + 1.0 * hs
+    // The resting contacts' events first (lift-off, slip): the step's motion holds only up to
+    // the earliest of them, so the other sphere's impact is looked for before it, and wins a
+    // tie (it would be below the plate there).
     double tau_ev = kInf;
     int which = -1;
     for (int k = 0; k < 4; ++k) {
-      const double tau = EventTime(st, k, ev1.kind[k], ev0.v[k], ev1.v[k], q, q1);
+      if (ev1.kind[k] == ContactEvent::kImpact) continue;
+      const double tau = EventTime(st, k, ev1.kind[k], ev0.v[k], ev1.v[k], q, q1, hs);
       if (tau < tau_ev) tau_ev = tau, which = k;
+    }
+    const double span = which >= 0 ? tau_ev : hs;
+    for (int k = 2; k < 4; ++k) {
+      if (ev1.kind[k] != ContactEvent::kImpact) continue;
+      const bool whole = span == hs;
+      const State q_span = whole ? q1 : st.At(span);
+      const double f_span = whole ? ev1.v[k] : st.Event(k, span);
+      const double tau = EventTime(st, k, ContactEvent::kImpact, ev0.v[k], f_span, q, q_span, span);
+      if (tau < kInf && tau <= tau_ev) tau_ev = tau, which = k;
     }
     if (which >= 0 && ev1.kind[which] == ContactEvent::kImpact) {
       tau_ev = RefineImpactToSurface(st, which - 2, tau_ev);
