@@ -1,6 +1,7 @@
 #include "app/scene_file.h"
 
 #include <fstream>
+#include <map>
 
 #include "common/error.h"
 #include "common/trim.h"
@@ -22,6 +23,7 @@ std::string Unquote(const std::string& s) {
 void ApplySceneFile(CLI::App* cmd, const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot read scene file");
+  std::map<std::string, int> line_of;  // option (long name) -> the line that set it
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
     const std::string where = path + ":" + std::to_string(n) + ": ";
@@ -41,6 +43,12 @@ void ApplySceneFile(CLI::App* cmd, const std::string& path) {
     } catch (const CLI::OptionNotFound&) {
       throw InputError(where + "unknown option `" + name + "` for `dimerlab " + cmd->get_name() +
                        "`");
+    }
+    // A setting named twice is an error, whichever value would win (ScenesTest.RepeatedSetting).
+    const auto [it, first] = line_of.emplace(opt->get_name(), n);
+    if (!first) {
+      throw InputError(where + name + " is set again (first at line " +
+                       std::to_string(it->second) + ")");
     }
     if (opt->count() > 0) continue;  // the command line overrides the scene
     try {

@@ -31,4 +31,16 @@ inline constexpr double kMaxStepRel = 1.0 / 32.0;
 // Event time accuracy inside persistent contact (s).
 inline constexpr double kEventTimeTol_s = 1e-13;
 
+// Input ranges (SimOptions::Check): a run of any allowed value ends in bounded time and memory.
+inline constexpr double kMaxAr = 1000;          // aspect ratio
+inline constexpr double kMaxGamma = 10;         // plate acceleration / g
+inline constexpr double kMaxFriction = 1000;    // any friction coefficient
+inline constexpr double kMaxPhase = 1e6;        // plate and release phases, periods
+inline constexpr double kMaxPeriods = 1e9;      // --cycles, --duration x --freq, sweep windows
+inline constexpr double kMinFps = 1e-3;         // samples/s, when sampling at all
+inline constexpr double kMaxFps = 1e7;          // samples/s
+// Events a period keeps in the log for the memory estimate: a drift orbit logs ~18 (the sample
+// scene), an irregular one more; the estimate is a bound to refuse absurd runs, not a budget.
+inline constexpr double kEventsPerPeriodEstimate = 30;
+
 }  // namespace dimer::sim

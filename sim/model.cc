@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim/constants.h"
 #include <sstream>
+
+#include "common/modes.h"
+#include "sim/constants.h"
+#include "sim/events.h"
+#include "sim/state.h"
 
 namespace dimer::sim {
 
@@ -34,22 +38,33 @@ void Require(std::vector<std::string>& errors, bool ok, const char* flag, double
 }
 }  // namespace
 
+// The range of each input (docs/FORMATS.md, "Simulation options"): wide enough for any
+// experiment of this kind and the extremes the stability tests run (A_r 1.05 and 20, Gamma 3,
+// mu 10), narrow enough that no value makes a run take unbounded time or memory
+// (SimOptionsLimits.* in tests/sim/simulator_test.cc).
 std::vector<std::string> SimOptions::Check() const {
   std::vector<std::string> e;
   auto finite = [](double x) { return std::isfinite(x); };
-  Require(e, finite(ar) && ar > 1.0, "--ar", ar, "A_r > 1 (spheres cannot overlap)");
-  Require(e, finite(diameter_m) && diameter_m > 0, "--diameter", diameter_m, "a diameter > 0 m");
-  Require(e, finite(freq_hz) && freq_hz > 0, "--freq", freq_hz, "a frequency > 0 Hz");
-  Require(e, finite(gamma) && gamma >= 0, "--gamma", gamma, "Gamma >= 0");
+  Require(e, finite(ar) && ar > 1.0 && ar <= kMaxAr, "--ar", ar,
+          "1 < A_r <= 1000 (spheres cannot overlap)");
+  Require(e, finite(diameter_m) && diameter_m >= 1e-6 && diameter_m <= 1, "--diameter",
+          diameter_m, "a diameter from 1e-6 to 1 m");
+  Require(e, finite(freq_hz) && freq_hz >= 1e-2 && freq_hz <= 1e5, "--freq", freq_hz,
+          "a frequency from 0.01 to 1e5 Hz");
+  Require(e, finite(gamma) && gamma >= 0 && gamma <= kMaxGamma, "--gamma", gamma,
+          "0 <= Gamma <= 10");
   Require(e, finite(tilt_deg) && std::abs(tilt_deg) < 90, "--tilt-deg", tilt_deg,
           "|tilt| < 90 degrees");
-  Require(e, finite(plate_phase), "--plate-phase", plate_phase, "a finite fraction of a period");
+  Require(e, finite(plate_phase) && std::abs(plate_phase) <= kMaxPhase, "--plate-phase",
+          plate_phase, "a fraction of a period, |phase| <= 1e6");
   Require(e, finite(eps) && eps >= 0 && eps <= 1, "--eps", eps, "0 <= eps <= 1");
-  Require(e, finite(mu) && mu >= 0, "--mu", mu, "mu >= 0");
-  Require(e, finite(mu_s) && mu_s >= mu, "--mu-s", mu_s, "mu_s >= mu");
-  Require(e, finite(mu_hat) && mu_hat >= 0, "--mu-hat", mu_hat, "mu_hat >= 0");
-  Require(e, finite(mu_hat_s) && mu_hat_s >= mu_hat, "--mu-hat-s", mu_hat_s,
-          "mu_hat_s >= mu_hat");
+  Require(e, finite(mu) && mu >= 0 && mu <= kMaxFriction, "--mu", mu, "0 <= mu <= 1000");
+  Require(e, finite(mu_s) && mu_s >= mu && mu_s <= kMaxFriction, "--mu-s", mu_s,
+          "mu <= mu_s <= 1000");
+  Require(e, finite(mu_hat) && mu_hat >= 0 && mu_hat <= kMaxFriction, "--mu-hat", mu_hat,
+          "0 <= mu_hat <= 1000");
+  Require(e, finite(mu_hat_s) && mu_hat_s >= mu_hat && mu_hat_s <= kMaxFriction, "--mu-hat-s",
+          mu_hat_s, "mu_hat <= mu_hat_s <= 1000");
   Require(e, std::isnan(lift) || (finite(lift) && lift >= 0), "--lift", lift,
           "a lift >= 0 (fraction of the diameter)");
   // The lift bound depends on --ar, and the default lift on --freq: when either is already
@@ -65,25 +80,40 @@ std::vector<std::string> SimOptions::Check() const {
                              : "lift < A_r - 1 (the lifted centre must stay below the top of "
                                "the other sphere)");
   }
-  Require(e, finite(release_phase), "--release-phase", release_phase,
-          "a finite fraction of a period");
-  Require(e, finite(cycles) && cycles > 0, "--cycles", cycles, "a number of periods > 0");
+  Require(e, finite(release_phase) && std::abs(release_phase) <= kMaxPhase, "--release-phase",
+          release_phase, "a fraction of a period, |phase| <= 1e6");
+  Require(e, finite(cycles) && cycles > 0 && cycles <= kMaxPeriods, "--cycles", cycles,
+          "a number of periods from > 0 to 1e9");
   Require(e, finite(duration_s) && duration_s >= 0, "--duration", duration_s, "a duration >= 0 s");
-  Require(e, finite(fps) && fps >= 0, "--fps", fps, "a sampling rate >= 0 (0: events only)");
+  if (finite(duration_s) && duration_s > 0 && finite(freq_hz) && freq_hz > 0) {
+    Require(e, duration_s * freq_hz <= kMaxPeriods, "--duration", duration_s,
+            "at most 1e9 plate periods");
+  }
+  Require(e, finite(fps) && (fps == 0 || (fps >= kMinFps && fps <= kMaxFps)), "--fps", fps,
+          "0 (events only) or a sampling rate from 1e-3 to 1e7 samples/s");
   Require(e, finite(collapse_rel) && collapse_rel > 0 && collapse_rel < 1, "--collapse-vc",
           collapse_rel, "0 < v_c/(g/f) < 1");
   Require(e, finite(contact_tol) && contact_tol >= 1e-14 && contact_tol <= 1e-2,
           "--contact-tol", contact_tol, "1e-14 <= tol <= 1e-2");
   Require(e, finite(gap_tol) && gap_tol >= 1e-16 && gap_tol <= 1e-6, "--gap-tol", gap_tol,
           "1e-16 <= gap tolerance <= 1e-6 m");
-  Require(e, max_events_per_period >= 10, "--max-events-per-period", max_events_per_period,
-          ">= 10");
+  Require(e, max_events_per_period >= 10 && max_events_per_period <= 1e7,
+          "--max-events-per-period", max_events_per_period, "10 to 1e7");
   if (init_state) {
     for (double x : *init_state) {
       Require(e, finite(x), "--init-state", x, "six finite numbers x,z,theta,u,v,omega");
     }
   }
   return e;
+}
+
+double SimOptions::EstimatedMemoryBytes() const {
+  // Per sample: its time and lab state, and as much again for the file's derived datasets
+  // (tips, theta, plate). Per period: the statistics and a drift mode's event log.
+  const double periods = Duration() * freq_hz;
+  const double samples = fps > 0 ? Duration() * fps + 1 : 0;
+  return samples * 2 * (sizeof(double) + sizeof(State)) +
+         periods * (sizeof(PeriodStats) + kEventsPerPeriodEstimate * sizeof(EventRecord));
 }
 
 long SimOptions::SampleCount() const {

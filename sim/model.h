@@ -74,6 +74,10 @@ struct SimOptions {
   // (3 periods at 25 Hz and 2000/s give 240.00000000000003 or 239.99999999999997: 241
   // samples either way). 0 when fps == 0 (events only).
   long SampleCount() const;
+  // Memory the run's results take (samples, statistics, event log), bytes: checked against the
+  // machine's memory before a run starts, so that a long run is refused at once rather than
+  // ending in bad_alloc.
+  double EstimatedMemoryBytes() const;
   static constexpr double kSampleCountSlack = 1e-6;  // samples
   double EffectiveLift() const;
 };

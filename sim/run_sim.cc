@@ -6,6 +6,7 @@
 #include "common/atomic_output.h"
 #include "common/error.h"
 #include "common/interrupt.h"
+#include "common/memory_limit.h"
 #include "common/progress.h"
 #include "sim/initial_conditions.h"
 #include "sim/sim_file.h"
@@ -45,6 +46,8 @@ int RunSim(const SimRunArgs& args) {
       throw UsageError(msg);
     }
   }
+  CheckRunMemory(args.options.EstimatedMemoryBytes(),
+                 "use fewer --cycles, a shorter --duration or a lower --fps");
   CheckCanWrite(args.output, args.force);
   const double total = args.options.Duration() * args.options.freq_hz;
   ProgressMeter meter("sim", "periods", total, args.progress);

@@ -12,6 +12,7 @@
 #include "common/atomic_output.h"
 #include "common/error.h"
 #include "common/interrupt.h"
+#include "common/memory_limit.h"
 #include "common/progress.h"
 #include "sim/sweep_file.h"
 #include "sim/sweep_journal.h"
@@ -42,6 +43,11 @@ SweepRunStats RunSweep(const SweepRunArgs& args) {
     throw UsageError("--threads: " + std::to_string(args.threads) + ": expected >= 0 (0: all)");
   }
   args.spec.Check();
+  // Every point runs transient + periods periods (one sample per period): the same estimate for
+  // each, held by each worker thread at once.
+  const double per_point = args.spec.PointOptionsNoInit(0).EstimatedMemoryBytes();
+  CheckRunMemory(ThreadCount(args.threads) * per_point,
+                 "use fewer --transient/--periods or --threads");
   CheckCanWrite(args.output, args.force);
   if (!args.tsv.empty()) CheckCanWrite(args.tsv, args.force);
 

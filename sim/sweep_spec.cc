@@ -8,8 +8,9 @@
 #include <limits>
 #include <sstream>
 
-#include "common/trim.h"
 #include "common/error.h"
+#include "common/trim.h"
+#include "sim/constants.h"
 
 namespace dimer::sim {
 
@@ -191,9 +192,11 @@ SimOptions SweepSpec::PointOptions(size_t i) const {
 }
 
 void SweepSpec::Check() const {
-  if (periods < 1) throw UsageError("--periods: " + std::to_string(periods) + ": expected >= 1");
-  if (transient < 0) {
-    throw UsageError("--transient: " + std::to_string(transient) + ": expected >= 0");
+  if (periods < 1 || periods > kMaxPeriods) {
+    throw UsageError("--periods: " + std::to_string(periods) + ": expected 1 to 1e9");
+  }
+  if (transient < 0 || transient > kMaxPeriods) {
+    throw UsageError("--transient: " + std::to_string(transient) + ": expected 0 to 1e9");
   }
   const size_t n = PointCount();
   if (n == 0) throw UsageError("sweep: the grid has no point");
@@ -204,12 +207,15 @@ void SweepSpec::Check() const {
   for (size_t i = 0; i < n; ++i) {
     const std::vector<std::string> errors = PointOptionsNoInit(i).Check();
     if (errors.empty()) continue;
-    std::string msg = "invalid sweep point " + std::to_string(i) + " (";
-    const std::vector<double> v = PointValues(i);
-    for (size_t k = 0; k < axes.size(); ++k) {
-      msg += (k ? " " : "") + axes[k].name + "=" + Num(v[k]);
+    std::string msg = "invalid sweep settings: ";  // every point shares them: no axis varies
+    if (!axes.empty()) {
+      msg = "invalid sweep point " + std::to_string(i) + " (";
+      const std::vector<double> v = PointValues(i);
+      for (size_t k = 0; k < axes.size(); ++k) {
+        msg += (k ? " " : "") + axes[k].name + "=" + Num(v[k]);
+      }
+      msg += "): ";
     }
-    msg += "): ";
     for (size_t k = 0; k < errors.size(); ++k) msg += (k ? "; " : "") + errors[k];
     throw UsageError(msg);
   }

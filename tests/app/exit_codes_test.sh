@@ -63,6 +63,23 @@ expect 2 'bad.sweep:2: unknown sweep parameter "colour"' sweep --spec bad.sweep 
 expect 2 '--shard: "3/2": expected K/N with 1 <= K <= N' sweep --shard 3/2 -o x.h5
 expect 2 'invalid sweep point 1 \(ar=0.5\): --ar: 0.5' sweep --ar 3,0.5 -o x.h5
 
+# Values out of their documented range (docs/FORMATS.md, "Simulation options"), NaN and inf,
+# and runs whose results would not fit in memory: refused before anything is written.
+expect 2 "--gamma: 1e\+22: expected 0 <= Gamma <= 10" sim --gamma 1e22 -o x.h5
+expect 2 "--fps: 1e\+308: expected 0 \(events only\) or a sampling rate" sim --fps 1e308 -o x.h5
+expect 2 "--fps: 1e-300: expected" sim --fps 1e-300 -o x.h5
+expect 2 "--fps: nan: expected" sim --fps nan -o x.h5
+expect 2 "--cycles: 1.84467e\+19: expected" sim --cycles 18446744073709551616 -o x.h5
+expect 2 "--duration: 4.29497e\+09: expected at most 1e9 plate periods" sim --duration 4294967296 -o x.h5
+expect 2 "the run needs about [0-9.e+]+ GB, more than the [0-9.e+]+ GB allowed" sim --cycles 1e8 -o x.h5
+expect 2 '--transient: 4294967296: expected 0 to 1e9' sweep --transient 4294967296 -o x.h5
+printf '[sweep]\ngamma = 1e22\n' >huge.sweep
+expect 2 'invalid sweep settings: --gamma: 1e\+22: expected' sweep --spec huge.sweep -o x.h5
+if [ -e x.h5 ]; then echo "FAIL: a refused run wrote x.h5"; failures=$((failures + 1)); fi
+# A scene file that names a setting twice: an error naming both lines, whichever would win.
+printf 'gamma = 0.9\nar = 3\ngamma = banana\n' >twice.scene
+expect 1 "twice.scene:3: gamma is set again \(first at line 1\)" sim --scene twice.scene -o x.h5
+
 # 1: bad input (files) and failed runs.
 echo "not HDF5" >not-hdf5.h5
 expect 1 "not-hdf5.h5: not an HDF5 file" render not-hdf5.h5 -o f
@@ -82,7 +99,7 @@ expect 0 '' sweep --ar 3.9,6.1 --periods 4 --transient 2 -q --shard 1/2 -o part1
 expect 1 "merge: 1 of 2 points missing \(first: 1\)" merge part1.h5 -o merged.h5
 
 # 130: interrupted (SIGINT, as Ctrl-C), with a valid partial file.
-"$BIN" sim --cycles 10000000 -q -o long.h5 >/dev/null 2>err.txt &
+"$BIN" sim --cycles 1000000 --fps 0 -q -o long.h5 >/dev/null 2>err.txt &
 pid=$!
 for _ in $(seq 50); do sleep 0.1; done
 kill -INT "$pid"
