@@ -17,6 +17,7 @@
 #include "sim/sweep_file.h"
 #include "sim/sweep_journal.h"
 #include "sim/sweep_point.h"
+#include "sim/sweep_point_check.h"
 
 namespace dimer::sim {
 
@@ -61,7 +62,15 @@ SweepRunStats RunSweep(const SweepRunArgs& args) {
   for (const PointResult& p : journal.recovered()) {
     if (args.shard.Contains(static_cast<size_t>(p.index)) &&
         p.index < static_cast<int64_t>(total)) {
-      done.emplace(p.index, p);
+      // A record whose checksum holds is still checked as a result (sweep_point_check.h).
+      const std::string problem = PointResultProblem(p, args.spec);
+      if (problem.empty()) {
+        done.emplace(p.index, p);
+      } else {
+        std::fprintf(stderr, "dimerlab: warning: %s: point %lld: %s; it is computed again\n",
+                     JournalPath(args.output).c_str(), static_cast<long long>(p.index),
+                     problem.c_str());
+      }
     }
   }
   SweepRunStats stats;

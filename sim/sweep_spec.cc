@@ -153,7 +153,12 @@ std::array<double, 6> SweepSpec::DropState(size_t i) const {
   const double vs = m.vel_scale;
   const double th = Uniform(s, -0.5, 0.5);
   const double gap = Uniform(s, 0.1, 1.0) * o.diameter_m;
-  const double z = m.R + m.A * m.R * std::abs(std::sin(th)) + m.amp + gap;
+  // Above the plate's highest point under the dimer: on a tilted plate the surface rises by
+  // |tan alpha| per unit of x within the dimer's reach, and the stroke along the normal is
+  // amp / cos alpha high (both 0 and amp on a level plate, so level drops are unchanged).
+  const double reach = m.A * m.R * std::abs(std::cos(th)) + m.R;
+  const double tilt_rise = reach * std::abs(m.sin_a / m.cos_a) + m.amp * (1 / m.cos_a - 1);
+  const double z = m.R + m.A * m.R * std::abs(std::sin(th)) + m.amp + tilt_rise + gap;
   const double u = Uniform(s, -0.05, 0.05) * vs;
   const double v = Uniform(s, -0.05, 0.05) * vs;
   const double w = Uniform(s, -0.5, 0.5) * vs / (m.A * m.R);

@@ -12,6 +12,7 @@
 #include "sim/simulator.h"
 #include "sim/state.h"
 #include "sim/sweep_point.h"
+#include "sim/sweep_point_check.h"
 #include "sim/sweep_file.h"
 #include "sim/sweep_journal.h"
 #include "sim/sweep_run.h"
@@ -260,6 +261,47 @@ TEST_F(SweepFiles, AResumedSweepComputesOnlyTheMissingPointsAndWritesTheSameFile
   SweepSpec other = spec;
   other.periods = 11;
   EXPECT_THROW(Run(other, dir_ / "mismatch.h5", 1), InputError);
+}
+
+// A journal record whose checksum holds but whose values no run gives (altered, or written by
+// a faulty writer) is not taken: the point is computed again, and the file is the fresh one.
+TEST_F(SweepFiles, AResumedSweepRecomputesRecordsThatAreNotValidResults) {
+  const SweepSpec spec = Spec({{"ar", "3.9,6.1"}, {"gamma", "0.8,0.9"}, {"periods", "10"},
+                               {"transient", "5"}});
+  const std::string full = dir_ / "full.h5", resumed = dir_ / "resumed.h5";
+  Run(spec, full, 2);
+  const SweepFileContent c = ReadSweepFile(full);
+  std::vector<PointResult> bad(4, c.rows[0]);
+  bad[0].events_per_period = 3.3e284;
+  bad[1] = c.rows[1];
+  bad[1].drift_speed = -228;  // and drift_scaled no longer drift_speed f/g
+  bad[2] = c.rows[2];
+  bad[2].impact_type = "\xff\xfe";
+  bad[3] = c.rows[3];
+  bad[3].rest_fraction[0] = 1.5;
+  {
+    SweepJournal j(JournalPath(resumed), spec.Canonical() + "shard = 1/1\n");
+    for (const PointResult& p : bad) j.Append(p);
+  }
+  for (const PointResult& p : bad) EXPECT_FALSE(PointResultProblem(p, spec).empty()) << p.index;
+  const SweepRunStats s = Run(spec, resumed, 2);
+  EXPECT_EQ(s.recovered, 0);
+  EXPECT_EQ(s.computed, 4);
+  EXPECT_EQ(Slurp(resumed), Slurp(full));
+}
+
+// Property: every fresh result passes the journal's check (it refuses only what no run gives),
+// over modes, tilts, frequencies, random drops and a failed point.
+TEST(SweepPointCheck, FreshResultsAreValid) {
+  for (const char* init : {"drift", "drop"}) {
+    const SweepSpec spec = Spec({{"ar", "2,3.9,6.1,9"}, {"gamma", "0.5,0.9,1.3"},
+                                 {"tilt_deg", "-8,0,3"}, {"freq", "25,60"}, {"periods", "20"},
+                                 {"transient", "10"}, {"init", init}});
+    for (size_t i = 0; i < spec.PointCount(); ++i) {
+      const PointResult p = RunSweepPoint(spec, i);
+      EXPECT_EQ(PointResultProblem(p, spec), "") << init << " point " << i;
+    }
+  }
 }
 
 // The paper's parameters at 25 Hz: a drift release drifts toward the bouncing end at A_r 3.9
