@@ -6,6 +6,7 @@
 #   ./dimerlab.sh test       setup + build + the whole GoogleTest suite through CTest
 #   ./dimerlab.sh sanitize   setup + ASan/UBSan build with warnings as errors + the suite
 #   ./dimerlab.sh bench      setup + build + every benchmark program (prints tables)
+#   ./dimerlab.sh fuzz       setup + clang build of tests/fuzz + each target for FUZZ_SECONDS (60)
 #   ./dimerlab.sh install    setup + build + install `dimerlab` into PREFIX/bin (PREFIX: env, default
 #                            /usr/local, already on the PATH) and its docs into PREFIX/share/doc
 set -euo pipefail
@@ -15,7 +16,7 @@ JOBS=$(nproc)
 
 PACKAGES=(build-essential cmake ninja-build pkg-config libopencv-dev libeigen3-dev libhdf5-dev
           hdf5-tools libcli11-dev libgtest-dev googletest libnlopt-dev gnuplot-nox
-          slurm-wlm munge povray ffmpeg)
+          slurm-wlm munge povray ffmpeg clang libclang-rt-14-dev)
 
 setup() {
   local missing=()
@@ -85,6 +86,29 @@ bench() {
   done
 }
 
+# Each libFuzzer target of tests/fuzz for FUZZ_SECONDS on a copy of its seed corpus; a crash,
+# leak or sanitizer report fails the command and leaves the input in build-fuzz/crashes/.
+fuzz() {
+  setup
+  CC=clang CXX=clang++ build_dir build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDIMERLAB_FUZZ=ON \
+    -DDIMERLAB_WITH_TRACKING=OFF -DDIMERLAB_TESTS=OFF -DDIMERLAB_BENCH=OFF
+  local seconds=${FUZZ_SECONDS:-60} failed=0 t name work
+  mkdir -p build-fuzz/crashes
+  printf '| target | seconds | executions | exec/s | result |\n|---|---:|---:|---:|---|\n'
+  for t in build-fuzz/tests/fuzz/fuzz_*; do
+    name=${t##*/fuzz_}
+    work=$(mktemp -d)
+    cp "tests/fuzz/corpus/$name/"* "$work/"
+    if "$t" -max_total_time="$seconds" -print_final_stats=1 -artifact_prefix=build-fuzz/crashes/ \
+        "$work" >"build-fuzz/$name.log" 2>&1; then result=ok; else result=FAILED; failed=1; fi
+    awk -v n="$name" -v s="$seconds" -v r="$result" '
+      /stat::number_of_executed_units/ { e = $2 } /stat::average_exec_per_sec/ { x = $2 }
+      END { printf "| %s | %s | %s | %s | %s |\n", n, s, e, x, r }' "build-fuzz/$name.log"
+    rm -rf "$work"
+  done
+  [ "$failed" = 0 ] || { echo "fuzz: a target failed; its log is in build-fuzz/, the input in build-fuzz/crashes/" >&2; exit 1; }
+}
+
 install_dimerlab() {
   setup; build
   cmake --install build --prefix "${PREFIX:-/usr/local}"
@@ -98,6 +122,7 @@ case "${1:-}" in
   test) run_tests ;;
   sanitize) sanitize ;;
   bench) bench ;;
+  fuzz) fuzz ;;
   install) install_dimerlab ;;
-  *) echo "usage: $0 setup|build|demo|test|sanitize|bench|install" >&2; exit 2 ;;
+  *) echo "usage: $0 setup|build|demo|test|sanitize|bench|fuzz|install" >&2; exit 2 ;;
 esac

@@ -33,8 +33,8 @@ void WriteProvenance(H5Writer& w, const std::string& kind, const AttrList& param
   w.SetAttr("/", "kind", kind);
   w.SetAttr("/", "dimerlab_version", DimerlabVersion());
   w.SetAttr("/", "created", IsoTimestampNow());
-  for (const auto& [key, value] : params) {
-    std::visit([&](const auto& v) { w.SetAttr("/", key, v); }, value);
+  for (const auto& param : params) {  // no structured binding: clang 14 cannot capture one
+    std::visit([&](const auto& v) { w.SetAttr("/", param.first, v); }, param.second);
   }
 }
 

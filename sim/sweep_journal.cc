@@ -128,6 +128,18 @@ SweepJournal::SweepJournal(std::string path, const std::string& identity)
     : path_(std::move(path)) {
   fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0) throw InputError(path_ + ": cannot open the sweep journal: " + Errno());
+  // A journal refused here is closed here: no destructor runs for a constructor that throws
+  // (the fuzz target fuzz_sweep_journal ran out of file descriptors on refused journals).
+  try {
+    Load(identity);
+  } catch (...) {
+    ::close(fd_);
+    fd_ = -1;
+    throw;
+  }
+}
+
+void SweepJournal::Load(const std::string& identity) {
   std::string data;
   if (!ReadAll(fd_, &data)) {
     throw InputError(path_ + ": cannot read the sweep journal: " + Errno());

@@ -37,6 +37,7 @@ class SweepJournal {
   void Remove();
 
  private:
+  void Load(const std::string& identity);  // reads the records, or starts the journal
   void WriteRecord(const std::string& payload);
   std::string path_;
   int fd_ = -1;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 
@@ -261,6 +262,22 @@ TEST_F(SweepFiles, AResumedSweepComputesOnlyTheMissingPointsAndWritesTheSameFile
   SweepSpec other = spec;
   other.periods = 11;
   EXPECT_THROW(Run(other, dir_ / "mismatch.h5", 1), InputError);
+}
+
+// A journal refused on opening (not a journal, another sweep) leaves no file descriptor open
+// (the process's open files, /proc/self/fd, are the same before and after 100 refusals).
+TEST_F(SweepFiles, ARefusedJournalIsClosed) {
+  const std::string path = dir_ / "other.journal";
+  { SweepJournal j(path, "ar = 6.1\nshard = 1/1\n"); }
+  auto open_files = [] {
+    return std::distance(std::filesystem::directory_iterator("/proc/self/fd"),
+                         std::filesystem::directory_iterator());
+  };
+  const auto before = open_files();
+  for (int i = 0; i < 100; ++i) {
+    EXPECT_THROW(SweepJournal(path, "ar = 3.9\nshard = 1/1\n"), InputError);
+  }
+  EXPECT_EQ(open_files(), before);
 }
 
 // A journal record whose checksum holds but whose values no run gives (altered, or written by
