@@ -53,9 +53,19 @@ demo() {
   echo "== the report: $out/report/summary.md (figures in $out/report/figures/, overlay.avi, compare.h5) =="
 }
 
+# The five slowest tests of a CTest log, so that a slow machine shows where its time went.
+slowest_tests() {  # $1 = ctest's output
+  echo "slowest tests:"
+  awk '/Test +#[0-9]+: / { for (i = 1; i <= NF; ++i) if ($i == "sec") print $(i - 1), $4 }' "$1" |
+    sort -rn | head -5 | awk '{ printf "  %8.1f s  %s\n", $1, $2 }'
+}
+
 run_tests() {
   setup; build
-  ctest --test-dir build --output-on-failure -j "$JOBS"
+  local rc=0
+  ctest --test-dir build --output-on-failure -j "$JOBS" 2>&1 | tee build/ctest_last.log || rc=$?
+  slowest_tests build/ctest_last.log
+  return "$rc"
 }
 
 sanitize() {
