@@ -31,6 +31,13 @@ constexpr int kDefaultDeflateLevel = 1;
 struct H5WriteOptions {
   int deflate_level = kDefaultDeflateLevel;  // 0..9 (0: shuffle and checksum only)
   size_t chunk_bytes = 256 * 1024;           // target size of one chunk before compression, bytes
+  // Threads that filter (compress) the chunks of a dataset, 0: every core. The file's bytes do
+  // not depend on it (common/h5_chunk_filter.h).
+  int threads = 0;
+  // true: chunks filtered by dimerlab (h5_chunk_filter.h) and written by H5Dwrite_chunk; false:
+  // HDF5's own pipeline through H5Dwrite, on one thread: the same bytes (kept as the tests'
+  // oracle).
+  bool direct_chunks = true;
 };
 
 class H5Writer {
@@ -63,6 +70,7 @@ class H5Writer {
  private:
   void Write(const std::string& name, hid_t mem_type, hid_t file_type, const void* data,
              const Dims& dims);
+  herr_t WriteFilteredChunks(hid_t ds, const uint8_t* data, const Dims& dims, size_t elem_size);
   void EnsureParents(const std::string& name);
   hid_t OpenObject(const std::string& object);
   std::string path_;
