@@ -3,20 +3,32 @@
 // speed of the code before issue 8 in the drift mode, measured against that build in the same
 // run (--baseline), and a rest state that costs (almost) nothing per period.
 //
+// A second table times the whole `dimerlab sim` (RunSim: simulate, then write the sim file) by
+// CPU time per plate period, all threads counted, and wall time, with the file's chunks
+// compressed on one thread and on every core; beside it the MuJoCo model of the same dimer
+// (docs/BENCHMARKS.md, "Simulator speed": 4.9-6.1 ms CPU per period at h = 2e-5 s, measured
+// outside the project, MuJoCo not being a dependency).
+//
 // Usage: bench_sim_speed [periods] [--baseline OLD_BENCH_BINARY] [--repeats N]
 //   Without --baseline: one table of this build. With it: OLD_BENCH_BINARY (another build of
 //   this program, e.g. from main) and this build run alternately N times (default 3) with the
 //   same periods; each case's best periods/s of the N runs (the least disturbed by other load
 //   on the machine) is compared.
 #include <algorithm>
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "sim/run_sim.h"
 #include "sim/simulator.h"
 
 using namespace dimer::sim;
@@ -127,6 +139,62 @@ std::map<std::string, double> RunBaseline(const std::string& binary, double peri
   return rate;
 }
 
+// The MuJoCo model of the same dimer at the step its drift speed needs (h = 2e-5 s): CPU time
+// per plate period in two runs (issue 36), ms.
+constexpr double kMujocoCpuMsPerPeriod[2] = {4.9, 6.1};
+
+double CpuSeconds() {  // this process, every thread, user + system
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+// The whole `dimerlab sim` of the paper's drift mode: simulate and write the file.
+void RunFileTable(double periods) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "dimerlab_bench_sim_speed";
+  std::filesystem::create_directories(dir);
+  std::printf("\n`dimerlab sim --ar 3.9 --cycles %.0f` (simulate + write the sim file)\n\n",
+              periods);
+  std::printf("| case | compression threads | CPU ms/period | wall ms/period | file MB | "
+              "MuJoCo CPU / this CPU |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|\n");
+  for (double fps : {0.0, 2000.0}) {
+    for (int threads : {1, 0}) {
+      SimRunArgs a;
+      a.options.ar = 3.9;
+      a.options.cycles = periods;
+      a.options.fps = fps;
+      a.output = (dir / "sim.h5").string();
+      a.force = true;
+      a.progress = false;
+      a.threads = threads;
+      // RunSim's one-line summary goes to /dev/null, not into the table.
+      std::fflush(stdout);
+      const int saved_stdout = dup(1);
+      const int null_fd = open("/dev/null", O_WRONLY);
+      dup2(null_fd, 1);
+      const double cpu0 = CpuSeconds();
+      const auto t0 = std::chrono::steady_clock::now();
+      RunSim(a);
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double cpu_ms = 1e3 * (CpuSeconds() - cpu0) / periods;
+      std::fflush(stdout);
+      dup2(saved_stdout, 1);
+      close(saved_stdout);
+      close(null_fd);
+      std::printf("| %s | %s | %.4f | %.4f | %.2f | %.0f-%.0fx |\n",
+                  fps > 0 ? "2000 samples/s + event log" : "events only (--fps 0)",
+                  threads == 1 ? "1" : "every core", cpu_ms, 1e3 * wall / periods,
+                  std::filesystem::file_size(a.output) / 1e6, kMujocoCpuMsPerPeriod[0] / cpu_ms,
+                  kMujocoCpuMsPerPeriod[1] / cpu_ms);
+      std::fflush(stdout);
+    }
+  }
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -145,6 +213,7 @@ int main(int argc, char** argv) {
   const std::vector<Row> rows = Rows(periods);
   if (baseline.empty()) {
     RunTable(rows, true);
+    RunFileTable(periods);
     return 0;
   }
   std::map<std::string, double> best_old, best_new;
