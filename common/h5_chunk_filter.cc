@@ -77,6 +77,11 @@ std::vector<uint8_t> FilterChunk(const uint8_t* raw, size_t data_bytes, size_t c
   return out;
 }
 
+int FilterThreads(int threads) {
+  return threads > 0 ? threads
+                     : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 std::vector<std::vector<uint8_t>> FilterChunks(const uint8_t* data, size_t data_bytes,
                                                size_t chunk_bytes, size_t elem_size,
                                                int deflate_level, int threads) {
@@ -90,8 +95,8 @@ std::vector<std::vector<uint8_t>> FilterChunks(const uint8_t* data, size_t data_
                            deflate_level);
     }
   };
-  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const size_t helpers = std::min<size_t>(static_cast<size_t>(threads), count) - (count > 0);
+  const size_t helpers =
+      std::min<size_t>(static_cast<size_t>(FilterThreads(threads)), count) - (count > 0);
   std::vector<std::thread> pool;
   // A failure on a helper thread (out of memory) must not terminate the process: it is kept
   // and rethrown here.

@@ -37,6 +37,9 @@ std::vector<std::vector<uint8_t>> FilterChunks(const uint8_t* data, size_t data_
                                                size_t chunk_bytes, size_t elem_size,
                                                int deflate_level, int threads);
 
+// The threads FilterChunks uses for `threads` (0: every core).
+int FilterThreads(int threads);
+
 // HDF5's Fletcher-32 (H5_checksum_fletcher32), exposed for its test.
 uint32_t Hdf5Fletcher32(const uint8_t* data, size_t n);
 
