@@ -20,6 +20,7 @@
 // value, which is what its chunk cache holds there).
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace dimer {
@@ -31,13 +32,19 @@ std::vector<uint8_t> FilterChunk(const uint8_t* raw, size_t data_bytes, size_t c
                                  size_t elem_size, int deflate_level);
 
 // Every chunk of a dataset whose bytes are `data` (row-major, chunks of whole rows, chunk k at
-// byte k * chunk_bytes), filtered on up to `threads` threads (0: every core). Chunks are
-// independent, each written to its own slot: the result does not depend on `threads`.
-std::vector<std::vector<uint8_t>> FilterChunks(const uint8_t* data, size_t data_bytes,
-                                               size_t chunk_bytes, size_t elem_size,
-                                               int deflate_level, int threads);
+// byte k * chunk_bytes), filtered on up to `threads` threads (0: every core) and handed to
+// `write` on the calling thread in chunk order, each as soon as it is ready; at most
+// kChunksAheadPerThread chunks per thread are held filtered. Chunks are independent: the bytes
+// do not depend on `threads`. Returns false as soon as `write` does.
+bool FilterChunksInOrder(const uint8_t* data, size_t data_bytes, size_t chunk_bytes,
+                         size_t elem_size, int deflate_level, int threads,
+                         const std::function<bool(const std::vector<uint8_t>&)>& write);
 
-// The threads FilterChunks uses for `threads` (0: every core).
+// How far the workers may run ahead of the writer, chunks per thread: enough that a worker
+// never waits for the write of a chunk, few enough that the memory held stays a few chunks.
+constexpr size_t kChunksAheadPerThread = 4;
+
+// The threads FilterChunksInOrder uses for `threads` (0: every core).
 int FilterThreads(int threads);
 
 // HDF5's Fletcher-32 (H5_checksum_fletcher32), exposed for its test.

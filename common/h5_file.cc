@@ -54,9 +54,6 @@ Dims ChunkDims(const Dims& dims, size_t elem_size, size_t chunk_bytes) {
   return chunk;
 }
 
-// H5Writer::WriteFilteredChunks filters this many chunks per thread, then writes them.
-constexpr size_t kChunksPerThreadInBatch = 4;
-
 // Dataset creation list: chunked, shuffle -> deflate -> Fletcher32 (the checksum last on
 // writing, so first on reading: corrupt bytes are caught before zlib sees them). Empty datasets
 // have no data to protect and HDF5 allows no zero-sized chunk: they stay contiguous.
@@ -157,25 +154,16 @@ herr_t H5Writer::WriteFilteredChunks(hid_t ds, const uint8_t* data, const Dims& 
                                      size_t elem_size) {
   const Dims chunk = ChunkDims(dims, elem_size, options_.chunk_bytes);
   const size_t chunk_bytes = Count(chunk) * elem_size;
-  const size_t data_bytes = Count(dims) * elem_size;
-  // A batch of chunks at a time, so that the filtered copy held is a few chunks per thread,
-  // not the whole dataset.
-  const size_t batch_bytes = kChunksPerThreadInBatch * chunk_bytes *
-                             static_cast<size_t>(FilterThreads(options_.threads));
   Dims offset(dims.size(), 0);
-  hsize_t next_row = 0;
-  for (size_t begin = 0; begin < data_bytes; begin += batch_bytes) {
-    const std::vector<std::vector<uint8_t>> stored =
-        FilterChunks(data + begin, std::min(batch_bytes, data_bytes - begin), chunk_bytes,
-                     elem_size, options_.deflate_level, options_.threads);
-    for (const std::vector<uint8_t>& bytes : stored) {
-      offset[0] = next_row;
-      next_row += chunk[0];
-      if (H5Dwrite_chunk(ds, H5P_DEFAULT, 0, offset.data(), bytes.size(), bytes.data()) < 0) {
-        return -1;
-      }
-    }
-  }
+  const bool ok = FilterChunksInOrder(
+      data, Count(dims) * elem_size, chunk_bytes, elem_size, options_.deflate_level,
+      options_.threads, [&](const std::vector<uint8_t>& bytes) {
+        const bool written = H5Dwrite_chunk(ds, H5P_DEFAULT, 0, offset.data(), bytes.size(),
+                                            bytes.data()) >= 0;
+        offset[0] += chunk[0];
+        return written;
+      });
+  if (!ok) return -1;
   return 0;
 }
 
