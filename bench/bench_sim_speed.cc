@@ -1,7 +1,7 @@
 // Simulator speed: simulated plate periods per second on one core, in the drift mode and the
-// other modes, with and without output sampling. Target (docs/BENCHMARKS.md): >= 2.5x the
-// speed of the code before issue 8 in the drift mode, measured against that build in the same
-// run (--baseline), and a rest state that costs (almost) nothing per period.
+// other modes, with and without output sampling (docs/BENCHMARKS.md, "Simulator speed"); a
+// rest state costs (almost) nothing per period. --baseline compares it with another build
+// measured in the same run.
 //
 // A second table times the whole `dimerlab sim` (RunSim: simulate, then write the sim file) by
 // CPU time per plate period, all threads counted, and wall time, with the file's chunks

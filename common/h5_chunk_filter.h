@@ -1,9 +1,9 @@
 #pragma once
 // HDF5's write-side filter pipeline of dimerlab's datasets (shuffle -> deflate -> Fletcher32,
 // common/h5_file.h), run by dimerlab itself so that the chunks of a dataset are compressed on
-// worker threads and handed to HDF5 already filtered (H5Dwrite_chunk). zlib was about half of the
-// CPU time of a sim file with samples, all of it on the simulation's thread inside H5Dwrite
-// (docs/BENCHMARKS.md, "Simulator speed").
+// worker threads and handed to HDF5 already filtered (H5Dwrite_chunk). zlib is about half of the
+// CPU time of a sim file with samples, which inside H5Dwrite would all run on the calling
+// thread (docs/BENCHMARKS.md, "Simulator speed").
 //
 // Each step does what the HDF5 1.10 filter does, byte for byte, so readers see the same
 // datasets as from HDF5's own pipeline (h5py and h5dump with no plugin) and the file's bytes do

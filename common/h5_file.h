@@ -12,7 +12,9 @@
 // likewise stay in their object header. The file uses the HDF5 1.10 format, whose superblock,
 // object headers and chunk indexes carry their own checksums, so a flipped byte outside the
 // data is an error too (or lands in padding). All three filters are built into every HDF5
-// library: h5py, MATLAB and h5dump read the files with no plugin (HDF5 >= 1.10).
+// library: h5py, MATLAB and h5dump read the files with no plugin (HDF5 >= 1.10). The writer
+// runs the three filters itself, on worker threads, and stores the filtered chunks with
+// H5Dwrite_chunk: the bytes of HDF5's own pipeline (common/h5_chunk_filter.h).
 #include <hdf5.h>
 
 #include <cstdint>
