@@ -94,12 +94,6 @@ uint32_t Hdf5Fletcher32(const uint8_t* data, size_t n) {
   return (sum2 << 16) | sum1;
 }
 
-std::vector<uint8_t> FilterChunk(const uint8_t* raw, size_t data_bytes, size_t chunk_bytes,
-                                 size_t elem_size, int deflate_level) {
-  Scratch s;
-  return Filter(raw, data_bytes, chunk_bytes, elem_size, deflate_level, &s);
-}
-
 int FilterThreads(int threads) {
   return threads > 0 ? threads
                      : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

@@ -25,17 +25,13 @@
 
 namespace dimer {
 
-// The stored bytes of one chunk of `elem_size`-byte elements: `raw` is `chunk_bytes` long when
-// `data_bytes` reaches the chunk's end, shorter for an edge chunk (zeros make up the rest).
-// `deflate_level` 0 leaves deflate out of the pipeline (shuffle and checksum only).
-std::vector<uint8_t> FilterChunk(const uint8_t* raw, size_t data_bytes, size_t chunk_bytes,
-                                 size_t elem_size, int deflate_level);
-
 // Every chunk of a dataset whose bytes are `data` (row-major, chunks of whole rows, chunk k at
 // byte k * chunk_bytes), filtered on up to `threads` threads (0: every core) and handed to
 // `write` on the calling thread in chunk order, each as soon as it is ready; at most
-// kChunksAheadPerThread chunks per thread are held filtered. Chunks are independent: the bytes
-// do not depend on `threads`. Returns false as soon as `write` does.
+// kChunksAheadPerThread chunks per thread are held filtered. The last chunk may be partial:
+// zeros make up the rest. `deflate_level` 0 leaves deflate out (shuffle and checksum only).
+// Chunks are independent: the bytes do not depend on `threads`. Returns false as soon as
+// `write` does.
 bool FilterChunksInOrder(const uint8_t* data, size_t data_bytes, size_t chunk_bytes,
                          size_t elem_size, int deflate_level, int threads,
                          const std::function<bool(const std::vector<uint8_t>&)>& write);
