@@ -2,14 +2,23 @@
 // file at deflate levels 0..9, always with shuffle and Fletcher32 (docs/BENCHMARKS.md, "HDF5
 // compression level"; the default level is common/h5_file.h's kDefaultDeflateLevel). A second
 // table at the default level: HDF5's own filter pipeline (one thread) against dimerlab's chunks
-// filtered on 1 thread and on every core (common/h5_chunk_filter.h), at three chunk sizes.
+// filtered on 1 thread and on every core (common/h5_chunk_filter.h), at three chunk sizes. A
+// third, when libdeflate is installed: zlib against libdeflate, a faster encoder of the same
+// format, on the same shuffled 256 KiB chunks (a measurement for the choice of encoder; a
+// libdeflate stream is another stream of bytes, which zlib's inflate, and so every HDF5 reader,
+// reads back: checked here).
 // Usage: bench_h5_compression [periods]   (default 2000 periods at 25 Hz, 2000 samples/s)
 // The file's datasets are simulated once, then rewritten at each level through H5Writer, so
 // every level stores exactly the same data.
 #include <sys/resource.h>
+#include <zlib.h>
+#ifdef DIMERLAB_BENCH_LIBDEFLATE
+#include <libdeflate.h>
+#endif
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -89,6 +98,89 @@ Timing Time(const std::string& path, const std::vector<Dataset>& data, const H5W
   return t;
 }
 
+#ifdef DIMERLAB_BENCH_LIBDEFLATE
+// The datasets cut into 256 KiB chunks of whole rows (the last one zero-padded) and shuffled, as
+// the writer hands them to deflate.
+std::vector<std::vector<uint8_t>> ShuffledChunks(const std::vector<Dataset>& data) {
+  std::vector<std::vector<uint8_t>> chunks;
+  for (const Dataset& d : data) {
+    std::vector<uint8_t> bytes;
+    size_t elem = 8, row = 8;
+    if (d.type == H5Reader::TypeClass::kString) {
+      elem = 1;
+      for (const auto& s : d.strings) elem = std::max(elem, s.size() + 1);
+      for (const auto& s : d.strings) {
+        std::string padded = s;
+        padded.resize(elem, '\0');
+        bytes.insert(bytes.end(), padded.begin(), padded.end());
+      }
+      row = elem;
+    } else {
+      const auto* p = d.doubles.empty() ? reinterpret_cast<const uint8_t*>(d.ints.data())
+                                        : reinterpret_cast<const uint8_t*>(d.doubles.data());
+      bytes.assign(p, p + 8 * (d.doubles.size() + d.ints.size()));
+      for (size_t i = 1; i < d.dims.size(); ++i) row *= d.dims[i];
+    }
+    if (bytes.empty()) continue;
+    const size_t rows = std::max<size_t>(1, 256 * 1024 / row);
+    const size_t chunk = std::min(bytes.size(), rows * row);
+    for (size_t at = 0; at < bytes.size(); at += chunk) {
+      std::vector<uint8_t> c(chunk, 0), s(chunk);
+      std::memcpy(c.data(), bytes.data() + at, std::min(chunk, bytes.size() - at));
+      const size_t n = chunk / elem;
+      for (size_t j = 0; j < elem; ++j) {
+        for (size_t i = 0; i < n; ++i) s[j * n + i] = c[i * elem + j];
+      }
+      chunks.push_back(elem > 1 && n > 1 ? s : c);
+    }
+  }
+  return chunks;
+}
+
+void EncoderTable(const std::vector<Dataset>& data) {
+  const std::vector<std::vector<uint8_t>> chunks = ShuffledChunks(data);
+  std::printf("\nthe same shuffled 256 KiB chunks (%zu), deflate by two encoders\n\n",
+              chunks.size());
+  std::printf("| encoder | level | compressed MB | CPU s (best of 3) | zlib inflates it back |\n");
+  std::printf("|---|---:|---:|---:|---|\n");
+  for (int level : {1, 2, 3, 6}) {
+    for (int libdeflate = 0; libdeflate < 2; ++libdeflate) {
+      double best = 1e30, out_bytes = 0;
+      bool round_trip = true;
+      for (int rep = 0; rep < 3; ++rep) {
+        libdeflate_compressor* c = libdeflate_alloc_compressor(level);
+        std::vector<std::vector<uint8_t>> out(chunks.size());
+        const double cpu0 = CpuSeconds();
+        for (size_t k = 0; k < chunks.size(); ++k) {
+          uLongf n = compressBound(static_cast<uLong>(chunks[k].size()));
+          out[k].resize(n);
+          if (libdeflate) {
+            n = libdeflate_zlib_compress(c, chunks[k].data(), chunks[k].size(), out[k].data(),
+                                         out[k].size());
+          } else {
+            compress2(out[k].data(), &n, chunks[k].data(), chunks[k].size(), level);
+          }
+          out[k].resize(n);
+        }
+        best = std::min(best, CpuSeconds() - cpu0);
+        libdeflate_free_compressor(c);
+        out_bytes = 0;
+        for (size_t k = 0; k < chunks.size(); ++k) {
+          out_bytes += out[k].size();
+          std::vector<uint8_t> back(chunks[k].size());
+          uLongf n = back.size();
+          round_trip &= uncompress(back.data(), &n, out[k].data(), out[k].size()) == Z_OK &&
+                        back == chunks[k];
+        }
+      }
+      std::printf("| %s | %d | %.2f | %.3f | %s |\n", libdeflate ? "libdeflate 1.14" : "zlib 1.2.13",
+                  level, out_bytes / 1e6, best, round_trip ? "yes" : "NO");
+      std::fflush(stdout);
+    }
+  }
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -143,6 +235,9 @@ int main(int argc, char** argv) {
       std::fflush(stdout);
     }
   }
+#ifdef DIMERLAB_BENCH_LIBDEFLATE
+  EncoderTable(data);
+#endif
   std::filesystem::remove_all(dir);
   return 0;
 }
