@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "common/error.h"
+#include "common/h5_chunk_filter.h"
 
 namespace dimer {
 namespace {
@@ -132,11 +133,38 @@ void H5Writer::Write(const std::string& name, hid_t mem_type, hid_t file_type, c
   H5Pset_attr_phase_change(dcpl, 65535, 0);
   hid_t ds = H5Dcreate2(file_, name.c_str(), file_type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
   H5Pclose(dcpl);
-  herr_t st = ds < 0 ? -1 : (Count(dims) == 0 ? 0 : H5Dwrite(ds, mem_type, H5S_ALL, H5S_ALL,
-                                                              H5P_DEFAULT, data));
+  herr_t st = -1;
+  if (ds >= 0 && Count(dims) == 0) {
+    st = 0;
+  } else if (ds >= 0 && options_.direct_chunks && H5Tequal(mem_type, file_type) > 0) {
+    st = WriteFilteredChunks(ds, static_cast<const uint8_t*>(data), dims,
+                             H5Tget_size(file_type));
+  } else if (ds >= 0) {
+    st = H5Dwrite(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
+  }
   if (ds >= 0) H5Dclose(ds);
   H5Sclose(space);
   if (st < 0) throw InputError(path_ + ": cannot write dataset " + name);
+}
+
+// The chunks of DatasetPlist, filtered here on worker threads and stored as they are (the
+// memory and file types are the same: no conversion). Written in chunk order, as HDF5's
+// pipeline allocates them, so the file's layout is the same too.
+herr_t H5Writer::WriteFilteredChunks(hid_t ds, const uint8_t* data, const Dims& dims,
+                                     size_t elem_size) {
+  const Dims chunk = ChunkDims(dims, elem_size, options_.chunk_bytes);
+  const size_t chunk_bytes = Count(chunk) * elem_size;
+  Dims offset(dims.size(), 0);
+  const bool ok = FilterChunksInOrder(
+      data, Count(dims) * elem_size, chunk_bytes, elem_size, options_.deflate_level,
+      options_.threads, [&](const std::vector<uint8_t>& bytes) {
+        const bool written = H5Dwrite_chunk(ds, H5P_DEFAULT, 0, offset.data(), bytes.size(),
+                                            bytes.data()) >= 0;
+        offset[0] += chunk[0];
+        return written;
+      });
+  if (!ok) return -1;
+  return 0;
 }
 
 void H5Writer::WriteDoubles(const std::string& name, const std::vector<double>& data,

@@ -12,7 +12,9 @@
 // likewise stay in their object header. The file uses the HDF5 1.10 format, whose superblock,
 // object headers and chunk indexes carry their own checksums, so a flipped byte outside the
 // data is an error too (or lands in padding). All three filters are built into every HDF5
-// library: h5py, MATLAB and h5dump read the files with no plugin (HDF5 >= 1.10).
+// library: h5py, MATLAB and h5dump read the files with no plugin (HDF5 >= 1.10). The writer
+// runs the three filters itself, on worker threads, and stores the filtered chunks with
+// H5Dwrite_chunk: the bytes of HDF5's own pipeline (common/h5_chunk_filter.h).
 #include <hdf5.h>
 
 #include <cstdint>
@@ -31,6 +33,13 @@ constexpr int kDefaultDeflateLevel = 1;
 struct H5WriteOptions {
   int deflate_level = kDefaultDeflateLevel;  // 0..9 (0: shuffle and checksum only)
   size_t chunk_bytes = 256 * 1024;           // target size of one chunk before compression, bytes
+  // Threads that filter (compress) the chunks of a dataset, 0: every core. The file's bytes do
+  // not depend on it (common/h5_chunk_filter.h).
+  int threads = 0;
+  // true: chunks filtered by dimerlab (h5_chunk_filter.h) and written by H5Dwrite_chunk; false:
+  // HDF5's own pipeline through H5Dwrite, on one thread: the same bytes (kept as the tests'
+  // oracle).
+  bool direct_chunks = true;
 };
 
 class H5Writer {
@@ -63,6 +72,7 @@ class H5Writer {
  private:
   void Write(const std::string& name, hid_t mem_type, hid_t file_type, const void* data,
              const Dims& dims);
+  herr_t WriteFilteredChunks(hid_t ds, const uint8_t* data, const Dims& dims, size_t elem_size);
   void EnsureParents(const std::string& name);
   hid_t OpenObject(const std::string& object);
   std::string path_;

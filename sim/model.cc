@@ -107,13 +107,14 @@ std::vector<std::string> SimOptions::Check() const {
   return e;
 }
 
-double SimOptions::EstimatedMemoryBytes() const {
+double SimOptions::EstimatedMemoryBytes(bool with_event_log) const {
   // Per sample: its time and lab state, and as much again for the file's derived datasets
-  // (tips, theta, plate). Per period: the statistics and a drift mode's event log.
+  // (tips, theta, plate). Per period: the statistics and, when kept, a drift mode's event log.
   const double periods = Duration() * freq_hz;
   const double samples = fps > 0 ? Duration() * fps + 1 : 0;
-  return samples * 2 * (sizeof(double) + sizeof(State)) +
-         periods * (sizeof(PeriodStats) + kEventsPerPeriodEstimate * sizeof(EventRecord));
+  const double per_period =
+      sizeof(PeriodStats) + (with_event_log ? kEventsPerPeriodEstimate * sizeof(EventRecord) : 0);
+  return samples * 2 * (sizeof(double) + sizeof(State)) + periods * per_period;
 }
 
 long SimOptions::SampleCount() const {

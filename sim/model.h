@@ -77,7 +77,7 @@ struct SimOptions {
   // Memory the run's results take (samples, statistics, event log), bytes: checked against the
   // machine's memory before a run starts, so that a long run is refused at once rather than
   // ending in bad_alloc.
-  double EstimatedMemoryBytes() const;
+  double EstimatedMemoryBytes(bool with_event_log = true) const;
   static constexpr double kSampleCountSlack = 1e-6;  // samples
   double EffectiveLift() const;
 };

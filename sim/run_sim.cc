@@ -56,7 +56,9 @@ int RunSim(const SimRunArgs& args) {
   controls.should_stop = [] { return InterruptRequested(); };
   const SimResult r = RunSimulation(args.options, controls);
   meter.Finish(static_cast<double>(r.periods.size()));
-  WriteSimFile(args.output, args.force, args.options, r);
+  H5WriteOptions storage;
+  storage.threads = args.threads;
+  WriteSimFile(args.output, args.force, args.options, r, storage);
   const ModeSummary& ms = r.mode;
   std::printf("%s: %zu samples, %ld events (%.1f per period), settled in %s mode",
               args.output.c_str(), r.t.size(), r.diag.events,

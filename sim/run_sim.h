@@ -11,6 +11,7 @@ struct SimRunArgs {
   std::string output;     // sim.h5 path
   bool force = false;     // replace an existing output
   bool progress = true;   // periods/s and ETA on stderr
+  int threads = 0;        // threads that compress the file (0: every core); same bytes for any
 };
 
 // Returns the process exit code (0 ok, 130 interrupted with a valid partial file). Throws

@@ -127,10 +127,11 @@ AttrCodes SimAttrCodes() {
 
 }  // namespace
 
-void WriteSimFile(const std::string& path, bool force, const SimOptions& o, const SimResult& r) {
+void WriteSimFile(const std::string& path, bool force, const SimOptions& o, const SimResult& r,
+                  const H5WriteOptions& storage) {
   AtomicOutput out(path, force);
   {
-    H5Writer w(out.temp_path());
+    H5Writer w(out.temp_path(), storage);
     const Model& m = r.model;
     Trajectory traj;
     traj.Reserve(r.t.size());

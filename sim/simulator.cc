@@ -138,9 +138,11 @@ void Runner::Log(EventKind kind, int sphere, const State& before, std::string de
       << offset_ + t_ << " s (last: " << ToString(kind) << "); see --max-events-per-period";
     throw EventStorm(s.str());
   }
-  if (!c_.keep_events) return;
-  res_.events.push_back(
-      {offset_ + t_, t_, kind, static_cast<int8_t>(sphere), std::move(detail), before, q_});
+  if (!c_.keep_events && !c_.on_event) return;
+  EventRecord e{offset_ + t_, t_, kind, static_cast<int8_t>(sphere), std::move(detail), before,
+                q_};
+  if (c_.on_event) c_.on_event(e);
+  if (c_.keep_events) res_.events.push_back(std::move(e));
 }
 
 std::array<bool, 2> Runner::RestingAmong(std::array<bool, 2> touching) const {
@@ -248,8 +250,9 @@ void Runner::DoImpact(std::array<bool, 2> touching) {
       ++cur_.impacts[s];
     }
   }
-  // The detail string only for a kept event log (benchmarks and sweeps count only).
-  const std::string detail = c_.keep_events ? ImpactDetail(io) : std::string();
+  // The detail string only for an event log kept or seen (benchmarks count only).
+  const std::string detail =
+      c_.keep_events || c_.on_event ? ImpactDetail(io) : std::string();
   if (took == 2) {
     Log(EventKind::kDoubleImpact, 2, before, detail);
   } else if (took == 1) {

@@ -52,6 +52,10 @@ struct SimResult {
 
 struct RunControls {
   bool keep_events = true;                      // false: count only (benchmarks, sweeps)
+  // Called with every event as it is logged, whether or not the log is kept: a sweep point
+  // classifies its impacts on the fly instead of keeping the whole log (~200 bytes an event,
+  // ~0.4 GB at a 10^5-period point; sim/sweep_point.cc).
+  std::function<void(const EventRecord&)> on_event;
   std::function<void(double done, double total)> progress;  // called once per period
   std::function<bool()> should_stop;            // polled once per period (Ctrl-C)
   // The rest state that provably stays put (sim/resting.h) costs nothing per period; false

@@ -1,9 +1,12 @@
 #include "sim/sweep_point.h"
 
+#include <array>
 #include <cmath>
+#include <cstring>
 
 #include "common/modes.h"
 #include "sim/frames.h"
+#include "sim/initial_conditions.h"
 #include "sim/simulator.h"
 
 namespace dimer::sim {
@@ -11,36 +14,62 @@ namespace {
 
 const char* const kImpactTypes[3] = {"continuous_slide", "slip_stick", "slip_reversal"};
 
-// Tallies the impact types of `sphere` (or both, -1) in an impact's detail ("L:slip_stick R:...").
-void CountImpactTypes(const std::string& detail, int sphere, std::array<long, 3>* counts) {
-  for (int s = 0; s < 2; ++s) {
-    if (sphere >= 0 && s != sphere) continue;
-    const std::string tag = s == kLeft ? "L:" : "R:";
-    const size_t at = detail.find(tag);
-    if (at == std::string::npos) continue;
-    const std::string rest = detail.substr(at + 2);
-    for (int k = 0; k < 3; ++k) {
-      if (rest.rfind(kImpactTypes[k], 0) == 0) ++(*counts)[k];
+// Impact types per sphere, by how the slip ended, of the impacts inside the measured window,
+// tallied as the simulator logs them: the log itself is not kept (RunControls::on_event).
+struct ImpactTally {
+  double t0 = 0, t1 = 0;  // the window [t0, t1), absolute time, s
+  std::array<std::array<long, 3>, 2> counts{};  // [sphere][type]
+
+  // An impact's detail reads "L:slip_stick R:continuous_slide" (either part may be missing).
+  void See(const EventRecord& e) {
+    if (e.t < t0 || e.t >= t1) return;
+    if (e.kind != EventKind::kImpact && e.kind != EventKind::kDoubleImpact) return;
+    for (int s = 0; s < 2; ++s) {
+      const size_t at = e.detail.find(s == kLeft ? "L:" : "R:");
+      if (at == std::string::npos) continue;
+      for (int k = 0; k < 3; ++k) {
+        if (e.detail.compare(at + 2, std::strlen(kImpactTypes[k]), kImpactTypes[k]) == 0) {
+          ++counts[s][k];
+        }
+      }
     }
   }
-}
+  // The bouncing end's (sphere 0 or 1) or both ends' (-1) impacts.
+  std::array<long, 3> Of(int sphere) const {
+    std::array<long, 3> out{};
+    for (int s = 0; s < 2; ++s) {
+      if (sphere >= 0 && s != sphere) continue;
+      for (int k = 0; k < 3; ++k) out[k] += counts[s][k];
+    }
+    return out;
+  }
+};
 
 }  // namespace
 
 PointResult RunSweepPoint(const SweepSpec& spec, size_t i,
                           const std::function<bool()>& should_stop) {
   const SimOptions o = spec.PointOptions(i);
+  const long first = spec.transient, count = spec.periods;
+  // The window in absolute time, as the run will place it: it starts at its initial
+  // condition's t0 (the simulator's t_start) and its periods are the model's.
+  ImpactTally tally;
+  if (o.Check().empty()) {  // otherwise RunSimulation reports the options
+    const Model m = Model::FromOptions(o);
+    const double t_start = MakeInitialCondition(m, o).t0;
+    tally.t0 = t_start + first * m.period;
+    tally.t1 = t_start + (first + count) * m.period;
+  }
   RunControls controls;
-  // The impact types need the event log. It holds the whole run (the simulator has no window):
-  // ~200 bytes per event, ~20 events per period in drift, so ~1 MB for 300 periods but ~0.4 GB
-  // per thread for 10^5 periods. Long windows want an event callback in RunControls instead.
-  controls.keep_events = true;
+  // The impact types are tallied as the events come: a kept log would hold the whole run, ~200
+  // bytes per event, ~20 events per period in drift (~0.4 GB per thread at 10^5 periods).
+  controls.keep_events = false;
+  controls.on_event = [&tally](const EventRecord& e) { tally.See(e); };
   controls.should_stop = should_stop;
   const SimResult r = RunSimulation(o, controls);
   PointResult p;
   if (r.interrupted) return p;  // index -1: not finished
   p.index = static_cast<int64_t>(i);
-  const long first = spec.transient, count = spec.periods;
   if (!r.error.empty() || static_cast<long>(r.periods.size()) < first + count ||
       static_cast<long>(r.lab.size()) < first + count + 1) {
     p.error = r.error.empty() ? "the run ended before the window's end" : r.error;
@@ -72,16 +101,7 @@ PointResult RunSweepPoint(const SweepSpec& spec, size_t i,
   p.events_per_period = static_cast<double>(events) / static_cast<double>(count);
   p.impacts_per_period = ms.impacts_per_period;
   p.rest_fraction = ms.rest_fraction;
-  // Impacts inside the window [t_start + first T, t_start + (first + count) T).
-  const double t0 = r.t_start + first * r.model.period;
-  const double t1 = r.t_start + (first + count) * r.model.period;
-  std::array<long, 3> counts{};
-  const int sphere = ms.mode == Mode::kDrift ? ms.bouncing_sphere : -1;
-  for (const EventRecord& e : r.events) {
-    if (e.t < t0 || e.t >= t1) continue;
-    if (e.kind != EventKind::kImpact && e.kind != EventKind::kDoubleImpact) continue;
-    CountImpactTypes(e.detail, sphere, &counts);
-  }
+  const std::array<long, 3> counts = tally.Of(ms.mode == Mode::kDrift ? ms.bouncing_sphere : -1);
   const long total = counts[0] + counts[1] + counts[2];
   if (total > 0) {
     int best = 0;

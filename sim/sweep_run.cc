@@ -44,9 +44,9 @@ SweepRunStats RunSweep(const SweepRunArgs& args) {
     throw UsageError("--threads: " + std::to_string(args.threads) + ": expected >= 0 (0: all)");
   }
   args.spec.Check();
-  // Every point runs transient + periods periods (one sample per period): the same estimate for
-  // each, held by each worker thread at once.
-  const double per_point = args.spec.PointOptionsNoInit(0).EstimatedMemoryBytes();
+  // Every point runs transient + periods periods (one sample per period, no event log kept:
+  // sweep_point.cc): the same estimate for each, held by each worker thread at once.
+  const double per_point = args.spec.PointOptionsNoInit(0).EstimatedMemoryBytes(false);
   CheckRunMemory(ThreadCount(args.threads) * per_point,
                  "use fewer --transient/--periods or --threads");
   CheckCanWrite(args.output, args.force);

@@ -253,6 +253,31 @@ TEST(Simulator, SameInputsGiveBitIdenticalResults) {
   }
 }
 
+// The event sink (RunControls::on_event) sees every event of the log, in order and equal to the
+// kept record, and the run is the same whether the log is kept or not.
+TEST(Simulator, EventSinkSeesTheWholeLogWithoutKeepingIt) {
+  SimOptions o;
+  o.cycles = 40;
+  const SimResult kept = RunSimulation(o);
+  std::vector<EventRecord> seen;
+  RunControls c;
+  c.keep_events = false;
+  c.on_event = [&](const EventRecord& e) { seen.push_back(e); };
+  const SimResult r = RunSimulation(o, c);
+  EXPECT_TRUE(r.events.empty());
+  ASSERT_EQ(seen.size(), kept.events.size());
+  ASSERT_GT(seen.size(), 100u);
+  for (size_t i = 0; i < seen.size(); ++i) {
+    ASSERT_EQ(seen[i].t, kept.events[i].t) << i;
+    ASSERT_EQ(seen[i].kind, kept.events[i].kind) << i;
+    ASSERT_EQ(seen[i].sphere, kept.events[i].sphere) << i;
+    ASSERT_EQ(seen[i].detail, kept.events[i].detail) << i;
+    ASSERT_EQ(seen[i].after.x, kept.events[i].after.x) << i;
+  }
+  ASSERT_EQ(r.lab.size(), kept.lab.size());
+  EXPECT_EQ(r.lab.back().x, kept.lab.back().x);
+}
+
 }  // namespace
 }  // namespace dimer::sim
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -373,6 +374,56 @@ TEST(SweepPoint, PointEqualsSimulationOnLevelAndTiltedPlatesAtTwoFrequencies) {
     ASSERT_TRUE(std::isfinite(p.drift_speed));
     EXPECT_NEAR(p.drift_speed, r.mode.drift_speed, 1e-12 * std::abs(r.mode.drift_speed) + 1e-15);
   }
+}
+
+// The old reduction, kept as the oracle: the impact types counted over the whole kept event log
+// of the same run, inside the window, for the bouncing end in drift (both ends otherwise).
+std::pair<std::string, double> ImpactTypeFromTheLog(const SweepSpec& spec, size_t i,
+                                                    const std::string& mode, int bouncing) {
+  const SimResult r = RunSimulation(spec.PointOptions(i));  // keep_events: the whole log
+  const double t0 = r.t_start + spec.transient * r.model.period;
+  const double t1 = r.t_start + (spec.transient + spec.periods) * r.model.period;
+  const char* const types[3] = {"continuous_slide", "slip_stick", "slip_reversal"};
+  std::array<long, 3> counts{};
+  for (const EventRecord& e : r.events) {
+    if (e.t < t0 || e.t >= t1) continue;
+    if (e.kind != EventKind::kImpact && e.kind != EventKind::kDoubleImpact) continue;
+    for (int s = 0; s < 2; ++s) {
+      if (mode == "drift" && s != bouncing) continue;
+      const size_t at = e.detail.find(s == 0 ? "L:" : "R:");
+      if (at == std::string::npos) continue;
+      for (int k = 0; k < 3; ++k) counts[k] += e.detail.substr(at + 2).rfind(types[k], 0) == 0;
+    }
+  }
+  const long total = counts[0] + counts[1] + counts[2];
+  if (total == 0) return {"none", NAN};
+  int best = 0;
+  for (int k = 1; k < 3; ++k) best = counts[k] > counts[best] ? k : best;
+  return {types[best], static_cast<double>(counts[best]) / static_cast<double>(total)};
+}
+
+// A point tallies its impact types as the events come, without the log (RunControls::on_event):
+// the same type and share as counted over the kept log, in drift (one end) and in the other
+// modes (both ends), on a level and a tilted plate.
+TEST(SweepPoint, ImpactTypesTalliedOnTheFlyEqualThoseOfTheWholeLog) {
+  const SweepSpec spec = Spec({{"ar", "3.9,6.1,9"}, {"tilt_deg", "0,-2"}, {"gamma", "0.9,2.5"},
+                               {"periods", "30"}, {"transient", "30"}});
+  int drift = 0, other = 0;
+  for (size_t i = 0; i < spec.PointCount(); ++i) {
+    SCOPED_TRACE("point " + std::to_string(i));
+    const PointResult p = RunSweepPoint(spec, i);
+    ASSERT_TRUE(p.error.empty()) << p.error;
+    const auto [type, fraction] = ImpactTypeFromTheLog(spec, i, p.mode, p.bouncing_sphere);
+    EXPECT_EQ(p.impact_type, type);
+    if (std::isnan(fraction)) {
+      EXPECT_TRUE(std::isnan(p.impact_type_fraction));
+    } else {
+      EXPECT_EQ(p.impact_type_fraction, fraction);
+    }
+    (p.mode == "drift" ? drift : other) += type != "none";
+  }
+  EXPECT_GT(drift, 0);  // both reductions were exercised
+  EXPECT_GT(other, 0);
 }
 
 // Dynamic similarity (docs/MODEL.md, check 7): with d ∝ 1/f² every length scales as g T², so
