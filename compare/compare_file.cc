@@ -234,6 +234,7 @@ AttrList Headline(const Analysis& a, const Comparison* c) {
       {"settled_mode", ms.label},
       {"bouncing_sphere", int64_t{ms.bouncing_sphere}},
       {"mode_window_periods", int64_t{ms.window_periods}},
+      {"orbit_periods", int64_t{ms.orbit_periods}},
       {"drift_speed", a.drift.speed},
       {"drift_speed_err", a.drift.speed_err},
       {"drift_scaled", a.drift.scaled},
@@ -281,7 +282,7 @@ AttrList Headline(const Analysis& a, const Comparison* c) {
 }
 
 AttrUnits HeadlineUnits() {
-  return {{"mode_window_periods", "periods"}, {"drift_speed", "m/s"}, {"drift_speed_err", "m/s"},
+  return {{"mode_window_periods", "periods"}, {"orbit_periods", "periods"}, {"drift_speed", "m/s"}, {"drift_speed_err", "m/s"},
           {"drift_scaled", "1"}, {"drift_scaled_err", "1"}, {"travel_mm", "mm"}, {"travel_time", "s"},
           {"freq", "Hz"}, {"freq_err", "Hz"}, {"gamma", "1"}, {"gamma_err", "1"}, {"gamma_plate", "1"}, {"gamma_plate_err", "1"},
           {"plate_amplitude", "m"},

@@ -113,6 +113,9 @@ void Settled(const Analysis& a, std::ostringstream& o) {
   }
   o << "**" << ModeText(m) << "** over " << Format("t = %.4f … %.4f s (%d periods)", w.t_start,
                                                     w.t_end, w.count)
+    << "; orbit period: "
+    << (m.orbit_periods > 0 ? std::to_string(m.orbit_periods) + " plate period" + (m.orbit_periods > 1 ? "s" : "")
+                            : "none up to " + std::to_string(kMaxOrbitPeriods) + " plate periods")
     << ".\n\n| per sphere | left | right |\n|---|---|---|\n"
     << "| impacts per period | " << Num(m.impacts_per_period[0], "%.3f") << " | "
     << Num(m.impacts_per_period[1], "%.3f") << " |\n"
@@ -131,9 +134,17 @@ void Settled(const Analysis& a, std::ostringstream& o) {
 
 void DriftAndFall(const Analysis& a, std::ostringstream& o) {
   const Drift& d = a.drift;
-  o << "## Drift\n\n- ⟨u⟩ = " << Pm(d.speed, d.speed_err, kMm, "mm/s")
-    << " (positive toward the bouncing end, " << Side(d.bouncing_sphere) << "), over "
-    << d.periods << " whole periods\n- ⟨u⟩ f / g = " << Pm(d.scaled, d.scaled_err) << "\n";
+  // One period has no period-to-period scatter: its error is not zero but unknown.
+  const std::string one = d.periods < 2 ? " ± n/a (one period)" : "";
+  // "Toward the bouncing end" only in drift; in any other mode the plain mean of lab x.
+  const std::string sign = d.bouncing_sphere >= 0
+                               ? "positive toward the bouncing end, " + Side(d.bouncing_sphere)
+                               : "the mean along +x: no bouncing end in the " +
+                                     a.periods.settled.summary.label + " mode";
+  o << "## Drift\n\n- ⟨u⟩ = " << Pm(d.speed, d.speed_err, kMm, "mm/s") << one << " (" << sign
+    << "), over the settled window's " << d.periods << (d.periods == 1 ? " whole period" : " whole periods")
+    << " (the transient before it "
+    << "excluded)\n- ⟨u⟩ f / g = " << Pm(d.scaled, d.scaled_err) << one << "\n";
   if (std::isfinite(d.travel_time_s)) {
     o << "- travel over " << Num(d.travel_mm, "%.3g") << " mm (the paper's measure): "
       << Num(d.travel_time_s, "%.4g") << " s, " << Num(d.travel_speed * kMm, "%.4g")

@@ -405,6 +405,30 @@ TEST_F(ReportTest, SummarySaysWhichScaleThePlatesMotionWasReadAt) {
   EXPECT_EQ(row(), "");
 }
 
+// The drift line: an error from one settled period is unknown, not zero; outside the drift mode
+// there is no bouncing end to sign the speed toward.
+TEST_F(ReportTest, DriftLineStatesAnUnknownErrorAndNoBouncingEndOutsideDrift) {
+  auto line = [&]() {
+    ReportInputs in;
+    in.track = &track_;
+    WriteReport(dir_.path().string(), in);
+    const std::string md = ReadText(dir_ / "summary.md");
+    const size_t at = md.find("- ⟨u⟩ = ");
+    return at == std::string::npos ? std::string() : md.substr(at, md.find('\n', at) - at);
+  };
+  EXPECT_EQ(line().find("n/a"), std::string::npos) << line();
+  EXPECT_NE(line().find("positive toward the bouncing end, right"), std::string::npos) << line();
+  track_.drift.periods = 1;
+  track_.drift.speed_err = track_.drift.scaled_err = kNaN;  // ClassifyPeriods over one period
+  EXPECT_NE(line().find("mm/s ± n/a (one period)"), std::string::npos) << line();
+  EXPECT_NE(line().find("1 whole period "), std::string::npos) << line();
+  track_.drift.periods = 20;
+  track_.drift.bouncing_sphere = -1;
+  track_.periods.settled.summary.label = "jump";
+  EXPECT_EQ(line().find("bouncing end, none"), std::string::npos) << line();
+  EXPECT_NE(line().find("no bouncing end in the jump mode"), std::string::npos) << line();
+}
+
 // The summary says where a track's scale came from (track's m_per_px_given), and that A_r was
 // given rather than measured when the scale rests on it (track --ar).
 TEST_F(ReportTest, SummarySaysWhereTheScaleCameFrom) {
