@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "compare/goodness_of_fit.h"
 #include "compare/report_parts.h"
 
 namespace dimer::compare {
@@ -277,11 +278,12 @@ void Comparing(const Analysis& t, const Comparison& c, std::ostringstream& o) {
   o << "\n";
 }
 
-// A parameter's value cell: a number only when the chi2 slice constrains it.
+// A parameter's value cell: a number only when the chi2 profile constrains it.
 std::string ParameterValue(const FitParameter& p) {
   if (p.status == "constrained") return Pm(p.value, p.err);
   if (p.status == "bounded_below") return "≥ " + Num(p.range_lo);
   if (p.status == "bounded_above") return "≤ " + Num(p.range_hi);
+  if (p.status == "no_acceptable_fit") return "none (best point " + Num(p.value) + ", which fails)";
   return "unconstrained (range " + Num(p.lo) + "–" + Num(p.hi) + ")";
 }
 
@@ -292,9 +294,21 @@ void Fitting(const FitResult& f, std::ostringstream& o) {
     o << "| " << p.name << " | " << (p.fitted ? "yes" : "no (slice only)") << " | "
       << (p.status.empty() ? "unknown" : p.status) << " | " << ParameterValue(p) << " |\n";
   }
-  o << "\nchi2 = " << Num(f.chi2) << " with " << f.dof << " degrees of freedom; a parameter's "
-    << "range is where its slice stays within chi2 + " << Num(f.threshold) << " = "
-    << Num(f.chi2 + f.threshold) << "; " << f.evaluations
+  o << "\nchi2 = " << Num(f.chi2) << " with " << f.dof << " degrees of freedom (chi2/dof "
+    << Num(f.chi2 / f.dof, "%.3g") << ", p-value " << Num(f.p_value, "%.3g") << ")";
+  if (!f.acceptable) {
+    o << ": **no acceptable fit** (p < " << Num(kMinFitPValue, "%g")
+      << "): the best simulation of this scene the search found does not reproduce the track, "
+         "so no coefficient is given (a start nearer the truth, --eps etc., may find one). "
+         "Furthest off at the best point:\n\n";
+    for (const std::string& line : f.off) o << "- " << line << "\n";
+    o << "\n";
+  } else {
+    o << ". A parameter's range is where its chi2 profile (the others re-optimised) stays within "
+         "chi2 + "
+      << Num(f.threshold) << " = " << Num(f.chi2 + f.threshold) << ".";
+  }
+  o << " " << f.evaluations
     << " simulations (their wall time is on stderr, so that reports are identical on rerun).\n\n";
   if (f.observable_names.empty()) return;
   o << "| observable | track | simulation at the optimum |\n|---|---|---|\n";

@@ -86,7 +86,9 @@ void PrintHeadline(const std::string& report, const Analysis& a, const FitResult
                   a.drift.scaled);
     }
   }
-  if (fit) {
+  if (fit && !fit->acceptable) {
+    std::printf("; no acceptable fit (chi2/dof %.3g, p %.2g)", fit->chi2 / fit->dof, fit->p_value);
+  } else if (fit) {
     for (const FitParameter& p : fit->params) {
       if (p.status == "constrained") std::printf("; %s = %.4f +- %.4f", p.name.c_str(), p.value, p.err);
       else std::printf("; %s %s", p.name.c_str(), p.status.c_str());

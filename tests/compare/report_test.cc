@@ -206,6 +206,8 @@ FitResult SyntheticFit() {
                     0.5)};
   f.chi2 = 3.2;
   f.dof = 5;
+  f.p_value = 0.669;  // P(chi2_5 >= 3.2)
+  f.acceptable = true;
   f.threshold = 1;
   f.evaluations = 42;
   f.seconds = 12.5;
@@ -379,6 +381,23 @@ TEST_F(ReportTest, SummaryNeverPrintsAValueForAnUnconstrainedParameter) {
   EXPECT_NE(md.find("U after the bouncing end's impact: 12.0 ± 1.0 mm/s"), std::string::npos);
   EXPECT_NE(md.find("dimerlab compare synthetic_drift.h5"), std::string::npos);
   EXPECT_EQ(md.find("nan"), std::string::npos);
+}
+
+// A fit whose goodness fails gives no coefficient: the best point is named as failing, with the
+// observables furthest off.
+TEST_F(ReportTest, NoAcceptableFitGivesNoCoefficient) {
+  fit_.chi2 = 640;
+  fit_.p_value = 1.6e-108;
+  fit_.acceptable = false;
+  for (FitParameter& p : fit_.params) p.status = "no_acceptable_fit", p.err = p.range_lo = p.range_hi = kNaN;
+  fit_.off = {"drift_scaled: track 0.0127 +- 0.0005, simulated -0.018 (-61.4 sigma)"};
+  Write();
+  const std::string md = ReadText(dir_ / "summary.md");
+  EXPECT_NE(md.find("(chi2/dof 128, p-value 1.6e-108): **no acceptable fit**"), std::string::npos);
+  EXPECT_NE(md.find("- drift_scaled: track 0.0127 +- 0.0005, simulated -0.018 (-61.4 sigma)"), std::string::npos);
+  EXPECT_NE(md.find("| eps | yes | no_acceptable_fit | none (best point 0.65, which fails) |"), std::string::npos);
+  EXPECT_EQ(md.find("0.650 ± 0.030"), std::string::npos);
+  EXPECT_EQ(md.find("range is where"), std::string::npos);
 }
 
 // The summary says at which scale the tracked plate's motion became metres: Γ read off an edge
