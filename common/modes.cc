@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace dimer {
 
@@ -26,8 +27,12 @@ Mode Label(const std::array<double, 2>& ipp, const std::array<double, 2>& rf, in
   *bouncing = -1;
   if (rf[0] >= kRestAllFraction && rf[1] >= kRestAllFraction && ipp[0] == 0 && ipp[1] == 0)
     return Mode::kRest;
+  auto bounces = [&](int s) {
+    return rf[s] < kNotRestingFraction && ipp[s] >= kBounceMin && ipp[s] <= kOnePerPeriodMax;
+  };
+  auto stays_at_plate = [&](int s) { return rf[s] >= kNotRestingFraction || ipp[s] >= kHoppingMin; };
   for (int b = 0; b < 2; ++b) {
-    if (one_per_period(ipp[b]) && rf[b] < kNotRestingFraction && rf[1 - b] >= kRestingFraction) {
+    if (bounces(b) && stays_at_plate(1 - b)) {
       *bouncing = b;
       return Mode::kDrift;
     }
@@ -37,6 +42,24 @@ Mode Label(const std::array<double, 2>& ipp, const std::array<double, 2>& rf, in
     if (every_other(ipp[0]) && every_other(ipp[1])) return Mode::kFlutter;
   }
   return Mode::kIrregular;
+}
+
+// The least period p of the window's per-period statistics (ModeSummary::orbit_periods).
+int OrbitPeriods(const std::vector<PeriodStats>& periods, int first, int end, double period_s, double x_end) {
+  constexpr double kG = 9.81;  // m/s^2 (docs/MODEL.md)
+  auto advance = [&](int k) { return (k + 1 < end ? periods[k + 1].x_start : x_end) - periods[k].x_start; };
+  const double dx_tol = kOrbitAdvanceTol * kG * period_s * period_s, t_tol = kOrbitTimeTol * period_s;
+  for (int p = 1; p <= kMaxOrbitPeriods && 2 * p <= end - first; ++p) {
+    bool repeats = true;
+    for (int k = first; k + p < end && repeats; ++k) {
+      const PeriodStats &a = periods[k], &b = periods[k + p];
+      repeats = a.impacts == b.impacts && std::abs(a.rest_time[0] - b.rest_time[0]) <= t_tol &&
+                std::abs(a.rest_time[1] - b.rest_time[1]) <= t_tol &&
+                std::abs(advance(k) - advance(k + p)) <= dx_tol;
+    }
+    if (repeats) return p;
+  }
+  return 0;
 }
 
 }  // namespace
@@ -62,6 +85,7 @@ ModeSummary ClassifyPeriods(const std::vector<PeriodStats>& periods, int first, 
   }
   ms.mode = Label(ms.impacts_per_period, ms.rest_fraction, &ms.bouncing_sphere);
   ms.label = ToString(ms.mode);
+  ms.orbit_periods = OrbitPeriods(periods, first, end, period_s, x_end);
   // Per-period velocities: mean over the window and its standard error.
   const double mean = (x_end - periods[first].x_start) / (w * period_s);
   double var = 0;
@@ -72,7 +96,7 @@ ModeSummary ClassifyPeriods(const std::vector<PeriodStats>& periods, int first, 
   }
   const double sign = ms.bouncing_sphere >= 0 ? bounce_dir[ms.bouncing_sphere] : 1;
   ms.drift_speed = sign * mean;
-  ms.drift_speed_err = w > 1 ? std::sqrt(var / (w - 1) / w) : 0.0;
+  ms.drift_speed_err = w > 1 ? std::sqrt(var / (w - 1) / w) : std::numeric_limits<double>::quiet_NaN();
   return ms;
 }
 

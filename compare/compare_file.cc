@@ -207,7 +207,8 @@ void WriteFit(Out& o, const FitResult& f) {
             "mu_hat_s=impact static friction,mu=contact sliding friction,mu_s=contact static friction");
   o.Strings("/fit/status", status, "what the scene says of each coefficient",
             "constrained=value and error,bounded_below=only a lower bound (range_lo),bounded_above=only an "
-            "upper bound (range_hi),unconstrained=no information in the searched bounds");
+            "upper bound (range_hi),unconstrained=no information in the searched bounds,no_acceptable_fit="
+            "the best point fails the goodness of fit (p < 0.001): no value");
   o.Doubles("/fit/value", value, {k}, "1", "optimum (NaN unless constrained)");
   o.Doubles("/fit/err", err, {k}, "1", "half-width of the chi2 range (NaN unless constrained)");
   o.Doubles("/fit/bound_lo", lo, {k}, "1", "lower bound searched");
@@ -219,6 +220,9 @@ void WriteFit(Out& o, const FitResult& f) {
   o.Doubles("/fit/observables/observed", f.observed, {m}, "1", "the track's value (dimensionless)");
   o.Doubles("/fit/observables/observed_err", f.observed_err, {m}, "1", "its error, with the analysis floor");
   o.Doubles("/fit/observables/simulated", f.simulated, {m}, "1", "the simulation's value at the optimum");
+  Rows goodness = {f.chi2 / f.dof, f.p_value, f.acceptable ? 1.0 : 0.0};
+  o.Doubles("/fit/goodness", goodness, {1, 3}, "1", "chi2/dof at the optimum, its p-value P(chi2 >= found), "
+            "1 if acceptable (p >= 0.001) else 0", "chi2_per_dof,p_value,acceptable");
   // (No wall time: files are bit-identical on rerun; it is printed on stderr.)
   Rows summary = {f.chi2, static_cast<double>(f.dof), f.threshold, static_cast<double>(f.evaluations)};
   o.Doubles("/fit/summary", summary, {1, 4}, "1", "chi2 at the optimum, degrees of freedom, chi2 range "
@@ -234,6 +238,7 @@ AttrList Headline(const Analysis& a, const Comparison* c) {
       {"settled_mode", ms.label},
       {"bouncing_sphere", int64_t{ms.bouncing_sphere}},
       {"mode_window_periods", int64_t{ms.window_periods}},
+      {"orbit_periods", int64_t{ms.orbit_periods}},
       {"drift_speed", a.drift.speed},
       {"drift_speed_err", a.drift.speed_err},
       {"drift_scaled", a.drift.scaled},
@@ -281,7 +286,7 @@ AttrList Headline(const Analysis& a, const Comparison* c) {
 }
 
 AttrUnits HeadlineUnits() {
-  return {{"mode_window_periods", "periods"}, {"drift_speed", "m/s"}, {"drift_speed_err", "m/s"},
+  return {{"mode_window_periods", "periods"}, {"orbit_periods", "periods"}, {"drift_speed", "m/s"}, {"drift_speed_err", "m/s"},
           {"drift_scaled", "1"}, {"drift_scaled_err", "1"}, {"travel_mm", "mm"}, {"travel_time", "s"},
           {"freq", "Hz"}, {"freq_err", "Hz"}, {"gamma", "1"}, {"gamma_err", "1"}, {"gamma_plate", "1"}, {"gamma_plate_err", "1"},
           {"plate_amplitude", "m"},

@@ -7,15 +7,23 @@
 //   slip after / before the bouncing end's impact. (Jump/flutter: each sphere's take-off speed
 //   and impact phase.)
 //   chi2 = sum ((sim - track) / sigma)^2, sigma^2 = sigma_track^2 + sigma_sim^2 + floor^2.
-// The optimiser is NLopt's bounded Nelder-Mead, run from the start (the given coefficients,
-// eps at the measured apparent restitution) and from the best of a multi-start search (NLopt
-// MLSL over a Sobol sequence), keeping the better; derivative-free and deterministic (the
-// objective is piecewise smooth, with jumps where the impact type changes, and has local
-// minima: a start far from the truth can end in one, which chi2/dof then shows). Uncertainties and identifiability come
-// from a slice of chi2 through the optimum along each parameter (the others held at the
-// optimum): the range where chi2 <= chi2_min + max(1, chi2_min / dof). A range that reaches
-// both bounds means the scene does not constrain the parameter: it is reported as
-// unconstrained, with no value.
+// The optimiser is NLopt's bounded Nelder-Mead, run from the start (the coefficients the user
+// gives, --eps etc., as given) and from the best of a multi-start search (NLopt MLSL over a
+// Sobol sequence), keeping the better; derivative-free and deterministic (the objective is
+// piecewise smooth, with jumps where the impact type changes or the release falls into another
+// orbit, and has local minima: a start far from the truth can end in one, which the goodness of
+// fit then shows). The start is never replaced by a value read off the track: the bouncing
+// end's apparent restitution (v_after / -v_before of its centre, 0.558 on a scene of eps 0.55)
+// is not eps, and started there the search does not find its way back to the truth: chi2 778
+// at its end against 0 at the truth (Fit.StartedAtTheTruthStaysThere).
+// Goodness of fit: chi2/dof and its p-value (goodness_of_fit.h). Below kMinFitPValue the fit is
+// "no acceptable fit": no coefficient is constrained, the best point is reported only as the
+// point that fails, with the observables furthest off. Otherwise uncertainties and
+// identifiability come from the profile of chi2 along each parameter (the others re-optimised
+// at each value): the range where chi2 <= chi2_min + max(1, chi2_min / dof). A
+// parameter is constrained only when that range closes on both sides within the bounds; a
+// range that reaches both bounds means the scene does not constrain it: unconstrained, with no
+// value.
 #include <functional>
 #include <string>
 #include <vector>
@@ -32,14 +40,20 @@ struct FitParameter {
   double value = kNaN;           // optimum (meaningful only when constrained)
   double err = kNaN;             // half-width of the chi2 range (when constrained)
   double range_lo = kNaN, range_hi = kNaN;  // values with chi2 within the threshold
-  std::string status;            // constrained | bounded_below | bounded_above | unconstrained
-  std::vector<double> slice_x, slice_chi2;  // the slice through the optimum
+  // constrained | bounded_below | bounded_above | unconstrained | no_acceptable_fit (value: the
+  // best point only; err and range NaN)
+  std::string status;
+  std::vector<double> slice_x, slice_chi2;  // the profile through the optimum (a plain slice
+                                            // when there is no acceptable fit)
 };
 
 struct FitResult {
   std::vector<FitParameter> params;
   double chi2 = kNaN;            // at the optimum
   int dof = 0;                   // observables - fitted parameters
+  double p_value = kNaN;         // P(chi2 >= the value found | dof), goodness_of_fit.h
+  bool acceptable = false;       // p_value >= kMinFitPValue
+  std::vector<std::string> off;  // no acceptable fit: the observables furthest off, worst first
   double threshold = kNaN;       // chi2 range threshold
   int evaluations = 0;           // simulations run
   double seconds = 0;            // wall time
@@ -52,12 +66,14 @@ struct FitOptions {
   int global_evaluations = 300;  // multi-start search budget, simulations (NLopt MLSL-LDS)
   int max_evaluations = 150;     // budget of each local Nelder-Mead search, simulations
   int slice_points = 15;         // points per parameter slice
-  int transient_periods = 30;    // simulated before the measured part
-  int measured_periods = 60;     // simulated and analysed (<= the track's)
+  // Each trial is as long as the track's whole periods (fit.cc, FitScene), at most these two
+  // together: a longer track is represented by its settled window's length after a transient.
+  int transient_periods = 100;   // periods
+  int measured_periods = 100;    // periods
   std::function<void(int simulations)> progress;  // called after each simulation (may be empty)
   // An upper estimate of the simulations a fit runs, for progress meters.
   int EstimatedSimulations() const {
-    return global_evaluations + max_evaluations * 5 / 2 + 5 * (slice_points + 13);
+    return global_evaluations + max_evaluations * 5 / 2 + 5 * 30 * (slice_points + 13);
   }
 };
 

@@ -8,9 +8,19 @@ namespace dimer::compare {
 namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
-// The frequency scan spans +-kScanHalfWidth / duration around the zero-crossing estimate (whose
-// error is below 1 / duration) in steps of kScanStep / duration, then golden-section search.
+// The frequency scan spans +-kScanHalfWidth / duration around the first estimate (whose error
+// is below 1 / duration) in steps of kScanStep / duration, then golden-section search.
 constexpr double kScanHalfWidth = 3.0;
+// The first estimate where the median's upward crossings are too few (fewer than 3: a clip of
+// 2-3 periods that starts on the rising plate has 2): the best sine over a grid of frequencies
+// from kGridMinPeriods periods in the clip to a quarter of the sample rate, in steps of
+// kGridStep / duration (the rss's dip is ~1 / duration wide), on at most kGridSamples samples
+// (a uniform stride; the rate, and with it the grid's top, is the strided one, so no alias).
+// Clips under 2 periods are fitted too, so that the analysis can refuse them with their length
+// (ShortClip.TwoAndAHalfPeriodsGiveTheDrive, ShortClip.UnderTwoPeriodsIsRefusedWithItsLength).
+constexpr double kGridMinPeriods = 1.0;
+constexpr double kGridStep = 0.25;
+constexpr size_t kGridSamples = 2000;
 constexpr double kScanStep = 0.1;
 constexpr int kGoldenIterations = 60;
 constexpr double kMinSignificance = 5.0;  // amp / amp_err below this: no detectable drive
@@ -63,6 +73,21 @@ double CrossingFrequency(const Samples& s) {
     }
   }
   return count >= 3 ? (count - 1) / (last - first) : kNaN;
+}
+
+double GridFrequency(const Samples& s) {
+  Samples d;
+  const size_t stride = (s.tau.size() + kGridSamples - 1) / kGridSamples;
+  for (size_t i = 0; i < s.tau.size(); i += stride) d.tau.push_back(s.tau[i]), d.z.push_back(s.z[i]);
+  const double duration = s.tau.back() - s.tau.front();
+  if (d.tau.size() < 8 || !(duration > 0)) return kNaN;
+  const double rate = (d.tau.size() - 1) / (d.tau.back() - d.tau.front());
+  double best_f = kNaN, best_rss = INFINITY;
+  for (double f = kGridMinPeriods / duration; f <= 0.25 * rate; f += kGridStep / duration) {
+    const double rss = FitAtFrequency(d, f).rss;
+    if (rss < best_rss) best_rss = rss, best_f = f;
+  }
+  return best_f;
 }
 
 double GoldenMinimum(const Samples& s, double lo, double hi) {
@@ -142,7 +167,8 @@ PlateDrive FitPlate(const SampledRun& run, double freq_guess_hz) {
   for (double& t : s.tau) t -= s.t_mid;
   const double duration = s.tau.back() - s.tau.front();
   double f0 = std::isfinite(freq_guess_hz) ? freq_guess_hz : CrossingFrequency(s);
-  if (!(f0 > 0) || f0 * duration < 2.0) return d;
+  if (!(f0 > 0)) f0 = GridFrequency(s);
+  if (!(f0 > 0) || f0 * duration < kGridMinPeriods) return d;
   // Scan, then refine inside the best step.
   const double step = kScanStep / duration;
   double best_f = f0, best_rss = INFINITY;

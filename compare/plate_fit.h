@@ -38,8 +38,10 @@ struct PlateDrive {
 };
 
 // Fits the plate of `run` (frames with a finite plate_z). `freq_guess_hz` (NaN: estimate from
-// zero crossings) seeds the search. Returns source "none" if the plate does not move
-// detectably (amplitude below 5 times its error, or fewer than 2 periods of plate data).
+// zero crossings, or where they are too few from the best sine over a frequency grid) seeds the
+// search. Returns source "none" if the plate does not move detectably (amplitude below 5 times
+// its error, or less than 1 period of plate data); a clip of 1-2 periods is fitted, and the
+// analysis refuses it with its length in periods.
 PlateDrive FitPlate(const SampledRun& run, double freq_guess_hz);
 
 // The drive of a sim file, from its attributes (exact).

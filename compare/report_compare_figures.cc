@@ -108,7 +108,8 @@ PlannedFigure PlanSimVsTrack(const Analysis& a, const Comparison& c) {
 
 PlannedFigure PlanFitProfile(const FitResult& fit) {
   PlannedFigure p;
-  p.outcome = {"fit_profile", "chi2 slice through the optimum along each parameter, with the "
+  p.outcome = {"fit_profile", "chi2 profile through the optimum along each parameter (the others "
+               "re-optimised; a plain slice when no fit is acceptable), with the "
                "threshold that defines its range", false, ""};
   std::vector<const FitParameter*> sliced;
   for (const FitParameter& q : fit.params) {
@@ -122,7 +123,7 @@ PlannedFigure PlanFitProfile(const FitResult& fit) {
   const int n = static_cast<int>(sliced.size());
   std::string& sc = p.figure.script;
   sc = Format("set grid\nset multiplot layout %d,%d title ", (n + 1) / 2, n == 1 ? 1 : 2) +
-       GnuplotQuote(Format("chi2 slices through the optimum: chi2 = %.4g, dof %d", fit.chi2,
+       GnuplotQuote(Format("chi2 profiles through the optimum: chi2 = %.4g, dof %d", fit.chi2,
                            fit.dof)) + "\nset key inside top right opaque box\n"
        "set offsets 0, 0, graph 0.05, graph 0.05\n";
   for (int k = 0; k < n; ++k) {

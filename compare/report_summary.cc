@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "compare/goodness_of_fit.h"
 #include "compare/report_parts.h"
 
 namespace dimer::compare {
@@ -113,6 +114,9 @@ void Settled(const Analysis& a, std::ostringstream& o) {
   }
   o << "**" << ModeText(m) << "** over " << Format("t = %.4f … %.4f s (%d periods)", w.t_start,
                                                     w.t_end, w.count)
+    << "; orbit period: "
+    << (m.orbit_periods > 0 ? std::to_string(m.orbit_periods) + " plate period" + (m.orbit_periods > 1 ? "s" : "")
+                            : "none up to " + std::to_string(kMaxOrbitPeriods) + " plate periods")
     << ".\n\n| per sphere | left | right |\n|---|---|---|\n"
     << "| impacts per period | " << Num(m.impacts_per_period[0], "%.3f") << " | "
     << Num(m.impacts_per_period[1], "%.3f") << " |\n"
@@ -131,9 +135,17 @@ void Settled(const Analysis& a, std::ostringstream& o) {
 
 void DriftAndFall(const Analysis& a, std::ostringstream& o) {
   const Drift& d = a.drift;
-  o << "## Drift\n\n- ⟨u⟩ = " << Pm(d.speed, d.speed_err, kMm, "mm/s")
-    << " (positive toward the bouncing end, " << Side(d.bouncing_sphere) << "), over "
-    << d.periods << " whole periods\n- ⟨u⟩ f / g = " << Pm(d.scaled, d.scaled_err) << "\n";
+  // One period has no period-to-period scatter: its error is not zero but unknown.
+  const std::string one = d.periods < 2 ? " ± n/a (one period)" : "";
+  // "Toward the bouncing end" only in drift; in any other mode the plain mean of lab x.
+  const std::string sign = d.bouncing_sphere >= 0
+                               ? "positive toward the bouncing end, " + Side(d.bouncing_sphere)
+                               : "the mean along +x: no bouncing end in the " +
+                                     a.periods.settled.summary.label + " mode";
+  o << "## Drift\n\n- ⟨u⟩ = " << Pm(d.speed, d.speed_err, kMm, "mm/s") << one << " (" << sign
+    << "), over the settled window's " << d.periods << (d.periods == 1 ? " whole period" : " whole periods")
+    << " (the transient before it "
+    << "excluded)\n- ⟨u⟩ f / g = " << Pm(d.scaled, d.scaled_err) << one << "\n";
   if (std::isfinite(d.travel_time_s)) {
     o << "- travel over " << Num(d.travel_mm, "%.3g") << " mm (the paper's measure): "
       << Num(d.travel_time_s, "%.4g") << " s, " << Num(d.travel_speed * kMm, "%.4g")
@@ -266,11 +278,12 @@ void Comparing(const Analysis& t, const Comparison& c, std::ostringstream& o) {
   o << "\n";
 }
 
-// A parameter's value cell: a number only when the chi2 slice constrains it.
+// A parameter's value cell: a number only when the chi2 profile constrains it.
 std::string ParameterValue(const FitParameter& p) {
   if (p.status == "constrained") return Pm(p.value, p.err);
   if (p.status == "bounded_below") return "≥ " + Num(p.range_lo);
   if (p.status == "bounded_above") return "≤ " + Num(p.range_hi);
+  if (p.status == "no_acceptable_fit") return "none (best point " + Num(p.value) + ", which fails)";
   return "unconstrained (range " + Num(p.lo) + "–" + Num(p.hi) + ")";
 }
 
@@ -281,9 +294,21 @@ void Fitting(const FitResult& f, std::ostringstream& o) {
     o << "| " << p.name << " | " << (p.fitted ? "yes" : "no (slice only)") << " | "
       << (p.status.empty() ? "unknown" : p.status) << " | " << ParameterValue(p) << " |\n";
   }
-  o << "\nchi2 = " << Num(f.chi2) << " with " << f.dof << " degrees of freedom; a parameter's "
-    << "range is where its slice stays within chi2 + " << Num(f.threshold) << " = "
-    << Num(f.chi2 + f.threshold) << "; " << f.evaluations
+  o << "\nchi2 = " << Num(f.chi2) << " with " << f.dof << " degrees of freedom (chi2/dof "
+    << Num(f.chi2 / f.dof, "%.3g") << ", p-value " << Num(f.p_value, "%.3g") << ")";
+  if (!f.acceptable) {
+    o << ": **no acceptable fit** (p < " << Num(kMinFitPValue, "%g")
+      << "): the best simulation of this scene the search found does not reproduce the track, "
+         "so no coefficient is given (a start nearer the truth, --eps etc., may find one). "
+         "Furthest off at the best point:\n\n";
+    for (const std::string& line : f.off) o << "- " << line << "\n";
+    o << "\n";
+  } else {
+    o << ". A parameter's range is where its chi2 profile (the others re-optimised) stays within "
+         "chi2 + "
+      << Num(f.threshold) << " = " << Num(f.chi2 + f.threshold) << ".";
+  }
+  o << " " << f.evaluations
     << " simulations (their wall time is on stderr, so that reports are identical on rerun).\n\n";
   if (f.observable_names.empty()) return;
   o << "| observable | track | simulation at the optimum |\n|---|---|---|\n";

@@ -79,10 +79,16 @@ void PrintHeadline(const std::string& report, const Analysis& a, const FitResult
   std::printf(" over the last %d periods; f = %.4f Hz, Gamma = %.4f", ms.window_periods, a.plate.freq_hz,
               a.plate.gamma);
   if (ms.label == "drift") {
-    std::printf("; <u> = %.3f +- %.3f mm/s, <u> f/g = %.5f", a.drift.speed * 1e3, a.drift.speed_err * 1e3,
-                a.drift.scaled);
+    if (a.drift.periods < 2) {  // one period: no scatter to estimate an error from
+      std::printf("; <u> = %.3f mm/s +- n/a (one period), <u> f/g = %.5f", a.drift.speed * 1e3, a.drift.scaled);
+    } else {
+      std::printf("; <u> = %.3f +- %.3f mm/s, <u> f/g = %.5f", a.drift.speed * 1e3, a.drift.speed_err * 1e3,
+                  a.drift.scaled);
+    }
   }
-  if (fit) {
+  if (fit && !fit->acceptable) {
+    std::printf("; no acceptable fit (chi2/dof %.3g, p %.2g)", fit->chi2 / fit->dof, fit->p_value);
+  } else if (fit) {
     for (const FitParameter& p : fit->params) {
       if (p.status == "constrained") std::printf("; %s = %.4f +- %.4f", p.name.c_str(), p.value, p.err);
       else std::printf("; %s %s", p.name.c_str(), p.status.c_str());

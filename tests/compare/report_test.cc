@@ -206,6 +206,8 @@ FitResult SyntheticFit() {
                     0.5)};
   f.chi2 = 3.2;
   f.dof = 5;
+  f.p_value = 0.669;  // P(chi2_5 >= 3.2)
+  f.acceptable = true;
   f.threshold = 1;
   f.evaluations = 42;
   f.seconds = 12.5;
@@ -381,6 +383,23 @@ TEST_F(ReportTest, SummaryNeverPrintsAValueForAnUnconstrainedParameter) {
   EXPECT_EQ(md.find("nan"), std::string::npos);
 }
 
+// A fit whose goodness fails gives no coefficient: the best point is named as failing, with the
+// observables furthest off.
+TEST_F(ReportTest, NoAcceptableFitGivesNoCoefficient) {
+  fit_.chi2 = 640;
+  fit_.p_value = 1.6e-108;
+  fit_.acceptable = false;
+  for (FitParameter& p : fit_.params) p.status = "no_acceptable_fit", p.err = p.range_lo = p.range_hi = kNaN;
+  fit_.off = {"drift_scaled: track 0.0127 +- 0.0005, simulated -0.018 (-61.4 sigma)"};
+  Write();
+  const std::string md = ReadText(dir_ / "summary.md");
+  EXPECT_NE(md.find("(chi2/dof 128, p-value 1.6e-108): **no acceptable fit**"), std::string::npos);
+  EXPECT_NE(md.find("- drift_scaled: track 0.0127 +- 0.0005, simulated -0.018 (-61.4 sigma)"), std::string::npos);
+  EXPECT_NE(md.find("| eps | yes | no_acceptable_fit | none (best point 0.65, which fails) |"), std::string::npos);
+  EXPECT_EQ(md.find("0.650 ± 0.030"), std::string::npos);
+  EXPECT_EQ(md.find("range is where"), std::string::npos);
+}
+
 // The summary says at which scale the tracked plate's motion became metres: Γ read off an edge
 // that is not in the dimer's plane is off by the ratio of the scales (track --plate-m-per-px).
 TEST_F(ReportTest, SummarySaysWhichScaleThePlatesMotionWasReadAt) {
@@ -403,6 +422,30 @@ TEST_F(ReportTest, SummarySaysWhichScaleThePlatesMotionWasReadAt) {
             std::string::npos) << row();
   track_.plate.source = "options";  // no plate tracked: no row
   EXPECT_EQ(row(), "");
+}
+
+// The drift line: an error from one settled period is unknown, not zero; outside the drift mode
+// there is no bouncing end to sign the speed toward.
+TEST_F(ReportTest, DriftLineStatesAnUnknownErrorAndNoBouncingEndOutsideDrift) {
+  auto line = [&]() {
+    ReportInputs in;
+    in.track = &track_;
+    WriteReport(dir_.path().string(), in);
+    const std::string md = ReadText(dir_ / "summary.md");
+    const size_t at = md.find("- ⟨u⟩ = ");
+    return at == std::string::npos ? std::string() : md.substr(at, md.find('\n', at) - at);
+  };
+  EXPECT_EQ(line().find("n/a"), std::string::npos) << line();
+  EXPECT_NE(line().find("positive toward the bouncing end, right"), std::string::npos) << line();
+  track_.drift.periods = 1;
+  track_.drift.speed_err = track_.drift.scaled_err = kNaN;  // ClassifyPeriods over one period
+  EXPECT_NE(line().find("mm/s ± n/a (one period)"), std::string::npos) << line();
+  EXPECT_NE(line().find("1 whole period "), std::string::npos) << line();
+  track_.drift.periods = 20;
+  track_.drift.bouncing_sphere = -1;
+  track_.periods.settled.summary.label = "jump";
+  EXPECT_EQ(line().find("bouncing end, none"), std::string::npos) << line();
+  EXPECT_NE(line().find("no bouncing end in the jump mode"), std::string::npos) << line();
 }
 
 // The summary says where a track's scale came from (track's m_per_px_given), and that A_r was
