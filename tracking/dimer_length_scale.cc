@@ -6,8 +6,8 @@
 
 #include "common/error.h"
 #include "common/stderr_capture.h"
-#include "tracking/frame_range.h"
-#include "tracking/median.h"
+#include "tracking/io/frame_range.h"
+#include "common/median.h"
 
 namespace dimer::tracking {
 

@@ -7,9 +7,9 @@
 #include <memory>
 #include <vector>
 
-#include "tracking/appearance_model.h"
+#include "tracking/sphere/appearance_model.h"
 #include "tracking/plate_contact.h"
-#include "tracking/frame_source.h"
+#include "tracking/io/frame_source.h"
 #include "tracking/method_choice.h"
 #include "tracking/tracker.h"
 

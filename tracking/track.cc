@@ -20,9 +20,9 @@
 #include "common/provenance.h"
 #include "common/trajectory_io.h"
 #include "tracking/dimer_length_scale.h"
-#include "tracking/frame_range.h"
-#include "tracking/impact_vertex.h"
-#include "tracking/precision_bound.h"
+#include "tracking/io/frame_range.h"
+#include "tracking/sphere/impact_vertex.h"
+#include "tracking/sphere/precision_bound.h"
 #include "tracking/track_precision.h"
 
 namespace dimer::tracking {

@@ -17,10 +17,10 @@
 #include <utility>
 #include <vector>
 
-#include "tracking/defect_pixels.h"
-#include "tracking/frame_source.h"
-#include "tracking/lens_undistortion.h"
-#include "tracking/level_scale.h"
+#include "tracking/io/defect_pixels.h"
+#include "tracking/io/frame_source.h"
+#include "tracking/io/lens_undistortion.h"
+#include "tracking/io/level_scale.h"
 #include "tracking/match_scores.h"
 #include "tracking/track_precision.h"
 #include "tracking/plate_slope.h"
@@ -116,8 +116,6 @@ struct SequenceResult {
 SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options,
                              const std::function<void(size_t)>& on_progress = {},
                              const std::function<void(const SkippedFrame&)>& on_skip = {});
-
-inline constexpr double kDefaultFps = 2000.0;
 
 struct TrackArgs {
   std::string input;            // folder of frames, multi-page TIFF, .cine or video

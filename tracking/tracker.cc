@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "common/error.h"
-#include "tracking/detector.h"
-#include "tracking/plate_edge.h"
-#include "tracking/template_locator.h"
+#include "tracking/sphere/detector.h"
+#include "tracking/plate/plate_edge.h"
+#include "tracking/sphere/template_locator.h"
 #include "tracking/tolerances.h"
 
 namespace dimer::tracking {

@@ -13,8 +13,8 @@
 #include "tests/common/test_tmpdir.h"
 #include "tests/common/warm_bayer.h"
 #include "tests/tracking/synthetic.h"
-#include "tracking/cine_writer.h"
-#include "tracking/render.h"
+#include "tracking/io/cine_writer.h"
+#include "render/render.h"
 #include "tracking/track.h"
 
 namespace dimer::tracking {

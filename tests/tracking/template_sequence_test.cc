@@ -11,7 +11,7 @@
 #include "common/h5_file.h"
 #include "tests/common/test_tmpdir.h"
 #include "tests/tracking/synthetic.h"
-#include "tracking/render.h"
+#include "render/render.h"
 #include "tracking/track.h"
 
 namespace dimer::tracking {
