@@ -103,9 +103,9 @@ TEST(TrackCine, GivenFpsWinsWithAWarning) {
   MakeInputs(dir);
   TrackArgs t = Args(dir, "run.cine", "t.h5", 2);
   t.fps = 1000;
-  ::testing::internal::CaptureStderr();
+  std::string err;  // the lines `dimerlab track` prints
+  t.on_diagnostic = [&](const Diagnostic& d) { err += FormatDiagnostic(d) + "\n"; };
   RunTrack(t);
-  const std::string err = ::testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("dimerlab: warning: " + t.input +
                      ": --fps 1000 differs from the .cine header's 2000 frames/s; using --fps 1000"),
             std::string::npos)
