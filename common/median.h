@@ -15,6 +15,16 @@ inline double MedianOf(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+// The median of the finite values of a sample (the upper middle one for an even count), NaN
+// when none is finite: MedianOf with NaN and infinities left out first.
+inline double FiniteMedian(std::vector<double> v) {
+  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }),
+          v.end());
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
 // The lowest value of `v` that at least `min_count` values of `v` (itself included) lie within
 // `support` above: the low end of the lowest cluster, a lone low outlier passed over. NaN
 // (non-finite values ignored) when no value has that support.

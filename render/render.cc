@@ -56,7 +56,8 @@ CineWriteOptions CineOptions(const RenderArgs& a, const Trajectory& traj, size_t
   return o;
 }
 
-std::string Num(double v) {
+// A number for render.json and messages: ten significant digits.
+std::string Num10(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.10g", v);
   return buf;
@@ -85,18 +86,18 @@ std::string RenderJson(const RenderArgs& a, const RenderPlan& p, double diameter
   add("frames", std::to_string(n));
   add("width", std::to_string(a.image.width));
   add("height", std::to_string(a.image.height));
-  add("m_per_px", Num(p.map.m_per_px));
-  add("row0", Num(p.map.row0));
-  add("col_offset", Num(p.map.col_offset));
-  add("diameter", Num(diameter));
-  add("tilt_deg", Num(tilt_deg));
+  add("m_per_px", Num10(p.map.m_per_px));
+  add("row0", Num10(p.map.row0));
+  add("col_offset", Num10(p.map.col_offset));
+  add("diameter", Num10(diameter));
+  add("tilt_deg", Num10(tilt_deg));
   add("frame", tilt_deg != 0 ? "\"plate\"" : "\"lab\"");
-  add("radius_px", Num(p.radius_px));
-  add("rod_diameter", Num(a.rod_diameter));
+  add("radius_px", Num10(p.radius_px));
+  add("rod_diameter", Num10(a.rod_diameter));
   add("lighting", "\"" + ToString(a.image.lighting) + "\"");
-  add("noise", Num(a.image.noise));
-  add("gradient", Num(a.image.gradient));
-  add("exposure", Num(a.exposure));
+  add("noise", Num10(a.image.noise));
+  add("gradient", Num10(a.image.gradient));
+  add("exposure", Num10(a.exposure));
   add("blur_samples", std::to_string(a.blur_samples));
   add("bit_depth", std::to_string(a.image.bit_depth));
   add("format", "\"" + a.format + "\"");
@@ -116,9 +117,9 @@ void WriteTruth(const std::string& path, const RenderArgs& a, const RenderPlan& 
   out << "# dimerlab render truth: exact pixel centres (col, row) at each frame's sample time; "
          "units: t s, *_col *_row plate_row px (0-based pixel centres, rows growing downward); "
          "docs/FORMATS.md\n"
-      << "# m_per_px=" << Num(p.map.m_per_px) << " row0=" << Num(p.map.row0)
-      << " col_offset=" << Num(p.map.col_offset) << " radius_px=" << Num(p.radius_px)
-      << " lighting=" << ToString(a.image.lighting) << " noise=" << Num(a.image.noise)
+      << "# m_per_px=" << Num10(p.map.m_per_px) << " row0=" << Num10(p.map.row0)
+      << " col_offset=" << Num10(p.map.col_offset) << " radius_px=" << Num10(p.radius_px)
+      << " lighting=" << ToString(a.image.lighting) << " noise=" << Num10(a.image.noise)
       << " seed=" << a.image.seed << "\n"
       << "frame,file,t,left_col,left_row,right_col,right_row,plate_row\n";
   char buf[256];
@@ -193,7 +194,7 @@ void RunRender(const RenderArgs& args) {
   const Trajectory traj = InPlateFrame(ReadTrajectory(reader), tilt_deg);
   if (tilt_deg != 0 && !args.quiet) {
     std::fprintf(stderr, "render: %s: plate tilted %s deg: drawn in the plate's frame (a camera turned with "
-                 "the plate; truth.csv likewise)\n", args.input.c_str(), Num(tilt_deg).c_str());
+                 "the plate; truth.csv likewise)\n", args.input.c_str(), Num10(tilt_deg).c_str());
   }
   const size_t n = args.max_frames > 0 ? std::min(args.max_frames, traj.size()) : traj.size();
   CheckTrajectory(args.input, traj, n);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "common/median.h"
 
 namespace dimer::tracking {
 namespace {
@@ -13,13 +14,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Found radii used for the diameter calibration (a median over this many is plenty).
 constexpr size_t kCalibrationSamples = 2000;
-
-double Median(std::vector<double> v) {
-  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
-  if (v.empty()) return kNaN;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 }  // namespace
 
@@ -43,7 +37,7 @@ Calibration Calibrate(const TrackArgs& args, const SequenceResult& r, const Leng
         if (f.found[k]) radii.push_back(f.radius_px[k]);
       }
     }
-    const double radius = Median(radii);
+    const double radius = FiniteMedian(radii);
     if (!std::isfinite(radius)) {
       throw InputError(args.input +
                        ": no sphere found, cannot calibrate; pass --m-per-px, or --ar with the "
@@ -61,7 +55,7 @@ Calibration Calibrate(const TrackArgs& args, const SequenceResult& r, const Leng
   if (std::isnan(cal.row0)) {
     std::vector<double> rows;
     for (const auto& f : r.frames) rows.push_back(f.PlateRowAt(cal.col0));
-    cal.row0 = Median(rows);
+    cal.row0 = FiniteMedian(rows);
     if (std::isnan(cal.row0)) cal.row0 = r.height - 0.5;  // no plate seen: bottom of the frame
   }
   return cal;

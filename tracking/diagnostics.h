@@ -56,7 +56,4 @@ class Diagnostics {
   std::vector<Diagnostic> entries_;
 };
 
-// printf-style formatting of a message (the numbers' formats are part of what users read).
-std::string Printf(const char* format, ...) __attribute__((format(printf, 1, 2)));
-
 }  // namespace dimer::tracking

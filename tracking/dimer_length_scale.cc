@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "common/error.h"
+#include "common/format.h"
 #include "common/stderr_capture.h"
 #include "tracking/io/frame_range.h"
 #include "common/median.h"
@@ -153,7 +154,7 @@ LengthScale TrackedDimerLengthScale(const LengthScaleFilm& args, const SequenceO
     size_t both = 0;
     const double length = MedianDimerLength(r.frames, &both);
     diag->Note("length_scale_pass",
-               Printf("--ar pass %zu, radius %s: both spheres in %zu of %zu frames, length %.3f px",
+               Format("--ar pass %zu, radius %s: both spheres in %zu of %zu frames, length %.3f px",
                       ++passes, std::isnan(radius_px) ? "measured" : FormatPx(radius_px).c_str(),
                       both, r.frames.size(), length));
     return length;

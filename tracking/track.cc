@@ -9,6 +9,7 @@
 
 #include "common/atomic_output.h"
 #include "common/error.h"
+#include "common/format.h"
 #include "common/progress.h"
 #include "common/stderr_capture.h"
 #include "tracking/calibration.h"
@@ -50,7 +51,7 @@ Recording ResolveFps(const RecordingInfo& info, TrackArgs* args, Diagnostics* di
     args->fps = header ? info.fps : kDefaultFps;
     rec.fps_from = header ? "header" : "default";
   } else if (header && args->fps != info.fps) {
-    diag->WarnInput("fps", Printf("%s: --fps %.10g differs from the .cine header's %.10g frames/s; "
+    diag->WarnInput("fps", Format("%s: --fps %.10g differs from the .cine header's %.10g frames/s; "
                                   "using --fps %.10g",
                                   args->input.c_str(), args->fps, info.fps, args->fps));
   }
@@ -63,7 +64,7 @@ Recording ResolveFps(const RecordingInfo& info, TrackArgs* args, Diagnostics* di
 void WarnLossyCodec(const TrackArgs& args, const Recording& rec, Diagnostics* diag) {
   if (rec.info.video_codec.empty() || LosslessVideoCodec(rec.info.video_codec)) return;
   diag->WarnInput("lossy_codec",
-                  Printf("%s: video codec '%s' is taken as lossy: compression moves the spheres' "
+                  Format("%s: video codec '%s' is taken as lossy: compression moves the spheres' "
                          "edges by tenths of a pixel to pixels, beyond the offsets' stated "
                          "uncertainties; track the camera's own files (.cine) or lossless frames "
                          "where you can",
@@ -76,7 +77,7 @@ void WarnLossyCodec(const TrackArgs& args, const Recording& rec, Diagnostics* di
 LengthScale RadiusFromDimerLength(const TrackArgs& args, SequenceOptions* seq, Diagnostics* diag) {
   if (std::isnan(args.ar) || !std::isnan(args.m_per_px)) return {};
   diag->Note("length_scale_start",
-             Printf("scale from the dimer's length (--ar %g): tracking its first %zu frames "
+             Format("scale from the dimer's length (--ar %g): tracking its first %zu frames "
                     "until the radius settles",
                     args.ar, kLengthScaleFrames));
   const LengthScale length_scale = TrackedDimerLengthScale(
@@ -130,7 +131,7 @@ SequenceResult TrackWithLibraryMessagesCaptured(const TrackArgs& args, const Seq
   }
   if (repeats > 0) {
     diagnostics->WarnInput("decoder_repeats",
-                           Printf("%s: %zu repeated decoder messages not shown",
+                           Format("%s: %zu repeated decoder messages not shown",
                                   args.input.c_str(), repeats));
   }
   return r;

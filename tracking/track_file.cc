@@ -117,21 +117,26 @@ void WriteTemplateGroup(H5Writer& w, const SequenceResult& r) {
   }
 }
 
-}  // namespace
-
-std::string PsfSource(const TrackArgs& args, const PlateClip& clip) {
-  if (clip.level.psf_fitted) return "fitted";
-  return args.sequence.tracker.fit_psf_sigma ? "default" : "--psf-sigma";
-}
-
-void WriteTrackFile(const std::string& path, const TrackArgs& args, const SequenceResult& r,
-                    const Calibration& cal, const Recording& rec) {
-  const size_t n = r.frames.size();
+// One row per tracked frame: the trajectory in metres and the pixel columns beside it.
+struct TrackColumns {
   Trajectory traj;
+  std::vector<double> px[2], plate_row;
+  std::vector<int64_t> index;
+  std::vector<uint8_t> found;
+};
+
+TrackColumns ColumnsOf(const SequenceResult& r, const Calibration& cal, double fps) {
+  const size_t n = r.frames.size();
+  TrackColumns out;
+  Trajectory& traj = out.traj;
   traj.Reserve(n);
-  std::vector<double> px[2], plate_row(n);
-  std::vector<int64_t> index(n);
-  std::vector<uint8_t> found(2 * n);
+  std::vector<double>* px = out.px;
+  std::vector<double>& plate_row = out.plate_row;
+  std::vector<int64_t>& index = out.index;
+  std::vector<uint8_t>& found = out.found;
+  plate_row.resize(n);
+  index.resize(n);
+  found.resize(2 * n);
   for (size_t i = 0; i < n; ++i) {
     const FrameTrack& f = r.frames[i];
     Eigen::Vector2d tip[2];
@@ -147,15 +152,88 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
     const double plate_col = f.found[0] && f.found[1] ? 0.5 * (f.centre[0].x() + f.centre[1].x())
                                                       : f.plate_col;
     plate_row[i] = f.PlateRowAt(plate_col);
-    traj.Append(double(f.index) / args.fps, tip[0], tip[1],
+    traj.Append(double(f.index) / fps, tip[0], tip[1],
                 cal.ToMetres({plate_col, plate_row[i]}).y(), std::atan2(axis.y(), axis.x()));
     index[i] = int64_t(f.index);
   }
-  std::vector<std::string> skipped_names, skipped_reasons;
-  for (const auto& s : r.skipped) {
-    skipped_names.push_back(s.name);
-    skipped_reasons.push_back(s.reason);
+  return out;
+}
+
+// What the recording itself says (a video's codec, a .cine header's values), the lens and a
+// camera's levels: root attributes after the stages' own.
+void RecordingAttributes(const SequenceResult& r, const Recording& rec, AttrList* attrs_out,
+                         AttrUnits* units_out) {
+  AttrList& attrs = *attrs_out;
+  AttrUnits& units = *units_out;
+  if (!rec.info.video_codec.empty()) {  // a video file's codec, as its container declares it
+    attrs.push_back({"video_codec", rec.info.video_codec});
+    attrs.push_back({"video_codec_lossless", int64_t{LosslessVideoCodec(rec.info.video_codec)}});
+    units["video_codec_lossless"] = "1";
   }
+  attrs.push_back({"lens", r.lens ? r.lens->path : std::string()});
+  attrs.push_back({"lens_max_shift_px", r.lens_max_shift_px});
+  units["lens_max_shift_px"] = "px";
+  attrs.push_back({"level_scale", r.level_scale.factor});
+  attrs.push_back({"level_scale_bits", int64_t(r.level_scale.bits)});
+  attrs.push_back({"level_scale_clipped_frames", int64_t(r.level_scale.clipped_frames)});
+  units["level_scale"] = "1";
+  units["level_scale_bits"] = "bit";
+  units["level_scale_clipped_frames"] = "1";
+  if (rec.info.known) {  // the .cine header's values, exactly as stored
+    attrs.push_back({"exposure_ns", rec.info.exposure_ns});
+    attrs.push_back({"trigger_time", TriggerTimeText(rec.info.trigger_seconds,
+                                                     rec.info.trigger_fraction)});
+    attrs.push_back({"trigger_time_seconds", rec.info.trigger_seconds});
+    attrs.push_back({"trigger_time_fraction", rec.info.trigger_fraction});
+    attrs.push_back({"first_image_no", rec.info.first_image_no});
+    attrs.push_back({"real_bpp", int64_t(rec.info.real_bpp)});
+    attrs.push_back({"cine_colour", rec.info.colour});
+    attrs.push_back({"cine_cfa", rec.info.cfa});
+    attrs.push_back({"cine_mosaic_balance", rec.info.mosaic_balance});
+    units["exposure_ns"] = "ns";
+    units["trigger_time_seconds"] = "s";
+    units["trigger_time_fraction"] = "2^-32 s";
+    units["first_image_no"] = "1";
+    units["real_bpp"] = "bit";
+    units["cine_cfa"] = "1";
+  }
+}
+
+// The calibration's attributes and the film's counts: the last root attributes.
+AttrList CalibrationAttributes(const TrackArgs& args, const SequenceResult& r,
+                               const Calibration& cal) {
+  const size_t n = r.frames.size();
+  return {
+      {"m_per_px", cal.m_per_px}, {"row0", cal.row0}, {"col0", cal.col0},
+      {"diameter", args.diameter},
+      {"polarity", std::string(r.polarity > 0 ? "bright" : "dark")},
+      {"polarity_requested", args.polarity},
+      {"m_per_px_given",
+       int64_t(!std::isnan(args.m_per_px) ? 1 : !std::isnan(args.ar) ? 2 : 0)},
+      {"ar", std::isnan(args.ar) ? 0.0 : args.ar},
+      {"ar_length_px", std::isfinite(cal.length_px) ? cal.length_px : 0.0},
+      {"ar_length_frames", int64_t(cal.length_frames)},
+      {"ar_radius_px", cal.length_scale.ok ? cal.length_scale.radius_px : 0.0},
+      {"ar_outline_radius_px", std::isfinite(cal.length_scale.outline_radius_px)
+                                   ? cal.length_scale.outline_radius_px
+                                   : 0.0},
+      {"ar_passes", int64_t(cal.length_scale.passes.size())},
+      {"ar_converged", int64_t(cal.length_scale.converged)},
+      {"chunk_frames", int64_t(args.sequence.chunk_frames)},
+      {"width", int64_t(r.width)}, {"height", int64_t(r.height)},
+      {"frames_tracked", int64_t(n)}, {"frames_skipped", int64_t(r.skipped.size())},
+      {"complete", int64_t(r.complete)}};
+}
+
+struct RootAttrs {
+  AttrList attrs;
+  AttrUnits units;
+};
+
+// The root attributes (docs/FORMATS.md): every parameter that made the file and what each
+// stage found, with their units.
+RootAttrs RootAttributes(const TrackArgs& args, const SequenceResult& r, const Calibration& cal,
+                         const Recording& rec) {
   const bool clip_found = r.plate_clip.level.found();
   AttrList attrs = {{"source", args.input}, {"frames", args.frames.empty() ? "all" : args.frames},
                     {"method", ToString(r.method)}, {"method_requested", args.method},
@@ -210,64 +288,26 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
                      {"diameter", "m"},
                      {"chunk_frames", "1"}, {"width", "px"}, {"height", "px"},
                      {"frames_tracked", "1"}, {"frames_skipped", "1"}};
-  if (!rec.info.video_codec.empty()) {  // a video file's codec, as its container declares it
-    attrs.push_back({"video_codec", rec.info.video_codec});
-    attrs.push_back({"video_codec_lossless", int64_t{LosslessVideoCodec(rec.info.video_codec)}});
-    units["video_codec_lossless"] = "1";
-  }
-  attrs.push_back({"lens", r.lens ? r.lens->path : std::string()});
-  attrs.push_back({"lens_max_shift_px", r.lens_max_shift_px});
-  units["lens_max_shift_px"] = "px";
-  attrs.push_back({"level_scale", r.level_scale.factor});
-  attrs.push_back({"level_scale_bits", int64_t(r.level_scale.bits)});
-  attrs.push_back({"level_scale_clipped_frames", int64_t(r.level_scale.clipped_frames)});
-  units["level_scale"] = "1";
-  units["level_scale_bits"] = "bit";
-  units["level_scale_clipped_frames"] = "1";
-  if (rec.info.known) {  // the .cine header's values, exactly as stored
-    attrs.push_back({"exposure_ns", rec.info.exposure_ns});
-    attrs.push_back({"trigger_time", TriggerTimeText(rec.info.trigger_seconds,
-                                                     rec.info.trigger_fraction)});
-    attrs.push_back({"trigger_time_seconds", rec.info.trigger_seconds});
-    attrs.push_back({"trigger_time_fraction", rec.info.trigger_fraction});
-    attrs.push_back({"first_image_no", rec.info.first_image_no});
-    attrs.push_back({"real_bpp", int64_t(rec.info.real_bpp)});
-    attrs.push_back({"cine_colour", rec.info.colour});
-    attrs.push_back({"cine_cfa", rec.info.cfa});
-    attrs.push_back({"cine_mosaic_balance", rec.info.mosaic_balance});
-    units["exposure_ns"] = "ns";
-    units["trigger_time_seconds"] = "s";
-    units["trigger_time_fraction"] = "2^-32 s";
-    units["first_image_no"] = "1";
-    units["real_bpp"] = "bit";
-    units["cine_cfa"] = "1";
-  }
-  H5Writer w(path);
-  const AttrList rest = {
-      {"m_per_px", cal.m_per_px}, {"row0", cal.row0}, {"col0", cal.col0},
-      {"diameter", args.diameter},
-      {"polarity", std::string(r.polarity > 0 ? "bright" : "dark")},
-      {"polarity_requested", args.polarity},
-      {"m_per_px_given",
-       int64_t(!std::isnan(args.m_per_px) ? 1 : !std::isnan(args.ar) ? 2 : 0)},
-      {"ar", std::isnan(args.ar) ? 0.0 : args.ar},
-      {"ar_length_px", std::isfinite(cal.length_px) ? cal.length_px : 0.0},
-      {"ar_length_frames", int64_t(cal.length_frames)},
-      {"ar_radius_px", cal.length_scale.ok ? cal.length_scale.radius_px : 0.0},
-      {"ar_outline_radius_px", std::isfinite(cal.length_scale.outline_radius_px)
-                                   ? cal.length_scale.outline_radius_px
-                                   : 0.0},
-      {"ar_passes", int64_t(cal.length_scale.passes.size())},
-      {"ar_converged", int64_t(cal.length_scale.converged)},
-      {"chunk_frames", int64_t(args.sequence.chunk_frames)},
-      {"width", int64_t(r.width)}, {"height", int64_t(r.height)},
-      {"frames_tracked", int64_t(n)}, {"frames_skipped", int64_t(r.skipped.size())},
-      {"complete", int64_t(r.complete)}};
+  RecordingAttributes(r, rec, &attrs, &units);
+  const AttrList rest = CalibrationAttributes(args, r, cal);
   attrs.insert(attrs.end(), rest.begin(), rest.end());
-  WriteProvenance(w, "track", attrs, units,
-                  {{"m_per_px_given", "0=calibrated from --diameter,1=given by --m-per-px,"
-                                      "2=calibrated from --ar (the dimer's length)"},
-                   {"complete", "0=interrupted (Ctrl-C): the frames tracked so far,1=complete"}});
+  return {std::move(attrs), std::move(units)};
+}
+
+// The datasets: trajectory, pixels, frames, found, the template's appearances, precision,
+// stuck pixels, the lens and the skipped frames.
+void WriteColumns(H5Writer& w, const TrackColumns& columns, const SequenceResult& r) {
+  const size_t n = r.frames.size();
+  const Trajectory& traj = columns.traj;
+  const std::vector<double>* px = columns.px;
+  const std::vector<double>& plate_row = columns.plate_row;
+  const std::vector<int64_t>& index = columns.index;
+  const std::vector<uint8_t>& found = columns.found;
+  std::vector<std::string> skipped_names, skipped_reasons;
+  for (const auto& s : r.skipped) {
+    skipped_names.push_back(s.name);
+    skipped_reasons.push_back(s.reason);
+  }
   WriteTrajectory(w, traj);
   w.WriteDoubles("/pixels/left", px[0], {n, 2}, "px", "col,row");
   w.SetAttr("/pixels/left", "description",
@@ -318,6 +358,25 @@ void WriteTrackFile(const std::string& path, const TrackArgs& args, const Sequen
   w.SetAttr("/skipped/files", "description", "frames that could not be used");
   w.WriteStrings("/skipped/reasons", skipped_reasons);
   w.SetAttr("/skipped/reasons", "description", "why each skipped frame could not be used");
+}
+
+}  // namespace
+
+std::string PsfSource(const TrackArgs& args, const PlateClip& clip) {
+  if (clip.level.psf_fitted) return "fitted";
+  return args.sequence.tracker.fit_psf_sigma ? "default" : "--psf-sigma";
+}
+
+void WriteTrackFile(const std::string& path, const TrackArgs& args, const SequenceResult& r,
+                    const Calibration& cal, const Recording& rec) {
+  const TrackColumns columns = ColumnsOf(r, cal, args.fps);
+  const RootAttrs root = RootAttributes(args, r, cal, rec);
+  H5Writer w(path);
+  WriteProvenance(w, "track", root.attrs, root.units,
+                  {{"m_per_px_given", "0=calibrated from --diameter,1=given by --m-per-px,"
+                                      "2=calibrated from --ar (the dimer's length)"},
+                   {"complete", "0=interrupted (Ctrl-C): the frames tracked so far,1=complete"}});
+  WriteColumns(w, columns, r);
   w.Close();
 }
 

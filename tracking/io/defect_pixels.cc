@@ -7,10 +7,10 @@
 #include <cstdint>
 #include <string>
 
+#include "tracking/io/full_scale.h"
+
 namespace dimer::tracking {
 namespace {
-
-double FullScale(const cv::Mat& img) { return img.depth() == CV_8U ? 255.0 : 65535.0; }
 
 // Noise sigma of a frame: the median absolute difference of horizontal neighbours (every
 // second row), / sqrt(2); at least the quantisation's.

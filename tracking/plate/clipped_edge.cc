@@ -160,10 +160,10 @@ class ClippedEdgeModel {
   std::vector<double> taps_;
 };
 
-// Golden-section minimum of f on [a, b], to a bracket narrower than `tolerance`; returns the
-// bracket's middle.
+// Golden-section minimum of f on [a, b], to a bracket narrower than `tolerance` (compare/
+// plate_fit.cc runs a fixed number of steps instead); returns the bracket's middle.
 template <typename F>
-double GoldenMinimum(const F& f, double a, double b, double tolerance) {
+double GoldenMinimumToWidth(const F& f, double a, double b, double tolerance) {
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);
   double c = b - g * (b - a), d = a + g * (b - a);
   double fc = f(c), fd = f(d);
@@ -204,7 +204,7 @@ double MinimiseOverRow(const Cost& cost, int first_row, int k, double coarse, do
     }
   }
   if (!std::isfinite(rough)) return kNaN;
-  const double mid = GoldenMinimum(cost, rough - coarse, rough + coarse, tolerance);
+  const double mid = GoldenMinimumToWidth(cost, rough - coarse, rough + coarse, tolerance);
   // The grid point itself when the bracket's ends are no better (a kink at the clip).
   const double fmid = cost(mid);
   const bool grid = lowest < fmid;
@@ -303,7 +303,7 @@ double GridThenGolden(const F& f, double x0, double step, int n, double toleranc
       best_i = i;
     }
   }
-  return GoldenMinimum(f, x0 + std::max(0, best_i - 1) * step,
+  return GoldenMinimumToWidth(f, x0 + std::max(0, best_i - 1) * step,
                        x0 + std::min(n - 1, best_i + 1) * step, tolerance);
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "tracking/io/full_scale.h"
 #include "tracking/tolerances.h"
 
 namespace dimer::tracking {
@@ -28,7 +29,6 @@ int64_t RangeSum(const cv::Mat& frame, int row, int first, int last) {
   return sum;
 }
 
-double FullScale(const cv::Mat& img) { return img.depth() == CV_8U ? 255.0 : 65535.0; }
 // A plate's bright side at a level within this fraction of the full scale is taken as clipped
 // there when most of its pixels sit at that level (RefinePlateRow).
 constexpr double kClipBelowFullScale = 0.01;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tracking/io/full_scale.h"
 #include "tracking/plate/plate_edge.h"
 #include "tracking/tolerances.h"
 
@@ -19,8 +20,6 @@ constexpr double kMinRadiusPx = 3.0;
 // pass, isolated specks with no distance-transform peak) and a floor, fraction of full scale.
 constexpr double kSilhouetteNoiseSigmas = 4.0;
 constexpr double kSilhouetteMinStepFraction = 0.02;
-
-double FullScale(const cv::Mat& frame) { return frame.depth() == CV_8U ? 255.0 : 65535.0; }
 
 // Silhouette threshold: the background (median) plus kSilhouetteNoiseSigmas noise sigmas
 // (from the median absolute deviation), at least kSilhouetteMinStepFraction of full scale.

@@ -57,7 +57,8 @@ bool Extract(const cv::Mat& frame, const Eigen::Vector2d& centre, int half, int 
   return ExtractWindow(frame, centre, half, polarity, w);
 }
 
-double Median(std::vector<float>& v) {
+// The median of a window's levels, reordering `v` (no copy per frame); 0 for an empty one.
+double MedianInPlaceOrZero(std::vector<float>& v) {
   if (v.empty()) return 0;
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
   return v[v.size() / 2];
@@ -114,7 +115,7 @@ Levels MeasureLevels(const Window& w, const Eigen::Vector2d& c, double radius,
     add(0, w.size - 1 - i);
   }
   DiscSample(w, c, kInnerLevelRadiusR * radius, kLevelStride, &inner);
-  return {Median(ring), Median(inner)};
+  return {MedianInPlaceOrZero(ring), MedianInPlaceOrZero(inner)};
 }
 
 // The body level of a non-uniform sphere: a low quantile of the inner disc. On a uniform disc
