@@ -4,6 +4,7 @@
 
 #include "app/commands.h"
 #include "app/scene_file.h"
+#include "app/track_messages.h"
 #include "compare/run_compare.h"
 
 namespace dimer::app {
@@ -103,6 +104,8 @@ void RegisterAnalyze(CLI::App& app) {
     if (!cli->scene.empty()) ApplySceneFile(c, cli->scene);
     cli->args.compare.simulate = !cli->no_simulate;
     cli->args.compare.commands = {CommandLine()};
+    // RunAnalyze tracks with the compare options' --quiet.
+    cli->args.track.on_diagnostic = PrintTrackDiagnostics(cli->args.compare.quiet);
     compare::RunAnalyze(cli->args);
   });
 }

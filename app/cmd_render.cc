@@ -2,7 +2,7 @@
 #include <memory>
 
 #include "app/commands.h"
-#include "tracking/render.h"
+#include "render/render.h"
 
 namespace dimer::app {
 namespace {

@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "app/track_messages.h"
 #include "tracking/track.h"
 
 namespace dimer::app {
@@ -51,7 +52,10 @@ void RegisterTrack(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "track", "sub-pixel sphere centres and plate edge in every frame, to a track file");
   AddTrackOptions(sub, args.get());
-  sub->callback([args]() { tracking::RunTrack(*args); });
+  sub->callback([args]() {
+    args->on_diagnostic = PrintTrackDiagnostics(args->quiet);
+    tracking::RunTrack(*args);
+  });
 }
 
 }  // namespace dimer::app

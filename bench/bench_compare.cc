@@ -20,7 +20,7 @@
 #include "compare/fit.h"
 #include "sim/sim_file.h"
 #include "sim/simulator.h"
-#include "tracking/render.h"
+#include "render/render.h"
 #include "tracking/track.h"
 
 using namespace dimer;

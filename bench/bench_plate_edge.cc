@@ -21,14 +21,14 @@
 #include <sstream>
 #include <string>
 
-#include "tests/tracking/clipped_edge_frame.h"
+#include "tests/tracking/plate/clipped_edge_frame.h"
 #include <tuple>
 #include <vector>
 
 #include <chrono>
 
-#include "tracking/plate_edge.h"
-#include "tracking/scene_renderer.h"
+#include "tracking/plate/plate_edge.h"
+#include "render/scene_renderer.h"
 #include "tracking/tolerances.h"
 #include "tracking/tracker.h"
 
@@ -144,7 +144,7 @@ int PsfSensitivity() {
   return 0;
 }
 
-// An over-exposed plate over a sequence (tracking/clipped_edge.h): the plate moving across two
+// An over-exposed plate over a sequence (tracking/plate/clipped_edge.h): the plate moving across two
 // pixels (edge at 59.02 + 0.04 i, 50 frames, made as PsfSensitivity's), each frame's row alone
 // and then at the level the frames share, for plates at 1.2 to 5 x the clip and a camera blur of
 // 0.4 to 0.8 px, the blur assumed (0.5) or fitted with the level; then what the number of

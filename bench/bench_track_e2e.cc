@@ -37,9 +37,9 @@
 #include <vector>
 
 #include "bench/available_cores.h"
-#include "tracking/cine_writer.h"
-#include "tracking/frame_source.h"
-#include "tracking/scene_renderer.h"
+#include "tracking/io/cine_writer.h"
+#include "tracking/io/frame_source.h"
+#include "render/scene_renderer.h"
 #include "tracking/track.h"
 
 extern char** environ;

@@ -25,13 +25,15 @@
 #include <thread>
 
 #include "bench/available_cores.h"
-#include "tracking/disc_coverage.h"
-#include "tracking/frame_source.h"
-#include "tracking/refiner.h"
-#include "tracking/scene_renderer.h"
+#include "common/disc_coverage.h"
+#include "tracking/io/frame_source.h"
+#include "tracking/sphere/refiner.h"
+#include "render/scene_renderer.h"
 #include "tracking/track.h"
 
 using namespace dimer::tracking;
+using dimer::DiscPixelCoverage;  // common/disc_coverage.h
+using dimer::PixelCoverage;
 using Clock = std::chrono::steady_clock;
 
 namespace {
@@ -275,7 +277,7 @@ int main(int argc, char** argv) {
                   a.worst_scatter, 100 * a.found, a.rate1, a.rate2, a.cpu_us1, a.cpu_us2);
     }
   }
-  // ECC's stopping rule for the template's every frame (tracking/template_locator.h, EccStop):
+  // ECC's stopping rule for the template's every frame (tracking/sphere/template_locator.h, EccStop):
   // what it trades, on the reflect sequence.
   std::printf("\nECC's stopping rule, template on the reflect sequence (%d frames; the "
               "tracker's default: %d iterations, epsilon %.0e):\n\n"

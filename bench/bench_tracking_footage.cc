@@ -11,15 +11,15 @@
 //   bench_tracking_footage --seeds [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --seed-agreement [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --scale [frames] [subframes] [cache_dir]
-// (--ecc: what ECC's stopping rule trades, tracking/template_locator.h EccStop; --learn-passes:
-// what the template learning's passes trade, tracking/appearance_model.h LearnOptions. Every
+// (--ecc: what ECC's stopping rule trades, tracking/sphere/template_locator.h EccStop; --learn-passes:
+// what the template learning's passes trade, tracking/sphere/appearance_model.h LearnOptions. Every
 // case tracked by `auto` with each rule; the accuracy, how far the answers move from the first
 // rule's, and the CPU time per frame. --camera: front-lit steel through other cameras,
 // tests/footage/camera_variants.h: another scale, defocus, 16 bit, a camera not level; every
 // method. --jackknife: the column offset's stated uncertainty over noise seeds, by the
 // jackknife's groups; defaults 20 frames, 2 slices, 9 seeds. --exposure: every lighting with
 // its levels lowered and as 16-bit frames of a quarter of the range; defaults 20 frames, 2
-// slices. --seeds: the rough centres from the highlights, tracking/highlight_seed.h, on every
+// slices. --seeds: the rough centres from the highlights, tracking/sphere/highlight_seed.h, on every
 // frame of every lighting and its levels x 0.7 and x 0.5, against the truth; defaults 20
 // frames, 2 slices; it writes the lowered films into CACHE/levels, as --exposure does.
 // --seed-agreement: what leaving out the learning frames whose highlight seeds are not a
@@ -28,7 +28,7 @@
 // from the dimer's length (--ar), through the command; defaults 20 frames, 2 slices.)
 // Defaults: 40 frames of the hop motion, 6 exposure slices (300 us at 2000 frames/s), cache
 // folder bench_footage_cache (footage is reused while its scenes are unchanged), methods
-// "auto,centroid,template" (comma-separated `--method` names of tracking/refiner.h; auto is the
+// "auto,centroid,template" (comma-separated `--method` names of tracking/sphere/refiner.h; auto is the
 // default a user gets). The tracker is given the scale, as with `--m-per-px`.
 // Prints the POV-Ray CPU time per frame of each footage (every slice, antialiased), then one
 // row per footage and method, and the machine (cores, load average).
@@ -48,10 +48,10 @@
 
 #include "tests/common/warm_bayer.h"
 #include "tests/footage/camera_variants.h"
-#include "tracking/appearance_model.h"
-#include "tracking/highlight_seed.h"
-#include "tracking/mosaic_grey.h"
-#include "tracking/plate_edge.h"
+#include "tracking/sphere/appearance_model.h"
+#include "tracking/sphere/highlight_seed.h"
+#include "tracking/io/mosaic_grey.h"
+#include "tracking/plate/plate_edge.h"
 #include "tests/footage/povray_footage.h"
 #include "tests/footage/scaled_track.h"
 #include "tests/footage/track_accuracy.h"
@@ -211,7 +211,7 @@ int EccTrade(size_t frames, int slices, const std::string& cache) {
 }
 
 // --learn-passes: every case tracked with each number of the template learning's passes
-// (tracking/appearance_model.h, LearnOptions), the tracker's default first; how far the
+// (tracking/sphere/appearance_model.h, LearnOptions), the tracker's default first; how far the
 // spheres' mean positions moved from the default's.
 int LearnPassesTrade(size_t frames, int slices, const std::string& cache) {
   const std::vector<std::string> dirs = AllFootage(frames, slices, cache);
@@ -238,7 +238,7 @@ int LearnPassesTrade(size_t frames, int slices, const std::string& cache) {
 }
 
 // --jackknife: the column offset's stated uncertainty against the spread it states, by the
-// number of jackknife groups (tracking/appearance_model.h, kJackknifeGroups; 0: the outline
+// number of jackknife groups (tracking/sphere/appearance_model.h, kJackknifeGroups; 0: the outline
 // pairs' scatter alone). front_point at A_r 3.9 and 5.5, each rendered with noise seeds
 // 1..`seeds` (one draw each: the scene and its truth are the same), tracked by `auto` on one
 // thread. Per footage and setting, over its spheres: the column bias in units of the stated
@@ -320,7 +320,7 @@ std::string LevelsVersion(const std::string& dir, const std::string& cache,
   return out;
 }
 
-// --seeds: the highlights' rough centres (tracking/highlight_seed.h) on every frame, as the
+// --seeds: the highlights' rough centres (tracking/sphere/highlight_seed.h) on every frame, as the
 // template learning takes them where the silhouette methods find nothing: above the plate's
 // coarse row (FindPlateRowCoarse, the tracker's fallback), the film's split chosen by SeedFilm
 // (the weighed one or the widest gap: more frames whose seeds stand the median separation apart
@@ -396,7 +396,7 @@ int SeedsTrade(size_t frames, int slices, const std::string& cache) {
 }
 
 // --seed-agreement: how near the film's median separation a learning frame's two highlight seeds
-// must stand to be learnt from (tracking/highlight_seed.h, SeedFilm; LearnOptions::
+// must stand to be learnt from (tracking/sphere/highlight_seed.h, SeedFilm; LearnOptions::
 // seed_agreement_px): by default twice the learning's search (LearnSearchPx, 4 px at R = 23.75),
 // each seed then possibly within it; 64 px keeps nearly every frame. It also decides between the
 // two splits (more frames agreeing). The films whose learning is seeded from the highlights:

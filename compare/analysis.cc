@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "common/check.h"
 #include "common/error.h"
 #include "compare/text.h"
 
@@ -127,6 +128,10 @@ AnalysisOptions SeenAsTrack(const Analysis& track, AnalysisOptions base) {
 }
 
 Analysis Analyze(const SampledRun& input, const AnalysisOptions& options) {
+  DIMER_CHECK(input.x[0].size() == input.n && input.x[1].size() == input.n &&
+                  input.z[0].size() == input.n && input.z[1].size() == input.n &&
+                  input.plate_z.size() == input.n && input.theta.size() == input.n,
+              "a sampled run holds one value per grid frame in every column");
   Analysis a;
   a.run = input;
   a.options = options;

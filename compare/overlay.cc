@@ -16,9 +16,9 @@
 #include "common/interrupt.h"
 #include "common/progress.h"
 #include "compare/report_parts.h"
-#include "tracking/frame_source.h"
-#include "tracking/image_codecs.h"
-#include "tracking/lens_undistortion.h"
+#include "tracking/io/frame_source.h"
+#include "tracking/io/image_codecs.h"
+#include "tracking/io/lens_undistortion.h"
 
 namespace dimer::compare {
 namespace {

@@ -90,7 +90,7 @@ double GridFrequency(const Samples& s) {
   return best_f;
 }
 
-double GoldenMinimum(const Samples& s, double lo, double hi) {
+double GoldenMinimumInSteps(const Samples& s, double lo, double hi) {
   const double r = 0.5 * (std::sqrt(5.0) - 1.0);
   double a = lo, b = hi, c = b - r * (b - a), d = a + r * (b - a);
   double fc = FitAtFrequency(s, c).rss, fd = FitAtFrequency(s, d).rss;
@@ -177,7 +177,7 @@ PlateDrive FitPlate(const SampledRun& run, double freq_guess_hz) {
     const double rss = FitAtFrequency(s, f).rss;
     if (rss < best_rss) best_rss = rss, best_f = f;
   }
-  const double f = GoldenMinimum(s, best_f - step, best_f + step);
+  const double f = GoldenMinimumInSteps(s, best_f - step, best_f + step);
   const LinearFit fit = FitAtFrequency(s, f);
   const double amp = std::hypot(fit.coef(1), fit.coef(2));
   const double phase_mid = std::atan2(fit.coef(2), fit.coef(1));

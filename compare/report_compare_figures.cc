@@ -19,12 +19,6 @@ constexpr double kZoomThresholds = 10;  // fit_profile's y range: chi2_min + thi
 
 double At(const std::vector<double>& v, size_t i) { return i < v.size() ? v[i] : kNaN; }
 
-std::string Join(const std::vector<std::string>& clauses) {
-  std::string out;
-  for (size_t k = 0; k < clauses.size(); ++k) out += (k ? ", \\\n     " : "") + clauses[k];
-  return out + "\n";
-}
-
 // The panel title of a fit parameter: a value only when the slice constrains it.
 std::string ParameterTitle(const FitParameter& p) {
   std::string t = p.name + ": ";

@@ -21,12 +21,6 @@ constexpr double kReferenceSpan = 1.5;  // draw a reference level up to this tim
 const std::array<const char*, 2> kTipColour = {"#1f77b4", "#d62728"};
 const std::array<const char*, 2> kSide = {"left", "right"};
 
-std::string Join(const std::vector<std::string>& clauses) {
-  std::string out;
-  for (size_t k = 0; k < clauses.size(); ++k) out += (k ? ", \\\n     " : "") + clauses[k];
-  return out + "\n";
-}
-
 std::string DriveText(const PlateDrive& p) {
   return Format("f = %.4g Hz, Γ = %.3g", p.freq_hz, p.gamma);
 }

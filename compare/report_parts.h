@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "common/format.h"
 #include "compare/gnuplot.h"
 #include "compare/report.h"
 
@@ -16,9 +17,6 @@ struct FigureOutcome {
   std::string note;      // why it was not drawn, or gnuplot's warnings
 };
 
-// printf into a std::string (GCC 12 has no std::format).
-std::string Format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
-
 // The colour of each mode in figures (bands in modes.png), as gnuplot's "#rrggbb".
 std::string ModeColour(Mode mode);
 
@@ -27,6 +25,13 @@ inline constexpr int kDetailPeriods = 4;
 
 // Frames [*first, *last) of `run` whose time lies in [t_begin, t_end).
 void FramesIn(const SampledRun& run, double t_begin, double t_end, size_t* first, size_t* last);
+
+// gnuplot clauses joined into one command, one clause per continued line.
+inline std::string Join(const std::vector<std::string>& clauses) {
+  std::string out;
+  for (size_t k = 0; k < clauses.size(); ++k) out += (k ? ", \\\n     " : "") + clauses[k];
+  return out + "\n";
+}
 
 // True when some entry of `v` is finite.
 bool AnyFinite(const std::vector<double>& v);

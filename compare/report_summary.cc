@@ -15,7 +15,7 @@ constexpr size_t kMaxGapRows = 50;                   // per sphere; the rest are
 constexpr int kMaxSignificant = 6;                   // digits of a value with a tiny error
 const char* const kSide[2] = {"left", "right"};
 
-std::string Num(double v, const char* fmt = "%.4g") {
+std::string NumOrNa(double v, const char* fmt = "%.4g") {
   return std::isfinite(v) ? Format(fmt, v) : "n/a";
 }
 
@@ -52,7 +52,7 @@ std::string ModeText(const ModeSummary& m) {
 // Where a track's scale came from: what its lengths, speeds and Γ rest on.
 std::string ScaleRow(const SampledRun& r) {
   if (r.kind != "track" || r.scale_source.empty()) return "";
-  const std::string scale = Num(r.m_per_px * 1e3, "%.6g") + " mm/px";
+  const std::string scale = NumOrNa(r.m_per_px * 1e3, "%.6g") + " mm/px";
   const std::string from =
       r.scale_source == "--m-per-px" ? "given (track --m-per-px)"
       : r.scale_source == "--ar"
@@ -69,10 +69,10 @@ std::string PlateScaleRow(const Analysis& a) {
   if (r.kind != "track" || a.plate.source != "fit" || r.plate_scale_source.empty()) return "";
   std::string text;
   if (r.plate_scale_source == "--plate-m-per-px") {
-    text = "the edge's own (--plate-m-per-px): its motion × " + Num(r.plate_motion_scale, "%.6g");
+    text = "the edge's own (--plate-m-per-px): its motion × " + NumOrNa(r.plate_motion_scale, "%.6g");
   } else if (r.plate_scale_source == "fitted") {
     text = "fitted on a resting sphere (polished plate): its motion × " +
-           Num(r.plate_motion_scale, "%.4g");
+           NumOrNa(r.plate_motion_scale, "%.4g");
   } else {
     text = "the dimer plane's: an edge nearer the camera (a deep plate's front edge) reads Γ "
            "high by D / (D − Δ); track --plate-m-per-px gives its own";
@@ -94,14 +94,14 @@ void Drive(const Analysis& a, std::ostringstream& o) {
     << PlateScaleRow(a)
     << "| plate amplitude | " << Pm(d.amp_m, d.amp_err, kMm, "mm") << " |\n"
     << "| plate phase at t = 0 | " << Pm(d.phase_rad, d.phase_err, 1, "rad") << " |\n"
-    << "| plate fit residual (rms) | " << Num(d.residual_rms_m * kUm, "%.3g") << " µm |\n"
+    << "| plate fit residual (rms) | " << NumOrNa(d.residual_rms_m * kUm, "%.3g") << " µm |\n"
     << "| harmonics 2f, 3f, 4f (of the amplitude) | " << Percent(d.harmonic_rel[0]) << ", "
     << Percent(d.harmonic_rel[1]) << ", " << Percent(d.harmonic_rel[2]) << " |\n"
-    << "| sphere diameter d | " << Num(r.diameter_m * kMm) << " mm |\n"
+    << "| sphere diameter d | " << NumOrNa(r.diameter_m * kMm) << " mm |\n"
     << ScaleRow(r)
     << (r.scale_source == "--ar" ? "| A_r (given to track --ar, which set the scale by it) | "
                                  : "| A_r (measured) | ")
-    << Num(r.ar, "%.3f") << " |\n\n";
+    << NumOrNa(r.ar, "%.3f") << " |\n\n";
 }
 
 void Settled(const Analysis& a, std::ostringstream& o) {
@@ -118,17 +118,17 @@ void Settled(const Analysis& a, std::ostringstream& o) {
     << (m.orbit_periods > 0 ? std::to_string(m.orbit_periods) + " plate period" + (m.orbit_periods > 1 ? "s" : "")
                             : "none up to " + std::to_string(kMaxOrbitPeriods) + " plate periods")
     << ".\n\n| per sphere | left | right |\n|---|---|---|\n"
-    << "| impacts per period | " << Num(m.impacts_per_period[0], "%.3f") << " | "
-    << Num(m.impacts_per_period[1], "%.3f") << " |\n"
-    << "| rest fraction | " << Num(m.rest_fraction[0], "%.3f") << " | "
-    << Num(m.rest_fraction[1], "%.3f") << " |\n";
+    << "| impacts per period | " << NumOrNa(m.impacts_per_period[0], "%.3f") << " | "
+    << NumOrNa(m.impacts_per_period[1], "%.3f") << " |\n"
+    << "| rest fraction | " << NumOrNa(m.rest_fraction[0], "%.3f") << " | "
+    << NumOrNa(m.rest_fraction[1], "%.3f") << " |\n";
   const auto& sp = a.contacts.sphere;
-  o << "| position noise of the gap | " << Num(sp[0].noise_m * kUm, "%.3g") << " µm | "
-    << Num(sp[1].noise_m * kUm, "%.3g") << " µm |\n"
-    << "| contact level | " << Num(sp[0].level_m * kUm, "%.3g") << " µm | "
-    << Num(sp[1].level_m * kUm, "%.3g") << " µm |\n"
-    << "| contact threshold | " << Num(sp[0].threshold_m * kUm, "%.3g") << " µm | "
-    << Num(sp[1].threshold_m * kUm, "%.3g") << " µm |\n"
+  o << "| position noise of the gap | " << NumOrNa(sp[0].noise_m * kUm, "%.3g") << " µm | "
+    << NumOrNa(sp[1].noise_m * kUm, "%.3g") << " µm |\n"
+    << "| contact level | " << NumOrNa(sp[0].level_m * kUm, "%.3g") << " µm | "
+    << NumOrNa(sp[1].level_m * kUm, "%.3g") << " µm |\n"
+    << "| contact threshold | " << NumOrNa(sp[0].threshold_m * kUm, "%.3g") << " µm | "
+    << NumOrNa(sp[1].threshold_m * kUm, "%.3g") << " µm |\n"
     << "| impacts found (whole run) | " << sp[0].impacts.size() << " | " << sp[1].impacts.size()
     << " |\n\n";
 }
@@ -147,11 +147,11 @@ void DriftAndFall(const Analysis& a, std::ostringstream& o) {
     << " (the transient before it "
     << "excluded)\n- ⟨u⟩ f / g = " << Pm(d.scaled, d.scaled_err) << one << "\n";
   if (std::isfinite(d.travel_time_s)) {
-    o << "- travel over " << Num(d.travel_mm, "%.3g") << " mm (the paper's measure): "
-      << Num(d.travel_time_s, "%.4g") << " s, " << Num(d.travel_speed * kMm, "%.4g")
+    o << "- travel over " << NumOrNa(d.travel_mm, "%.3g") << " mm (the paper's measure): "
+      << NumOrNa(d.travel_time_s, "%.4g") << " s, " << NumOrNa(d.travel_speed * kMm, "%.4g")
       << " mm/s\n";
   } else {
-    o << "- travel over " << Num(d.travel_mm, "%.3g") << " mm: not measured"
+    o << "- travel over " << NumOrNa(d.travel_mm, "%.3g") << " mm: not measured"
       << (d.travel_note.empty() ? "" : " (" + d.travel_note + ")") << "\n";
   }
   const FreeFall& f = a.free_fall;
@@ -177,7 +177,7 @@ void Slip(const Analysis& a, std::ostringstream& o) {
   }
   o << "- resting sphere: " << Side(s.resting_sphere) << "; U positive toward the bouncing end\n"
     << "- filter half-width h = " << s.half_window << " frames, predicted velocity noise "
-    << Num(s.velocity_noise * kMm, "%.3g") << " mm/s\n"
+    << NumOrNa(s.velocity_noise * kMm, "%.3g") << " mm/s\n"
     << "- U after the bouncing end's impact: " << Pm(s.after, s.after_err, kMm, "mm/s") << "\n"
     << "- U before the next impact: " << Pm(s.before, s.before_err, kMm, "mm/s") << "\n"
     << "- impact intervals averaged: " << s.intervals << "\n\n";
@@ -195,8 +195,8 @@ void Timeline(const Analysis& a, std::ostringstream& o) {
   for (const ModeWindow& w : tl) {
     const ModeSummary& m = w.summary;
     o << Format("| %.4f | %.4f | ", w.t_start, w.t_end) << ModeText(m) << " | "
-      << Num(m.impacts_per_period[0], "%.2f") << " | " << Num(m.impacts_per_period[1], "%.2f")
-      << " | " << Num(m.rest_fraction[0], "%.2f") << " | " << Num(m.rest_fraction[1], "%.2f")
+      << NumOrNa(m.impacts_per_period[0], "%.2f") << " | " << NumOrNa(m.impacts_per_period[1], "%.2f")
+      << " | " << NumOrNa(m.rest_fraction[0], "%.2f") << " | " << NumOrNa(m.rest_fraction[1], "%.2f")
       << " | " << Pm(m.drift_speed, m.drift_speed_err, kMm) << " |\n";
   }
   o << "\n### Switches between modes\n\n";
@@ -251,14 +251,14 @@ void WarningsAndGaps(const ReportInputs& in, std::ostringstream& o) {
 void Comparing(const Analysis& t, const Comparison& c, std::ostringstream& o) {
   const Analysis& s = c.sim;
   o << "## Comparison with the simulation\n\n- simulation: `" << c.sim_path << "`\n"
-    << "- time offset (t_sim = t_track + offset): " << Num(c.time_offset_s * kMs, "%.5g")
-    << " ms\n- x offset: " << Num(c.x_offset_m * kMm, "%.5g") << " mm; simulation mirrored: "
+    << "- time offset (t_sim = t_track + offset): " << NumOrNa(c.time_offset_s * kMs, "%.5g")
+    << " ms\n- x offset: " << NumOrNa(c.x_offset_m * kMm, "%.5g") << " mm; simulation mirrored: "
     << (c.mirrored ? "yes" : "no") << "\n- frames compared: " << c.frames_compared
     << "; settled modes agree: " << (c.modes_agree ? "yes" : "no") << "\n\n"
     << "| RMS residual over the settled window | left | right |\n|---|---|---|\n"
-    << "| x | " << Num(c.rms_x[0] * kUm, "%.3g") << " µm | " << Num(c.rms_x[1] * kUm, "%.3g")
-    << " µm |\n| z | " << Num(c.rms_z[0] * kUm, "%.3g") << " µm | "
-    << Num(c.rms_z[1] * kUm, "%.3g") << " µm |\n\n"
+    << "| x | " << NumOrNa(c.rms_x[0] * kUm, "%.3g") << " µm | " << NumOrNa(c.rms_x[1] * kUm, "%.3g")
+    << " µm |\n| z | " << NumOrNa(c.rms_z[0] * kUm, "%.3g") << " µm | "
+    << NumOrNa(c.rms_z[1] * kUm, "%.3g") << " µm |\n\n"
     << "| quantity | track | simulation |\n|---|---|---|\n";
   auto row = [&o](const std::string& q, const std::string& a, const std::string& b) {
     o << "| " << q << " | " << a << " | " << b << " |\n";
@@ -281,10 +281,10 @@ void Comparing(const Analysis& t, const Comparison& c, std::ostringstream& o) {
 // A parameter's value cell: a number only when the chi2 profile constrains it.
 std::string ParameterValue(const FitParameter& p) {
   if (p.status == "constrained") return Pm(p.value, p.err);
-  if (p.status == "bounded_below") return "≥ " + Num(p.range_lo);
-  if (p.status == "bounded_above") return "≤ " + Num(p.range_hi);
-  if (p.status == "no_acceptable_fit") return "none (best point " + Num(p.value) + ", which fails)";
-  return "unconstrained (range " + Num(p.lo) + "–" + Num(p.hi) + ")";
+  if (p.status == "bounded_below") return "≥ " + NumOrNa(p.range_lo);
+  if (p.status == "bounded_above") return "≤ " + NumOrNa(p.range_hi);
+  if (p.status == "no_acceptable_fit") return "none (best point " + NumOrNa(p.value) + ", which fails)";
+  return "unconstrained (range " + NumOrNa(p.lo) + "–" + NumOrNa(p.hi) + ")";
 }
 
 void Fitting(const FitResult& f, std::ostringstream& o) {
@@ -294,10 +294,10 @@ void Fitting(const FitResult& f, std::ostringstream& o) {
     o << "| " << p.name << " | " << (p.fitted ? "yes" : "no (slice only)") << " | "
       << (p.status.empty() ? "unknown" : p.status) << " | " << ParameterValue(p) << " |\n";
   }
-  o << "\nchi2 = " << Num(f.chi2) << " with " << f.dof << " degrees of freedom (chi2/dof "
-    << Num(f.chi2 / f.dof, "%.3g") << ", p-value " << Num(f.p_value, "%.3g") << ")";
+  o << "\nchi2 = " << NumOrNa(f.chi2) << " with " << f.dof << " degrees of freedom (chi2/dof "
+    << NumOrNa(f.chi2 / f.dof, "%.3g") << ", p-value " << NumOrNa(f.p_value, "%.3g") << ")";
   if (!f.acceptable) {
-    o << ": **no acceptable fit** (p < " << Num(kMinFitPValue, "%g")
+    o << ": **no acceptable fit** (p < " << NumOrNa(kMinFitPValue, "%g")
       << "): the best simulation of this scene the search found does not reproduce the track, "
          "so no coefficient is given (a start nearer the truth, --eps etc., may find one). "
          "Furthest off at the best point:\n\n";
@@ -306,7 +306,7 @@ void Fitting(const FitResult& f, std::ostringstream& o) {
   } else {
     o << ". A parameter's range is where its chi2 profile (the others re-optimised) stays within "
          "chi2 + "
-      << Num(f.threshold) << " = " << Num(f.chi2 + f.threshold) << ".";
+      << NumOrNa(f.threshold) << " = " << NumOrNa(f.chi2 + f.threshold) << ".";
   }
   o << " " << f.evaluations
     << " simulations (their wall time is on stderr, so that reports are identical on rerun).\n\n";
@@ -315,7 +315,7 @@ void Fitting(const FitResult& f, std::ostringstream& o) {
   for (size_t k = 0; k < f.observable_names.size(); ++k) {
     auto at = [k](const std::vector<double>& v) { return k < v.size() ? v[k] : kNaN; };
     o << "| " << f.observable_names[k] << " | " << Pm(at(f.observed), at(f.observed_err))
-      << " | " << Num(at(f.simulated)) << " |\n";
+      << " | " << NumOrNa(at(f.simulated)) << " |\n";
   }
   o << "\n";
 }

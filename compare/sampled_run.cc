@@ -5,6 +5,7 @@
 
 #include "common/error.h"
 #include "common/h5_file.h"
+#include "common/median.h"
 #include "common/plate_frame.h"
 #include "common/trajectory_io.h"
 
@@ -14,13 +15,6 @@ namespace {
 // A time stamp may differ from its grid point by this fraction of a frame (round-off of
 // t = index / fps in files) and still be that frame.
 constexpr double kGridSlackFrames = 1e-3;
-
-double MedianOf(std::vector<double> v) {
-  v.erase(std::remove_if(v.begin(), v.end(), [](double a) { return !std::isfinite(a); }), v.end());
-  if (v.empty()) return kNaN;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 }  // namespace
 
@@ -47,8 +41,8 @@ bool SampledRun::Valid(size_t i) const {
 
 Eigen::Vector2d SampledRun::PixelOf(double x_m, double z_m) const {
   if (plate_slope == 0) return {x_m / m_per_px, row0_px - z_m / m_per_px};
-  // track.cc's Calibration::ToMetres turned (col - col0, row - row0) by the slope's angle with
-  // [[cos, sin], [sin, -cos]], which is its own inverse.
+  // Calibration::ToMetres (tracking/calibration.h) turned (col - col0, row - row0) by the
+  // slope's angle with [[cos, sin], [sin, -cos]], which is its own inverse.
   const double a = std::atan(plate_slope), c = std::cos(a), s = std::sin(a);
   const double u = x_m / m_per_px - col0_px, w = z_m / m_per_px;
   return {col0_px + u * c + w * s, row0_px + u * s - w * c};
@@ -69,7 +63,7 @@ SampledRun SampleTrajectory(const Trajectory& traj, double fps, double diameter_
   if (!(fps > 0) || !std::isfinite(fps)) {
     std::vector<double> d(m - 1);
     for (size_t i = 1; i < m; ++i) d[i - 1] = traj.t[i] - traj.t[i - 1];
-    fps = 1.0 / MedianOf(d);
+    fps = 1.0 / FiniteMedian(d);
   }
   run.dt = 1.0 / fps;
   run.t0 = traj.t[0];
@@ -111,7 +105,7 @@ SampledRun SampleTrajectory(const Trajectory& traj, double fps, double diameter_
   for (size_t i = 0; i < run.n; ++i) {
     len[i] = std::hypot(run.x[1][i] - run.x[0][i], run.z[1][i] - run.z[0][i]);
   }
-  run.ar = MedianOf(len) / diameter_m + 1.0;
+  run.ar = FiniteMedian(len) / diameter_m + 1.0;
   return run;
 }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/check.h"
 #include "common/error.h"
 #include "sim/constants.h"
 #include "sim/contact_integrator.h"
@@ -432,6 +433,8 @@ SimResult RunSimulation(const SimOptions& options, const RunControls& controls) 
     for (size_t i = 0; i < errors.size(); ++i) msg += (i ? "; " : "") + errors[i];
     throw UsageError(msg);
   }
+  DIMER_CHECK(options.diameter_m > 0 && std::isfinite(options.diameter_m) && options.ar > 1,
+              "a simulation needs a dimer of positive size (SimOptions::Check passed it)");
   Runner runner(options, controls);
   return runner.Run();
 }

@@ -39,7 +39,8 @@ const std::vector<std::pair<std::string, SweepInit>>& SweepInitNames() {
 
 namespace {
 
-std::string Num(double x) {
+// A double as %.17g: read back, the same double.
+std::string ExactNum(double x) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", x);
   return buf;
@@ -217,7 +218,7 @@ void SweepSpec::Check() const {
       msg = "invalid sweep point " + std::to_string(i) + " (";
       const std::vector<double> v = PointValues(i);
       for (size_t k = 0; k < axes.size(); ++k) {
-        msg += (k ? " " : "") + axes[k].name + "=" + Num(v[k]);
+        msg += (k ? " " : "") + axes[k].name + "=" + ExactNum(v[k]);
       }
       msg += "): ";
     }
@@ -235,9 +236,9 @@ std::string SweepSpec::Canonical() const {
       if (a.name == p.name) axis = &a;
     }
     if (axis) {
-      for (size_t k = 0; k < axis->values.size(); ++k) s << (k ? "," : "") << Num(axis->values[k]);
+      for (size_t k = 0; k < axis->values.size(); ++k) s << (k ? "," : "") << ExactNum(axis->values[k]);
     } else {
-      s << Num(base.*(p.field));
+      s << ExactNum(base.*(p.field));
     }
     s << "\n";
   }
@@ -250,17 +251,17 @@ std::string SweepSpec::Canonical() const {
   s << "init = " << init_name << "\n";
   if (init == SweepInit::kDrop) s << "seed = " << seed << "\n";
   if (init == SweepInit::kDrift) {
-    s << "lift = " << (std::isnan(base.lift) ? "default" : Num(base.lift)) << "\n";
-    s << "release_phase = " << Num(base.release_phase) << "\n";
+    s << "lift = " << (std::isnan(base.lift) ? "default" : ExactNum(base.lift)) << "\n";
+    s << "release_phase = " << ExactNum(base.release_phase) << "\n";
   }
   s << "diameter_scaling = " << (diameter_scales_with_f ? "inverse_f2" : "fixed") << "\n";
-  s << "plate_phase = " << Num(base.plate_phase) << "\n";
+  s << "plate_phase = " << ExactNum(base.plate_phase) << "\n";
   s << "restitution = " << (base.restitution == RestitutionLaw::kNewton ? "newton" : "capped")
     << "\n";
-  s << "collapse_vc = " << Num(base.collapse_rel) << "\n";
-  s << "contact_tol = " << Num(base.contact_tol) << "\n";
-  s << "gap_tol = " << Num(base.gap_tol) << "\n";
-  s << "max_events_per_period = " << Num(base.max_events_per_period) << "\n";
+  s << "collapse_vc = " << ExactNum(base.collapse_rel) << "\n";
+  s << "contact_tol = " << ExactNum(base.contact_tol) << "\n";
+  s << "gap_tol = " << ExactNum(base.gap_tol) << "\n";
+  s << "max_events_per_period = " << ExactNum(base.max_events_per_period) << "\n";
   return s.str();
 }
 

@@ -5,9 +5,10 @@
 #include <cstdio>
 
 #include "common/error.h"
+#include "common/format.h"
 #include "common/stderr_capture.h"
-#include "tracking/frame_range.h"
-#include "tracking/median.h"
+#include "tracking/io/frame_range.h"
+#include "common/median.h"
 
 namespace dimer::tracking {
 
@@ -123,7 +124,8 @@ LengthScale IterateDimerLengthScale(const std::function<double(double radius_px)
   return s;
 }
 
-LengthScale TrackedDimerLengthScale(const TrackArgs& args, const SequenceOptions& seq) {
+LengthScale TrackedDimerLengthScale(const LengthScaleFilm& args, const SequenceOptions& seq,
+                                    Diagnostics* diag) {
   const FrameRange film = ParseFrameRange(args.frames);
   FrameRange first = film;
   first.end = film.first + kLengthScaleFrames;
@@ -151,13 +153,10 @@ LengthScale TrackedDimerLengthScale(const TrackArgs& args, const SequenceOptions
     readable = std::max(readable, r.frames.size());
     size_t both = 0;
     const double length = MedianDimerLength(r.frames, &both);
-    if (!args.quiet) {
-      std::fprintf(stderr,
-                   "dimerlab track: --ar pass %zu, radius %s: both spheres in %zu of %zu frames, "
-                   "length %.3f px\n",
-                   ++passes, std::isnan(radius_px) ? "measured" : FormatPx(radius_px).c_str(),
-                   both, r.frames.size(), length);
-    }
+    diag->Note("length_scale_pass",
+               Format("--ar pass %zu, radius %s: both spheres in %zu of %zu frames, length %.3f px",
+                      ++passes, std::isnan(radius_px) ? "measured" : FormatPx(radius_px).c_str(),
+                      both, r.frames.size(), length));
     return length;
   };
   // Guesses cannot help a film too short for a length.

@@ -22,7 +22,8 @@
 #include <string>
 #include <vector>
 
-#include "tracking/track.h"
+#include "tracking/diagnostics.h"
+#include "tracking/track_sequence.h"
 #include "tracking/tracker.h"
 
 namespace dimer::tracking {
@@ -98,10 +99,21 @@ LengthScale IterateDimerLengthScale(const std::function<double(double radius_px)
                                     double ar,
                                     const std::function<std::vector<double>()>& guesses = {});
 
+// The film whose first frames the calibration passes track: what `track` was given of it.
+struct LengthScaleFilm {
+  std::string input;   // folder of frames, TIFF stack, .cine or video
+  std::string frames;  // --frames A:B (frame_range.h); empty: all
+  double ar = std::numeric_limits<double>::quiet_NaN();        // --ar
+  double diameter = std::numeric_limits<double>::quiet_NaN();  // sphere diameter, m
+  // --plate-m-per-px, m/px; NaN: the dimer plane's.
+  double plate_m_per_px = std::numeric_limits<double>::quiet_NaN();
+};
+
 // The calibration passes of `track --ar` over the first kLengthScaleFrames frames of
-// args.frames (`seq` as the film will be tracked, its contact radius replaced by each pass's):
-// decoder messages are left to the film's own pass, which meets the same frames. Throws
-// Interrupted on Ctrl-C.
-LengthScale TrackedDimerLengthScale(const TrackArgs& args, const SequenceOptions& seq);
+// film.frames (`seq` as the film will be tracked, its contact radius replaced by each pass's),
+// each pass a note in `diag`: decoder messages are left to the film's own pass, which meets the
+// same frames. Throws Interrupted on Ctrl-C.
+LengthScale TrackedDimerLengthScale(const LengthScaleFilm& film, const SequenceOptions& seq,
+                                    Diagnostics* diag);
 
 }  // namespace dimer::tracking

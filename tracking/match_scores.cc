@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "tracking/median.h"
+#include "common/median.h"
 
 namespace dimer::tracking {
 

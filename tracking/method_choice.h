@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "tracking/refiner.h"
+#include "tracking/sphere/refiner.h"
 #include "tracking/tracker.h"
 
 namespace dimer::tracking {

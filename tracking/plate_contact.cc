@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "tracking/median.h"
+#include "common/median.h"
 
 namespace dimer::tracking {
 namespace {

@@ -30,7 +30,7 @@
 #include <string>
 #include <vector>
 
-#include "tracking/appearance_model.h"
+#include "tracking/sphere/appearance_model.h"
 
 namespace dimer::tracking {
 

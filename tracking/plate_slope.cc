@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <numbers>
 
-#include "tracking/detector.h"
-#include "tracking/median.h"
-#include "tracking/plate_edge.h"
+#include "tracking/sphere/detector.h"
+#include "common/median.h"
+#include "tracking/plate/plate_edge.h"
 #include "tracking/tolerances.h"
 
 namespace dimer::tracking {

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "tracking/appearance_mismatch.h"
-#include "tracking/highlight_seed.h"
-#include "tracking/parallel_for.h"
-#include "tracking/plate_edge.h"
+#include "tracking/sphere/appearance_mismatch.h"
+#include "tracking/sphere/highlight_seed.h"
+#include "common/parallel_for.h"
+#include "tracking/plate/plate_edge.h"
 
 namespace dimer::tracking {
 namespace {

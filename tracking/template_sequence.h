@@ -1,5 +1,5 @@
 #pragma once
-// The sequence-level part of `--method template` and `--method auto` (track.cc calls it):
+// The sequence-level part of `--method template` and `--method auto` (track_sequence.cc calls it):
 // which frames the appearances are learnt from, the choice of method, and the offsets applied
 // to the template's positions once the whole sequence is tracked (appearance_model.h).
 #include <array>
@@ -7,9 +7,9 @@
 #include <memory>
 #include <vector>
 
-#include "tracking/appearance_model.h"
+#include "tracking/sphere/appearance_model.h"
 #include "tracking/plate_contact.h"
-#include "tracking/frame_source.h"
+#include "tracking/io/frame_source.h"
 #include "tracking/method_choice.h"
 #include "tracking/tracker.h"
 

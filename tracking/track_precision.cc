@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "tracking/impact_vertex.h"
+#include "tracking/sphere/impact_vertex.h"
 
 namespace dimer::tracking {
 

@@ -5,10 +5,11 @@
 #include <utility>
 #include <vector>
 
+#include "common/check.h"
 #include "common/error.h"
-#include "tracking/detector.h"
-#include "tracking/plate_edge.h"
-#include "tracking/template_locator.h"
+#include "tracking/sphere/detector.h"
+#include "tracking/plate/plate_edge.h"
+#include "tracking/sphere/template_locator.h"
 #include "tracking/tolerances.h"
 
 namespace dimer::tracking {
@@ -65,7 +66,7 @@ bool SequenceTracker::uses_template() const {
 }
 
 // The template method's measurement: the reference point of sphere `sphere`'s appearance
-// (the track's offset turns it into the centre afterwards, track.cc), radius as known.
+// (the track's offset turns it into the centre afterwards, track_sequence.cc), radius as known.
 SphereMeasurement SequenceTracker::Locate(const cv::Mat& frame, int sphere,
                                           const Eigen::Vector2d& guess,
                                           const Eigen::Vector2d* other, double plate_row,
@@ -265,6 +266,8 @@ void SequenceTracker::Commit(const FrameTrack& t) {
 }
 
 FrameTrack SequenceTracker::Process(const cv::Mat& frame, size_t index) {
+  DIMER_CHECK(!frame.empty() && frame.channels() == 1,
+              "the tracker measures grey frames (frame sources make them grey)");
   if (polarity_ == 0) polarity_ = DetectPolarity(frame);
   FrameTrack out;
   out.index = index;

@@ -17,10 +17,10 @@
 #include <limits>
 #include <memory>
 
-#include "tracking/clipped_edge.h"
-#include "tracking/plate_edge.h"
-#include "tracking/refiner.h"
-#include "tracking/template_locator.h"
+#include "tracking/plate/clipped_edge.h"
+#include "tracking/plate/plate_edge.h"
+#include "tracking/sphere/refiner.h"
+#include "tracking/sphere/template_locator.h"
 #include "tracking/tolerances.h"
 
 namespace dimer::tracking {

@@ -13,8 +13,8 @@
 #include "tests/common/test_tmpdir.h"
 #include "tests/common/warm_bayer.h"
 #include "tests/tracking/synthetic.h"
-#include "tracking/cine_writer.h"
-#include "tracking/render.h"
+#include "tracking/io/cine_writer.h"
+#include "render/render.h"
 #include "tracking/track.h"
 
 namespace dimer::tracking {
@@ -103,9 +103,9 @@ TEST(TrackCine, GivenFpsWinsWithAWarning) {
   MakeInputs(dir);
   TrackArgs t = Args(dir, "run.cine", "t.h5", 2);
   t.fps = 1000;
-  ::testing::internal::CaptureStderr();
+  std::string err;  // the lines `dimerlab track` prints
+  t.on_diagnostic = [&](const Diagnostic& d) { err += FormatDiagnostic(d) + "\n"; };
   RunTrack(t);
-  const std::string err = ::testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("dimerlab: warning: " + t.input +
                      ": --fps 1000 differs from the .cine header's 2000 frames/s; using --fps 1000"),
             std::string::npos)

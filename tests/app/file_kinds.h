@@ -11,7 +11,7 @@
 #include "compare/run_compare.h"
 #endif
 #ifdef DIMERLAB_HAVE_TRACKING
-#include "tracking/render.h"
+#include "render/render.h"
 #include "tracking/track.h"
 #endif
 

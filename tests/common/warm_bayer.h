@@ -1,7 +1,7 @@
 #pragma once
 // What a colour camera's raw sensor records of a grey 8-bit frame under a warm lamp: an RGGB
 // Bayer mosaic whose red, green and blue pixels see 1, 0.8 and 0.55 of the light (the tests of
-// colour .cine files: tracking/mosaic_grey.h). Header-only: shared by test programs that link
+// colour .cine files: tracking/io/mosaic_grey.h). Header-only: shared by test programs that link
 // different libraries.
 #include <opencv2/core.hpp>
 

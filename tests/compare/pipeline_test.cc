@@ -17,7 +17,7 @@
 #include "sim/sim_file.h"
 #include "sim/simulator.h"
 #include "sim/state.h"
-#include "tracking/render.h"
+#include "render/render.h"
 #include "tracking/track.h"
 #include "tests/compare/exact_slip.h"
 

@@ -17,7 +17,7 @@
 #include "compare/overlay.h"
 #include "compare/report.h"
 #include "tests/common/test_tmpdir.h"
-#include "tracking/lens_undistortion.h"
+#include "tracking/io/lens_undistortion.h"
 
 namespace dimer::compare {
 namespace {

@@ -17,7 +17,7 @@ test -x "$PREFIX/libexec/dimerlab/dimerlab-full"
 PATH="$PREFIX/bin:$PATH" dimerlab render --help >/dev/null
 # OpenCV's image and video codecs are not linked into dimerlab-full (its start would load ~190
 # more libraries); they come from PREFIX/lib/dimerlab/libdimer_codecs.so on first use
-# (tracking/image_codecs.h), which this exercises: PNG frames written, then read back.
+# (tracking/io/image_codecs.h), which this exercises: PNG frames written, then read back.
 test -f "$PREFIX/lib/dimerlab/libdimer_codecs.so"
 if ldd "$PREFIX/libexec/dimerlab/dimerlab-full" | grep -E 'libopencv_(imgcodecs|videoio)'; then
   echo "dimerlab-full links OpenCV's codecs directly" >&2

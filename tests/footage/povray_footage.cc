@@ -23,7 +23,7 @@
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/progress.h"
-#include "tracking/seeded_noise.h"
+#include "render/seeded_noise.h"
 
 namespace dimer::footage {
 namespace fs = std::filesystem;

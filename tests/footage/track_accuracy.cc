@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "common/error.h"
-#include "tracking/frame_source.h"
+#include "tracking/io/frame_source.h"
 #include "tracking/track.h"
 
 namespace dimer::footage {

@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "tracking/appearance_model.h"
-#include "tracking/template_locator.h"
+#include "tracking/sphere/appearance_model.h"
+#include "tracking/sphere/template_locator.h"
 
 namespace dimer::footage {
 
@@ -43,7 +43,7 @@ struct SphereAccuracy {
   double scatter = 0;              // RMS distance from the mean error, px
   double max_error = 0;            // largest |error - bias|, px
   // Template method: the Cramér-Rao bound on the scatter, sqrt(sd_col^2 + sd_row^2) of
-  // tracking/precision_bound.h with the first frame's noise; NaN for the other methods.
+  // tracking/sphere/precision_bound.h with the first frame's noise; NaN for the other methods.
   double scatter_bound = std::numeric_limits<double>::quiet_NaN();
   // The bias's own sampling error per component (col, row): sd / sqrt(found), px.
   Eigen::Vector2d bias_sampling{0, 0};
@@ -87,7 +87,7 @@ inline constexpr double kCoverageSigmas = 2.0;
 // renderer (docs/BENCHMARKS.md). Not one of the targets, which stay as they are.
 inline constexpr double kScatterBoundFactor = 1.5;
 
-// Tracks `folder` (every image in it) with `method` (a `--method` name of tracking/refiner.h)
+// Tracks `folder` (every image in it) with `method` (a `--method` name of tracking/sphere/refiner.h)
 // and compares with `folder`/truth.csv. `threads` 0: all cores. `scale_given`: the tracker is
 // told the scale, as `dimerlab track --m-per-px` is by a user with a calibrated camera (the
 // sphere radius in pixels, from truth.csv's header); without it the tracker measures the radius
@@ -96,7 +96,7 @@ inline constexpr double kScatterBoundFactor = 1.5;
 // set. `input`: track this instead of the folder's images (the same frames in another form,
 // e.g. a .cine), truth.csv's rows taken in order as its frames 0, 1, ...; empty: the folder.
 struct TrackerKnobs {
-  // ECC's stopping rule (tracking/template_locator.h); null: the tracker's default.
+  // ECC's stopping rule (tracking/sphere/template_locator.h); null: the tracker's default.
   const tracking::EccStop* ecc = nullptr;
   int learn_passes = tracking::kLearnPasses;          // the learning's passes
   int jackknife_groups = tracking::kJackknifeGroups;  // of the column offset's uncertainty

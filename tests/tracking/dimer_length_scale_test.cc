@@ -26,7 +26,7 @@ TEST(MedianDimerLength, IsTheMedianDistanceOverFramesShowingBothSpheres) {
   for (int k = 1; k <= 12; ++k) frames.push_back(Pair(100, 100 + 3.0 * k, 200 - 4.0 * k));
   frames.push_back(Pair(100, 1000, 200, /*both=*/false));  // one sphere only: not a length
   size_t used = 0;
-  // The median of 5, 10, ..., 60 (the upper middle, tracking/median.h): the 7th, 35; the same
+  // The median of 5, 10, ..., 60 (the upper middle, common/median.h): the 7th, 35; the same
   // whatever the frames' order.
   EXPECT_DOUBLE_EQ(MedianDimerLength(frames, &used), 35.0);
   EXPECT_EQ(used, 12u);

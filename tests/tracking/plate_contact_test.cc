@@ -10,7 +10,7 @@
 #include <cmath>
 #include <random>
 
-#include "tracking/disc_coverage.h"
+#include "common/disc_coverage.h"
 
 namespace dimer::tracking {
 namespace {

@@ -10,9 +10,9 @@
 #include <cstdio>
 #include <random>
 
-#include "tracking/appearance_model.h"
-#include "tracking/plate_edge.h"
-#include "tracking/template_locator.h"
+#include "tracking/sphere/appearance_model.h"
+#include "tracking/plate/plate_edge.h"
+#include "tracking/sphere/template_locator.h"
 
 namespace dimer::tracking {
 namespace {

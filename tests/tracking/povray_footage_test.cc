@@ -38,10 +38,10 @@
 #include "tests/footage/povray_footage.h"
 #include "tests/footage/scaled_track.h"
 #include "tests/footage/track_accuracy.h"
-#include "tracking/cine_writer.h"
+#include "tracking/io/cine_writer.h"
 #include "tracking/dimer_length_scale.h"
-#include "tracking/frame_source.h"
-#include "tracking/mosaic_grey.h"
+#include "tracking/io/frame_source.h"
+#include "tracking/io/mosaic_grey.h"
 #include "tracking/track.h"
 
 #ifndef DIMERLAB_POVRAY_TEST_METHOD
@@ -243,7 +243,7 @@ TEST(PovrayFootageThreads, MirrorPlateIdenticalForOneAndTwoThreads) {
 }
 
 // And where the over-exposed plate's level is shared by the frames and every clipped row is
-// fitted again at it (tracking/clipped_edge.h): every frame's plate clips here.
+// fitted again at it (tracking/plate/clipped_edge.h): every frame's plate clips here.
 TEST(PovrayFootageThreads, OverexposedPlateIdenticalForOneAndTwoThreads) {
   const auto r = TrackWithOneAndTwoThreads(Case{"overexposed", Lighting::kOverexposed, 3.9});
   EXPECT_EQ(r[0].plate_clip.frames, kFrames);
@@ -255,7 +255,7 @@ TEST(PovrayFootageThreads, OverexposedPlateIdenticalForOneAndTwoThreads) {
 }
 
 // And where the learning is seeded from the highlights, the film's split chosen by the dimer's
-// length and the frames that disagree left out (tracking/highlight_seed.h): the cluttered
+// length and the frames that disagree left out (tracking/sphere/highlight_seed.h): the cluttered
 // backdrop.
 TEST(PovrayFootageThreads, HighlightSeededLearningIdenticalForOneAndTwoThreads) {
   const auto r = TrackWithOneAndTwoThreads(
@@ -345,7 +345,7 @@ TEST(PovrayFootageThreads, RolledCameraIdenticalForOneAndTwoThreads) {
   ExpectIdentical(r);
 }
 
-// A high-speed sensor's hot pixels (tracking/defect_pixels.h): 60 of them (1 in 3,400 pixels,
+// A high-speed sensor's hot pixels (tracking/io/defect_pixels.h): 60 of them (1 in 3,400 pixels,
 // seeded; some in the spheres' path) put on the front_point footage at full scale. Without the
 // repair one sphere's scatter was 0.54 px (docs/BENCHMARKS.md, "What stands behind the dimer,
 // and the sensor's stuck pixels").
@@ -389,8 +389,8 @@ TEST(PovrayStuckPixels, HotPixelsAreFoundAndReplacedAndTheTargetsStillMet) {
 // (levels 0..1020), and a colour camera's raw Bayer mosaic (RGGB, 8 bits) under a warm lamp
 // (red, green and blue see 1, 0.8 and 0.55 of it). Both must meet the targets. Found when this
 // was added: the 10-bit file lost the rows (the tracker's levels are fractions of the 16-bit full
-// scale; now scaled by the header's RealBPP, tracking/level_scale.h), and the mosaic filtered
-// on every pixel left scatter 0.068 px (now balanced per file, tracking/mosaic_grey.h).
+// scale; now scaled by the header's RealBPP, tracking/io/level_scale.h), and the mosaic filtered
+// on every pixel left scatter 0.068 px (now balanced per file, tracking/io/mosaic_grey.h).
 TEST(PovrayCine, TenBitAndColourPhantomFilesMeetTheTargets) {
   const std::string src = Footage(Case{"front_point", Lighting::kFrontPoint, 3.9});
   dimer::testing::TempDir tmp;
@@ -613,7 +613,7 @@ TEST(PovrayLeavingTheFrame, ASphereCutByTheFramesEdgeIsNotFoundBesideItself) {
 // 16-bit one's at a quarter of full exposure, as PNG with no header to say so) must track as
 // their 8-bit frames do: the same spheres found, each bias within 0.1 px of the 8-bit film's,
 // the plate within the target. Found when this was added (the levels' bits guessed at 10 or 12
-// only, tracking/level_scale.h; the clip looked for at 65535): ring_light's spheres 49 px off,
+// only, tracking/io/level_scale.h; the clip looked for at 65535): ring_light's spheres 49 px off,
 // defocus_1px's not found, over-exposed's plate 0.41 px off (CTest `povray.quarter_range`).
 std::vector<Case> CameraCases();
 
@@ -662,13 +662,13 @@ TEST(PovrayQuarterRange, SixteenBitFramesOfAQuarterOfTheRangeTrackAsTheirEightBi
 // steel rod's glints of the ring light with a sphere (ring_light's right sphere not found, the
 // left 49 px off) and, under-exposed, lost 10-15 % of the frames. The highlights are now weighed
 // by their light, and a film's learning frames whose seeds are not a dimer's length apart are
-// left out (tracking/highlight_seed.h). The cluttered backdrop also at x 0.5: there the
+// left out (tracking/sphere/highlight_seed.h). The cluttered backdrop also at x 0.5: there the
 // highlight floor, read from the levels' spread about their median (the backdrop's shading, in
 // whole levels), stood over the lamps' reflections, and the left sphere came out 22 px off, the
 // right not found; it is now read from the noise. ring_light at x 0.7 and x 0.5: its bouncing
 // sphere's row, carried over from the resting one through the two faint outlines and midway with
 // the registered transfer, was 0.33 px off; the two transfers are now weighed by how alike the
-// two appearances are (tracking/appearance_mismatch.h). Each film: both spheres found, no swap,
+// two appearances are (tracking/sphere/appearance_mismatch.h). Each film: both spheres found, no swap,
 // each bias within 3 of its stated uncertainties (the track file's word on its column), the plate
 // within the target, and the issue's bias target. CTest `povray.lower_levels`.
 TEST(PovrayLowerLevels, FrontLitSteelAtALowerGainIsFoundAndItsStatedUncertaintyHolds) {
@@ -708,7 +708,7 @@ TEST(PovrayLowerLevels, FrontLitSteelAtALowerGainIsFoundAndItsStatedUncertaintyH
 // must look like a standard normal's: RMS within [0.5, 1.25] of 1 and none beyond 3. The
 // outline pairs' own scatter stated 1.3 in RMS and 4.1 at worst here (seed 2's right sphere,
 // -0.134 px stated +-0.034), not seeing that neighbouring rays share their noise; the
-// jackknife over the learning frames (tracking/appearance_model.h, LimbColumnOffset) measures
+// jackknife over the learning frames (tracking/sphere/appearance_model.h, LimbColumnOffset) measures
 // the spread instead (CTest `povray.noise_seeds`).
 TEST(PovrayNoiseSeeds, StatedColumnUncertaintyMatchesTheSpreadOverSeeds) {
   constexpr uint64_t kSeeds = 9;

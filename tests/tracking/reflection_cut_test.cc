@@ -1,5 +1,5 @@
 // A steel sphere reflects the plate in its lower part, and the horizon of that reflection moves
-// within the sphere as the sphere rises (tracking/appearance_model.h, kHorizonGuardPx). Frames
+// within the sphere as the sphere rises (tracking/sphere/appearance_model.h, kHorizonGuardPx). Frames
 // made here, with exact centres: the left sphere rests, the right one rises by up to 24 px while
 // the horizon in it moves down by 0.08 px per px of lift. Matched with its reflection, the
 // rising sphere's row followed the horizon; the template method leaves the reflection out.
@@ -10,9 +10,9 @@
 #include <cmath>
 #include <random>
 
-#include "tracking/appearance_model.h"
-#include "tracking/disc_coverage.h"
-#include "tracking/frame_source.h"
+#include "tracking/sphere/appearance_model.h"
+#include "common/disc_coverage.h"
+#include "tracking/io/frame_source.h"
 #include "tracking/track.h"
 
 namespace dimer::tracking {

@@ -11,7 +11,7 @@
 #include "common/provenance.h"
 #include "common/trajectory.h"
 #include "common/trajectory_io.h"
-#include "tracking/scene_renderer.h"
+#include "render/scene_renderer.h"
 
 namespace dimer::tracking::testing {
 

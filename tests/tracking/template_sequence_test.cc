@@ -11,7 +11,7 @@
 #include "common/h5_file.h"
 #include "tests/common/test_tmpdir.h"
 #include "tests/tracking/synthetic.h"
-#include "tracking/render.h"
+#include "render/render.h"
 #include "tracking/track.h"
 
 namespace dimer::tracking {
@@ -144,9 +144,9 @@ TEST(RunTrack, AutoStatesItsChoiceOnStderrAndInTheFileWithTheTemplatesOffsets) {
   t.m_per_px = 2e-4;
   t.sequence.chunk_frames = 8;
   t.quiet = false;
-  ::testing::internal::CaptureStderr();
+  std::string err;  // the lines `dimerlab track` prints
+  t.on_diagnostic = [&](const Diagnostic& d) { err += FormatDiagnostic(d) + "\n"; };
   RunTrack(t);  // method: the default, auto
-  const std::string err = ::testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("dimerlab track: method auto -> template (reason: "), std::string::npos) << err;
   EXPECT_NE(err.find("left sphere: offset to the centre col "), std::string::npos) << err;
   H5Reader h(t.output);

@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "tests/tracking/synthetic.h"
-#include "tracking/detector.h"
-#include "tracking/frame_source.h"
-#include "tracking/render.h"
+#include "tracking/sphere/detector.h"
+#include "tracking/io/frame_source.h"
+#include "render/render.h"
 #include "tracking/track.h"
 
 namespace dimer::tracking {

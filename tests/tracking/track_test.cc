@@ -20,7 +20,7 @@
 #include "common/trajectory_io.h"
 #include "tests/common/test_tmpdir.h"
 #include "tests/tracking/synthetic.h"
-#include "tracking/render.h"
+#include "render/render.h"
 
 namespace dimer::tracking {
 namespace {

@@ -6,9 +6,9 @@
 
 #include "common/error.h"
 #include "tests/tracking/synthetic.h"
-#include "tracking/detector.h"
-#include "tracking/pixel_map.h"
-#include "tracking/render.h"
+#include "tracking/sphere/detector.h"
+#include "render/pixel_map.h"
+#include "render/render.h"
 
 namespace dimer::tracking {
 namespace {

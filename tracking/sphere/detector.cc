@@ -1,0 +1,110 @@
+#include "tracking/sphere/detector.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "tracking/io/full_scale.h"
+#include "tracking/plate/plate_edge.h"
+#include "tracking/tolerances.h"
+
+namespace dimer::tracking {
+namespace {
+
+// Pixel stride of the polarity sample: 1/16 of the pixels is plenty for three quantiles.
+constexpr int kPolarityStride = 4;
+// Smallest sphere radius the detector accepts, px (smaller blobs are noise or debris).
+constexpr double kMinRadiusPx = 3.0;
+// Silhouette threshold above the background: noise sigmas (4: ~3e-5 of the background pixels
+// pass, isolated specks with no distance-transform peak) and a floor, fraction of full scale.
+constexpr double kSilhouetteNoiseSigmas = 4.0;
+constexpr double kSilhouetteMinStepFraction = 0.02;
+
+// Silhouette threshold: the background (median) plus kSilhouetteNoiseSigmas noise sigmas
+// (from the median absolute deviation), at least kSilhouetteMinStepFraction of full scale.
+// Not Otsu: a mirror sphere's rim is only ~12 grey levels above the background while its
+// lower half reflects the bright plate, and Otsu's split between those leaves the dim upper
+// part out, which moves the distance-transform peak by several pixels.
+double SilhouetteThreshold(const cv::Mat& region, double full) {
+  std::vector<float> v;
+  for (int r = 0; r < region.rows; r += kPolarityStride) {
+    const float* p = region.ptr<float>(r);
+    for (int c = 0; c < region.cols; c += kPolarityStride) v.push_back(p[c]);
+  }
+  auto median = [](std::vector<float>& x) {
+    std::nth_element(x.begin(), x.begin() + x.size() / 2, x.end());
+    return double(x[x.size() / 2]);
+  };
+  const double m = median(v);
+  for (float& x : v) x = std::abs(x - float(m));
+  const double sigma = 1.4826 * median(v);
+  return m + std::max(kSilhouetteNoiseSigmas * sigma, kSilhouetteMinStepFraction * full);
+}
+
+}  // namespace
+
+int DetectPolarity(const cv::Mat& frame) {
+  std::vector<double> v;
+  for (int r = 0; r < frame.rows; r += kPolarityStride) {
+    for (int c = 0; c < frame.cols; c += kPolarityStride) {
+      v.push_back(frame.depth() == CV_8U ? frame.at<uint8_t>(r, c) : frame.at<uint16_t>(r, c));
+    }
+  }
+  auto quantile = [&](double q) {
+    auto it = v.begin() + std::ptrdiff_t(q * double(v.size() - 1));
+    std::nth_element(v.begin(), it, v.end());
+    return *it;
+  };
+  const double lo = quantile(0.01), med = quantile(0.5), hi = quantile(0.99);
+  return (hi - med) >= (med - lo) ? 1 : -1;
+}
+
+Detection DetectSpheres(const cv::Mat& frame, int polarity, double slope) {
+  Detection out;
+  out.plate_row = FindPlateRowCoarse(frame, slope);
+  // The plate and a guard band above it are left out of the silhouette: under the plate's
+  // line, which slopes across the frame by `slope` rows per column.
+  const double centre = 0.5 * (frame.cols - 1), half_drop = std::abs(slope) * centre;
+  int rows = frame.rows, clear_rows = frame.rows;  // above the plate's lowest / highest point
+  if (std::isfinite(out.plate_row)) {
+    rows = std::clamp(int(out.plate_row + half_drop - kPlateGuardPx), 0, frame.rows);
+    clear_rows = std::clamp(int(out.plate_row - half_drop - kPlateGuardPx), 0, frame.rows);
+  }
+  if (rows < 2 * kMinRadiusPx) return out;
+  cv::Mat region;
+  frame.rowRange(0, rows).convertTo(region, CV_32F, polarity);
+  // The threshold from the rows clear of the plate in every column (when there are enough).
+  const cv::Mat clear = clear_rows >= 2 * kMinRadiusPx ? region.rowRange(0, clear_rows) : region;
+  cv::Mat silhouette;
+  cv::threshold(region, silhouette, SilhouetteThreshold(clear, FullScale(frame)), 255,
+                cv::THRESH_BINARY);
+  silhouette.convertTo(silhouette, CV_8U);
+  if (slope != 0 && std::isfinite(out.plate_row)) {
+    for (int c = 0; c < silhouette.cols; ++c) {
+      const int first = std::max(0, int(out.plate_row + slope * (c - centre) - kPlateGuardPx));
+      for (int r = first; r < silhouette.rows; ++r) silhouette.at<uint8_t>(r, c) = 0;
+    }
+  }
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(silhouette, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
+  silhouette.setTo(0);
+  cv::drawContours(silhouette, contours, -1, cv::Scalar(255), cv::FILLED);
+  cv::Mat dist;
+  cv::distanceTransform(silhouette, dist, cv::DIST_L2, cv::DIST_MASK_5);  // coarse is enough
+  double first_peak = 0;
+  for (int k = 0; k < 2; ++k) {
+    double peak = 0;
+    cv::Point at;
+    cv::minMaxLoc(dist, nullptr, &peak, nullptr, &at);
+    if (peak < kMinRadiusPx || (k == 1 && peak < kSecondPeakFraction * first_peak)) break;
+    if (k == 0) first_peak = peak;
+    out.centres.emplace_back(at.x, at.y);
+    out.radii_px.push_back(peak);
+    // Suppress this sphere (and the rod near it) before looking for the other one.
+    cv::circle(dist, at, int(std::ceil(1.5 * peak)), cv::Scalar(0), cv::FILLED);
+  }
+  return out;
+}
+
+}  // namespace dimer::tracking

@@ -1,0 +1,305 @@
+#include "tracking/sphere/template_locator.h"
+
+#include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "tracking/tolerances.h"
+
+namespace dimer::tracking {
+namespace {
+
+// Rows within this distance above the plate's top surface are left out, px: the pixel's own
+// half extent, motion blur, the lit edge's anti-aliasing and the contact shadow.
+constexpr double kTemplatePlateGuardPx = 1.5;
+// At least this fraction of the template must remain after the cuts, else nothing is located.
+constexpr double kMinMaskedFraction = 0.25;
+// ECC smooths both images with a Gaussian of this size first (OpenCV's default, 5): it cuts
+// the noise and the interpolation error of sharp highlights without biasing the shift (both
+// images are smoothed alike), and widens the basin the first run starts in.
+constexpr int kEccGaussSize = 5;
+// The second, residual run of a frame against a learnt appearance smooths less. The appearance
+// is a mean of many frames, nearly noise-free; the frame is noisy, and the estimate that uses
+// its noise best (least squares against the clean appearance, the Cramér-Rao bound of
+// tracking/sphere/precision_bound.h) smooths neither. Smoothing both at 5 blurred the highlights, the
+// sharpest detail and most of the information: POV-Ray steel (docs/BENCHMARKS.md) scattered at
+// 1.5-1.8x the bound; at 3 the scatter is within 1.0-1.4x of it (under-exposed 40-frame set:
+// 0.175 -> 0.135 px against a bound of 0.131). At 1 the soft-box footage lost its way (scatter
+// 0.15 px). Registering two appearances (TransferOffset, SymmetryAxis) keeps 5: neither is
+// noisy, and what two different spheres share is their coarse structure.
+constexpr int kEccFrameGaussSize = 3;
+// ECC's answer is kept only if it stays this close to the correlation peak's, px (the quadratic
+// peak is within ~0.3 px; further means ECC slid to a neighbouring optimum).
+constexpr double kEccMaxMovePx = 1.0;
+// Acquisition: the rod's direction is unknown, so a horizontal corridor on both sides of this
+// half-width (units of R) is cut; the dimer's tilt stays well inside it near the sphere.
+constexpr double kAcquireRodHalfWidthR = 0.45;
+
+cv::Mat ToFloat(const cv::Mat& m) {
+  cv::Mat f;
+  m.convertTo(f, CV_32F);
+  return f;
+}
+
+bool Inside(const cv::Mat& frame, const cv::Rect& r) {
+  return r.x >= 0 && r.y >= 0 && r.x + r.width <= frame.cols && r.y + r.height <= frame.rows;
+}
+
+// Vertex of the parabola through (-1, a), (0, b), (1, c), clamped to half a pixel.
+double Vertex(double a, double b, double c) {
+  const double den = a - 2 * b + c;
+  if (!(den < 0)) return 0;  // not a maximum (flat or noisy): stay on the whole pixel
+  return std::clamp(0.5 * (a - c) / den, -0.5, 0.5);
+}
+
+// Whole-pixel peak of a correlation map, sub-pixel by the parabola through its neighbours.
+Eigen::Vector2d PeakWithVertex(const cv::Mat& res, const cv::Point& p) {
+  double dx = 0, dy = 0;
+  if (p.x > 0 && p.x + 1 < res.cols) {
+    dx = Vertex(res.at<float>(p.y, p.x - 1), res.at<float>(p.y, p.x), res.at<float>(p.y, p.x + 1));
+  }
+  if (p.y > 0 && p.y + 1 < res.rows) {
+    dy = Vertex(res.at<float>(p.y - 1, p.x), res.at<float>(p.y, p.x), res.at<float>(p.y + 1, p.x));
+  }
+  return {p.x + dx, p.y + dy};
+}
+
+}  // namespace
+
+namespace {
+
+// ECC's cost grows with the image's area, but only the masked pixels and a rim around them
+// enter its sums: ECC smooths (kEccGaussSize: 2 px), takes gradients (1 px), samples
+// bilinearly (1 px) around the masked pixels moved by the shift. Since the appearance's mask
+// may cover only part of the template (the plate's reflection cut, the rod, the plate rows),
+// both images are cut to the mask's bounding box widened by this margin: the same sums, on
+// fewer pixels. It holds for shifts up to kEccCropMarginPx - 4 px (tests/tracking/
+// register_window_test.cc: 0 px of margin is 0.025 px off, 2 px agree); ECC's answer must stay
+// within kEccMaxMovePx of a start at most half a pixel off anyway.
+constexpr int kEccCropMarginPx = 6;
+constexpr double kEccCropMaxShiftPx = kEccCropMarginPx - 4;
+
+// The mask's bounding box widened by kEccCropMarginPx, inside the image.
+cv::Rect EccWindow(const cv::Mat& mask) {
+  const cv::Rect box = cv::boundingRect(mask);
+  const cv::Rect wide(box.x - kEccCropMarginPx, box.y - kEccCropMarginPx,
+                      box.width + 2 * kEccCropMarginPx, box.height + 2 * kEccCropMarginPx);
+  return wide & cv::Rect(0, 0, mask.cols, mask.rows);
+}
+
+// The two ECC runs of RegisterTranslation on `window` (the same rectangle of both images): the
+// shift is the same as on the whole images, since both are cut alike. False: ECC did not
+// converge, or went further than the window allows (*t untouched then).
+bool RegisterInWindow(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
+                      const cv::Rect& window, Eigen::Vector2d* t, double* rho,
+                      int residual_gauss, const EccStop& ecc) {
+  const cv::TermCriteria stop(cv::TermCriteria::COUNT + cv::TermCriteria::EPS,
+                              ecc.max_iterations, ecc.epsilon);
+  const bool whole = window == cv::Rect(0, 0, fixed.cols, fixed.rows);
+  const cv::Mat fixed_w = fixed(window), moving_w = moving(window), mask_w = mask(window);
+  cv::Mat warp = (cv::Mat_<float>(2, 3) << 1, 0, float(t->x()), 0, 1, float(t->y()));
+  try {
+    cv::findTransformECC(fixed_w, moving_w, warp, cv::MOTION_TRANSLATION, stop, mask_w,
+                         kEccGaussSize);
+    // ECC warps `moving` bilinearly, and its iterations settle only within a few hundredths of
+    // a pixel of the optimum (bilinear interpolation blurs by an amount that depends on the
+    // fractional shift). So `moving` is shifted once by ECC's answer with a Lanczos kernel
+    // (nearly exact for a band-limited image) and ECC run again from zero: the residual steps
+    // are small, and so is their error (on a noisy sphere the scatter falls by a third).
+    const double tx = warp.at<float>(0, 2), ty = warp.at<float>(1, 2);
+    if (!whole && std::max(std::abs(tx), std::abs(ty)) > kEccCropMaxShiftPx) return false;
+    // The shifted window is read from the whole `moving` (the Lanczos kernel reaches 4 px).
+    const cv::Mat shift =
+        (cv::Mat_<double>(2, 3) << 1, 0, tx + window.x, 0, 1, ty + window.y);
+    cv::Mat shifted, shifted_mask;
+    cv::warpAffine(moving, shifted, shift, window.size(),
+                   cv::INTER_LANCZOS4 | cv::WARP_INVERSE_MAP, cv::BORDER_REPLICATE);
+    cv::warpAffine(mask, shifted_mask, shift, window.size(),
+                   cv::INTER_NEAREST | cv::WARP_INVERSE_MAP, cv::BORDER_CONSTANT, cv::Scalar(0));
+    cv::Mat residual = cv::Mat::eye(2, 3, CV_32F);
+    const double r = cv::findTransformECC(fixed_w, shifted, residual, cv::MOTION_TRANSLATION,
+                                          stop, shifted_mask, residual_gauss);
+    const Eigen::Vector2d found(tx + residual.at<float>(0, 2), ty + residual.at<float>(1, 2));
+    if (!found.allFinite()) return false;
+    if (rho) *rho = r;
+    *t = found;
+  } catch (const cv::Exception&) {
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool RegisterTranslation(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
+                         Eigen::Vector2d* t, double* rho, int residual_gauss,
+                         const EccStop& stop) {
+  const cv::Rect whole(0, 0, fixed.cols, fixed.rows);
+  const cv::Rect window = EccWindow(mask);
+  // A start too far for the window, or an ECC run that went too far in it: the whole images.
+  if (window != whole && std::max(std::abs(t->x()), std::abs(t->y())) <= 1.0 &&
+      RegisterInWindow(fixed, moving, mask, window, t, rho, residual_gauss, stop)) {
+    return true;
+  }
+  return RegisterInWindow(fixed, moving, mask, whole, t, rho, residual_gauss, stop);
+}
+
+cv::Mat FrameMask(const Appearance& a, const Eigen::Vector2d& position, const MaskContext& ctx) {
+  cv::Mat m = a.mask.clone();
+  const bool rod = ctx.rod_dir.squaredNorm() > 0;
+  const Eigen::Vector2d dir = rod ? Eigen::Vector2d(ctx.rod_dir.normalized()) : Eigen::Vector2d(0, 0);
+  const double rod_half = kRodCorridorHalfWidthR * a.radius_px;
+  const double rod_inset = a.radius_px - kRodCutInsetPx;
+  const double last_row = std::isfinite(ctx.plate_row) ? ctx.plate_row - kTemplatePlateGuardPx
+                                                       : std::numeric_limits<double>::infinity();
+  // The other sphere's disc only when it can reach the template (touching spheres).
+  const double other_r = a.radius_px + kOtherSphereMarginPx;
+  const double other_r2 = other_r * other_r;
+  const bool other_cut = ctx.other.allFinite() && ctx.other.norm() < other_r + 1.5 * a.half;
+  for (int y = 0; y < m.rows; ++y) {
+    uint8_t* row = m.ptr<uint8_t>(y);
+    const double dy = y - a.half;
+    if (ctx.plate_slope != 0 && std::isfinite(last_row)) {
+      // A sloping plate: its rows cut column by column.
+      for (int x = 0; x < m.cols; ++x) {
+        if (position.y() + dy > last_row + ctx.plate_slope * (x - a.half)) row[x] = 0;
+      }
+    } else if (position.y() + dy > last_row) {
+      std::fill(row, row + m.cols, uint8_t(0));
+      continue;
+    }
+    if (other_cut) {
+      for (int x = 0; x < m.cols; ++x) {
+        const double ox = x - a.half - ctx.other.x(), oy = dy - ctx.other.y();
+        if (ox * ox + oy * oy < other_r2) row[x] = 0;
+      }
+    }
+    if (!rod) continue;
+    for (int x = 0; x < m.cols; ++x) {
+      const double dx = x - a.half;
+      const double along = dx * dir.x() + dy * dir.y();
+      const double across = std::abs(dx * dir.y() - dy * dir.x());
+      if (along > rod_inset && across < rod_half) row[x] = 0;
+    }
+  }
+  return m;
+}
+
+namespace {
+
+// TM_CCOEFF_NORMED divides by the window's spread. Where the frame is flat, as a background
+// clipped at black or a lossy video's smoothed background is, that spread is 0 and OpenCV gives
+// NaN or +-inf; nearly flat, values past +-1. None of them is a correlation (which lies in
+// [-1, 1]): all read as -1, no match. Before, an inf in a flat corner of H.264 or MJPEG frames
+// outscored both spheres in every frame (docs/BENCHMARKS.md, "Compressed video").
+void KeepCorrelations(cv::Mat* res) {
+  constexpr double kRoundOff = 1e-3;  // float sums can pass 1 by round-off on a perfect match
+  const cv::Mat valid = (*res >= -1.0 - kRoundOff) & (*res <= 1.0 + kRoundOff);  // NaN: false
+  res->setTo(-1.0, ~valid);
+}
+
+}  // namespace
+
+Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
+                         int search_px, const MaskContext& ctx, const EccStop& stop) {
+  Located out;
+  const int size = 2 * a.half + 1;
+  const cv::Point g(int(std::lround(guess.x())), int(std::lround(guess.y())));
+  const cv::Rect search(g.x - a.half - search_px, g.y - a.half - search_px, size + 2 * search_px,
+                        size + 2 * search_px);
+  if (!Inside(frame, search)) {
+    out.clipped = true;
+    return out;
+  }
+  cv::Mat mask = FrameMask(a, guess, ctx);
+  if (cv::countNonZero(mask) < kMinMaskedFraction * size * size) return out;
+  Eigen::Vector2d start = guess;
+  if (search_px > 0) {
+    // Template pixels outside the mask weigh nothing in the masked correlation: the template,
+    // its mask and the window are cut to the mask's bounding box (same map, fewer pixels).
+    const cv::Rect box = cv::boundingRect(mask);
+    const cv::Rect window(search.x + box.x, search.y + box.y, box.width + 2 * search_px,
+                          box.height + 2 * search_px);
+    cv::Mat res;
+    cv::matchTemplate(ToFloat(frame(window)), a.image(box), res, cv::TM_CCOEFF_NORMED, mask(box));
+    KeepCorrelations(&res);
+    double best = 0;
+    cv::Point at;
+    cv::minMaxLoc(res, nullptr, &best, nullptr, &at);
+    out.score = best;
+    const Eigen::Vector2d peak = PeakWithVertex(res, at);
+    start = {search.x + peak.x() + a.half, search.y + peak.y() + a.half};
+  }
+
+  // ECC: the frame patch is ECC's template, the appearance its input image, so that the
+  // appearance's mask (input mask) moves with the sphere. It finds t with A(x + t) = F(x): the
+  // reference point, at (half, half) in A, is at (half, half) - t in F.
+  const cv::Point g2(int(std::lround(start.x())), int(std::lround(start.y())));
+  const cv::Rect patch(g2.x - a.half, g2.y - a.half, size, size);
+  out.position = start;
+  out.ok = search_px > 0;  // without the search, only a converged ECC counts
+  if (!Inside(frame, patch)) return out;
+  const cv::Mat frame_patch = ToFloat(frame(patch));
+  // Following (no search) refines from the guess itself, whose mask is already cut.
+  const cv::Mat refine_mask = start == guess ? mask : FrameMask(a, start, ctx);
+  Eigen::Vector2d t(g2.x - start.x(), g2.y - start.y());
+  double rho = 0;
+  if (!RegisterTranslation(frame_patch, a.image, refine_mask, &t, &rho, kEccFrameGaussSize,
+                           stop)) {
+    return out;  // ECC did not converge: the correlation peak stands
+  }
+  const Eigen::Vector2d refined(g2.x - t.x(), g2.y - t.y());
+  if ((refined - start).norm() <= kEccMaxMovePx) {
+    out.position = refined;
+    out.refined = rho;
+    if (search_px == 0) out.ok = true, out.score = rho;
+  }
+  return out;
+}
+std::vector<Located> FindAppearance(const cv::Mat& frame, const Appearance& a, double plate_row,
+                                    double min_separation_px, double min_score) {
+  std::vector<Located> found;
+  const int size = 2 * a.half + 1;
+  // A resting sphere's template reaches below the plate: rows from R - guard below the
+  // reference are cut, and the frame is searched down to where such a template ends.
+  cv::Mat mask = a.mask.clone();
+  const double rod_half = kAcquireRodHalfWidthR * a.radius_px;
+  const double rod_inset = a.radius_px - kRodCutInsetPx;
+  for (int y = 0; y < size; ++y) {
+    const double dy = y - a.half;
+    for (int x = 0; x < size; ++x) {
+      const double dx = x - a.half;
+      if (dy > a.radius_px - kTemplatePlateGuardPx ||
+          (std::abs(dx) > rod_inset && std::abs(dy) < rod_half)) {
+        mask.at<uint8_t>(y, x) = 0;
+      }
+    }
+  }
+  int rows = frame.rows;
+  if (std::isfinite(plate_row)) {
+    rows = std::min(rows, int(std::ceil(plate_row - a.radius_px)) + a.half + 2);
+  }
+  if (rows < size || frame.cols < size) return found;
+  cv::Mat res;
+  cv::matchTemplate(ToFloat(frame(cv::Rect(0, 0, frame.cols, rows))), a.image, res,
+                    cv::TM_CCOEFF_NORMED, mask);
+  KeepCorrelations(&res);
+  for (int k = 0; k < 2; ++k) {
+    double best = 0;
+    cv::Point at;
+    cv::minMaxLoc(res, nullptr, &best, nullptr, &at);
+    if (best < min_score) break;
+    Located l;
+    l.ok = true;
+    l.score = best;
+    const Eigen::Vector2d peak = PeakWithVertex(res, at);
+    l.position = {peak.x() + a.half, peak.y() + a.half};
+    found.push_back(l);
+    cv::circle(res, at, int(std::ceil(min_separation_px)), cv::Scalar(-2.0), cv::FILLED);
+  }
+  return found;
+}
+
+}  // namespace dimer::tracking

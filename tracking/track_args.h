@@ -1,0 +1,47 @@
+#pragma once
+// What `dimerlab track FRAMES -o track.h5` is asked to do: the command line, typed, with the
+// tracker's options (track_sequence.h) inside it. RunTrack (track.h) runs it.
+#include <functional>
+#include <limits>
+#include <string>
+
+#include "tracking/diagnostics.h"
+#include "tracking/track_sequence.h"
+
+namespace dimer::tracking {
+
+struct TrackArgs {
+  std::string input;            // folder of frames, multi-page TIFF, .cine or video
+  std::string frames;           // --frames A:B (frame_range.h); empty: all
+  std::string output;           // track.h5
+  std::string output_label;     // how messages name the output (empty: `output`)
+  bool force = false;           // replace an existing output
+  // Frame rate, frames/s. NaN (not given): the .cine header's, else kDefaultFps. Given and
+  // different from a .cine header's: a warning, and this value is used.
+  double fps = std::numeric_limits<double>::quiet_NaN();
+  double m_per_px = std::numeric_limits<double>::quiet_NaN();  // m/px; NaN: from --diameter
+  double diameter = 9.5e-3;     // sphere diameter, m (calibration when m_per_px is not given)
+  // --ar: the dimer's aspect ratio, length / diameter (dimer_length_scale.h). With m_per_px not
+  // given, the scale is (ar - 1) diameter over the tracked centre distance, and the template
+  // tracks with the radius that implies; with m_per_px given, a check. NaN: not given.
+  double ar = std::numeric_limits<double>::quiet_NaN();
+  double row0 = std::numeric_limits<double>::quiet_NaN();      // z = 0 row, px; NaN: plate median
+  // The plate edge's own scale, m/px, where it is not in the dimer's plane (a plate's front
+  // edge is nearer the camera); needs m_per_px or ar. NaN: the dimer plane's.
+  double plate_m_per_px = std::numeric_limits<double>::quiet_NaN();
+  // --lens: an OpenCV camera calibration file (lens_undistortion.h); empty: frames as recorded.
+  std::string lens;
+  std::string method = "auto";  // auto | centroid | discfit | template
+  std::string polarity = "auto";  // auto | bright | dark
+  SequenceOptions sequence;
+  bool quiet = false;           // no progress on stderr
+  // Called from the calling thread with the frames done so far, after each joined chunk
+  // (tests use it to interrupt at a known point); may be empty.
+  std::function<void(size_t)> on_progress;
+  // Each note and warning about the film as it is made (diagnostics.h), from the calling
+  // thread; app/ prints them. May be empty.
+  Diagnostics::Sink on_diagnostic;
+  void Check() const;           // InputError listing every invalid field
+};
+
+}  // namespace dimer::tracking

@@ -1,0 +1,377 @@
+#include "tracking/track_sequence.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <future>
+#include <optional>
+#include <thread>
+
+#include "common/error.h"
+#include "common/interrupt.h"
+#include "tracking/sphere/precision_bound.h"
+
+namespace dimer::tracking {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// What every chunk must agree on, fixed from the first readable frame.
+struct Reference {
+  int width = 0, height = 0, polarity = 0;
+  double radius_px = kNaN;
+};
+
+struct ChunkResult {
+  std::vector<FrameTrack> frames;
+  std::vector<std::string> names;
+  std::vector<SkippedFrame> skipped;
+  bool interrupted = false;
+};
+
+std::string SizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+// A frame as the tracker measures it: the sensor's stuck pixels replaced first (they are the
+// sensor's, and undistortion would smear them), then the lens's distortion taken out.
+cv::Mat CleanFrame(const cv::Mat& image, const DefectPixels& defects,
+                   const LensUndistortion* lens) {
+  cv::Mat repaired = RepairDefectPixels(image, defects);
+  return lens ? lens->Apply(repaired) : repaired;
+}
+
+ChunkResult TrackChunk(const FrameSource& source, size_t start, size_t count,
+                       std::vector<Frame> prefetched, const TrackerOptions& opts,
+                       const Reference& ref, const DefectPixels& defects,
+                       const LensUndistortion* lens) {
+  ChunkResult out;
+  TrackerOptions o = opts;
+  o.polarity = ref.polarity;
+  o.radius_px = ref.radius_px;
+  SequenceTracker tracker(o);
+  const size_t n = prefetched.empty() ? count : prefetched.size();
+  for (size_t j = 0; j < n; ++j) {
+    if (InterruptRequested()) {
+      out.interrupted = true;
+      break;
+    }
+    Frame f = prefetched.empty() ? source.Read(start + j) : std::move(prefetched[j]);
+    if (f.error.empty() && (f.image.cols != ref.width || f.image.rows != ref.height)) {
+      f.error = "size " + SizeText(f.image.cols, f.image.rows) + " differs from the first frame's " +
+                SizeText(ref.width, ref.height);
+    }
+    if (!f.error.empty()) {
+      out.skipped.push_back({f.index, f.name, f.error});
+      continue;
+    }
+    out.frames.push_back(tracker.Process(CleanFrame(f.image, defects, lens), f.index));
+    out.names.push_back(f.name);
+  }
+  return out;
+}
+
+Reference MakeReference(const cv::Mat& image, const TrackerOptions& opts) {
+  Reference ref;
+  ref.width = image.cols;
+  ref.height = image.rows;
+  SequenceTracker probe(opts);
+  probe.Process(image, 0);
+  ref.polarity = probe.polarity();
+  ref.radius_px = probe.radius_px();
+  return ref;
+}
+
+// Swaps a chunk's identities when that continues the previous chunk's positions better.
+void Stitch(const std::vector<FrameTrack>& done, std::vector<FrameTrack>* chunk) {
+  auto both = [](const FrameTrack& t) { return t.found[0] && t.found[1]; };
+  auto last = std::find_if(done.rbegin(), done.rend(), both);
+  auto first = std::find_if(chunk->begin(), chunk->end(), both);
+  if (last == done.rend() || first == chunk->end()) return;
+  const double keep = (first->centre[0] - last->centre[0]).norm() +
+                      (first->centre[1] - last->centre[1]).norm();
+  const double cross = (first->centre[0] - last->centre[1]).norm() +
+                       (first->centre[1] - last->centre[0]).norm();
+  if (cross >= keep) return;
+  for (FrameTrack& t : *chunk) {
+    std::swap(t.found[0], t.found[1]);
+    std::swap(t.centre[0], t.centre[1]);
+    std::swap(t.radius_px[0], t.radius_px[1]);
+  }
+}
+
+// An over-exposed plate: the clipped side's level shared by the frames, then every clipped
+// frame's row fitted again at it (clipped_edge.h). The profiles are dropped afterwards.
+PlateClip RefitClippedPlate(double psf_sigma_px, bool fit_blur, std::vector<FrameTrack>* frames) {
+  PlateClip out;
+  std::vector<const ClippedEdgeProfile*> profiles;
+  std::vector<double> rows;
+  for (const FrameTrack& f : *frames) {
+    profiles.push_back(f.clipped_plate.get());
+    rows.push_back(f.plate_row);
+    out.frames += f.clipped_plate != nullptr;
+  }
+  if (out.frames > 0) {
+    out.level = SharedClippedLevel(profiles, psf_sigma_px, kClippedLevelMaxFrames, fit_blur);
+    out.refitted = RefitClippedRows(profiles, out.level, &rows);
+  }
+  for (size_t i = 0; i < frames->size(); ++i) {
+    (*frames)[i].plate_row = rows[i];
+    (*frames)[i].clipped_plate.reset();
+  }
+  return out;
+}
+
+// A frame of the chunk being launched, by its index in the chunk (the decoded-ahead buffer of a
+// sequential source, else read from the source).
+using FrameAt = std::function<Frame(size_t)>;
+
+// What the first readable frame fixes for every chunk, and what the chunks share by reference
+// while they run (kept in place until the last one is joined).
+struct Film {
+  Reference ref;
+  TrackerOptions chunk_opts;             // the tracker's options for every chunk
+  SequenceMethod prepared;               // the method chosen (and learnt) for the film
+  cv::Mat first_frame;                   // the first readable frame, stuck pixels replaced
+  std::optional<LensUndistortion> lens;  // made for the first readable frame's size
+  const LensUndistortion* undistort = nullptr;  // &*lens once made, for CleanFrame
+};
+
+// Stage "open": the first readable frame of `count` fixes size, polarity and radius. Frames
+// spread over the chunk give the sensor's stuck pixels (defect_pixels.h) and then, on the frames
+// with those replaced, the plate edge's slope (plate_slope.h). False: no readable frame there.
+bool OpenFilm(const FrameAt& frame_at, size_t count, const SequenceOptions& options, Film* film,
+              SequenceResult* result) {
+  cv::Mat first;
+  for (size_t j = 0; j < count && first.empty(); ++j) {
+    Frame f = frame_at(j);
+    if (f.error.empty()) first = f.image;
+  }
+  if (first.empty()) return false;
+  std::vector<cv::Mat> probe;
+  for (size_t j = 0; j < kSlopeFrames; ++j) {
+    const size_t i = j * count / kSlopeFrames;
+    if (j > 0 && i == (j - 1) * count / kSlopeFrames) continue;
+    Frame f = frame_at(i);
+    if (f.error.empty() && f.image.size() == first.size()) probe.push_back(f.image);
+  }
+  result->defects = FindDefectPixels(probe);
+  if (options.lens) {
+    film->lens.emplace(*options.lens, first.size());
+    result->lens = options.lens;
+    result->lens_max_shift_px = film->lens->max_shift_px();
+    film->undistort = &*film->lens;
+  }
+  for (cv::Mat& p : probe) p = CleanFrame(p, result->defects, film->undistort);
+  film->first_frame = CleanFrame(first, result->defects, film->undistort);
+  film->ref = MakeReference(film->first_frame, options.tracker);
+  result->plate_slope = EstimatePlateSlope(probe, film->ref.polarity);
+  film->chunk_opts.plate_slope = result->plate_slope.value;
+  return true;
+}
+
+// Stage "choose method, learn" (template and auto): the learning frames, `learning_at(i)` for i
+// in LearningIndices(available), by index only (sequential sources: within the first chunk,
+// which is decoded ahead anyway); the method and appearances are fixed before any chunk runs.
+void LearnFilm(const FrameAt& learning_at, size_t available, const SequenceOptions& options,
+               int threads, Film* film, SequenceResult* result) {
+  std::vector<Frame> learning;
+  for (size_t i : LearningIndices(available)) {
+    Frame f = learning_at(i);
+    if (f.error.empty() && f.image.cols == film->ref.width && f.image.rows == film->ref.height) {
+      f.image = CleanFrame(f.image, result->defects, film->undistort);
+      learning.push_back(std::move(f));
+    }
+  }
+  TrackerOptions reference = options.tracker;
+  reference.polarity = film->ref.polarity;
+  reference.plate_slope = film->chunk_opts.plate_slope;
+  // The template is sized by the true radius when the scale is known (the silhouette
+  // radius of a front-lit steel sphere can be pixels short).
+  reference.radius_px = std::isfinite(options.contact_radius_px) ? options.contact_radius_px
+                                                                 : film->ref.radius_px;
+  film->prepared = PrepareSequenceMethod(learning, reference, options.tracker.method,
+                                         std::isfinite(options.contact_radius_px),
+                                         LearnOptions{options.learn_passes, threads,
+                                                      film->chunk_opts.plate_slope,
+                                                      options.jackknife_groups,
+                                                      options.seed_agreement_px});
+  film->chunk_opts.method = film->prepared.choice.method;
+  film->chunk_opts.appearance = film->prepared.appearance;
+  // The template's radius (the scale's, or its outline's) is every frame's radius, which
+  // calibrates the scale when it is not given.
+  if (film->prepared.appearance) {
+    film->ref.radius_px = (*film->prepared.appearance)[0].radius_px;
+    result->radius_source = std::isfinite(options.contact_radius_px) ? "scale"
+                            : film->prepared.radius_from_outline     ? "outline"
+                                                                     : "silhouette";
+  }
+}
+
+// Stage "contact line": on a polished plate (or with the plate edge's own scale given), the
+// edge to the contact line: a constant at the learning frames' edge row (a polished plate's
+// mirror images), and the edge's motion scaled to the contact line's, by the ratio of scales the
+// user gave or else by a resting sphere (plate_contact.h).
+void PlaceContactLine(const SequenceMethod& prepared, const SequenceOptions& options,
+                      SequenceResult* result) {
+  result->plate_shift = prepared.plate_shift;
+  const bool scale_given = std::isfinite(options.plate_motion_scale);
+  if (!prepared.plate_shift.applied && !scale_given) return;
+  std::vector<double> edge;
+  std::array<std::vector<double>, 2> rows;
+  for (const FrameTrack& f : result->frames) {
+    edge.push_back(f.plate_row);
+    for (int k = 0; k < 2; ++k) rows[k].push_back(f.found[k] ? f.centre[k].y() : std::nan(""));
+  }
+  result->plate_scale =
+      scale_given ? GivenPlateMotionScale(options.plate_motion_scale, edge, prepared.plate_shift)
+                  : FitPlateMotionScale(edge, rows, prepared.plate_shift);
+  for (FrameTrack& f : result->frames) {
+    f.plate_row = ContactRow(prepared.plate_shift, result->plate_scale, f.plate_row);
+  }
+}
+
+// Stage "offsets" (template): the first frame's noise and each sphere's bound, then the offsets
+// from each appearance's reference point to the sphere's centre, applied to every frame.
+void PlaceOffsets(const Film& film, const SequenceOptions& options, SequenceResult* result) {
+  if (!film.chunk_opts.appearance) return;
+  result->appearance = *film.chunk_opts.appearance;
+  result->frame_noise = FrameNoiseSigma(film.first_frame);
+  for (int k = 0; k < 2; ++k) {
+    result->precision_bound[k] = TranslationBound(result->appearance[k], result->frame_noise);
+  }
+  result->offsets = EstimateOffsets(film.prepared, result->frames, film.ref.radius_px,
+                                    options.gravity_per_radius_px * film.ref.radius_px);
+  ApplyOffsets(result->offsets, &result->frames);
+}
+
+// The stages after the last chunk, in order.
+void FinishFilm(const Film& film, const SequenceOptions& options, bool sequence_level,
+                SequenceResult* result) {
+  if (InterruptRequested()) result->complete = false;
+  result->method = sequence_level ? film.prepared.choice.method : options.tracker.method;
+  result->method_reason = film.prepared.choice.reason;
+  // Before anything reads the found spheres (the plate's motion scale, the offsets).
+  result->scores = DropOutlyingMatches(&result->frames);
+  result->plate_clip = RefitClippedPlate(options.tracker.psf_sigma_px,
+                                         options.tracker.fit_psf_sigma, &result->frames);
+  PlaceContactLine(film.prepared, options, result);
+  PlaceOffsets(film, options, result);
+  result->precision = MeasurePrecision(result->frames, result->precision_bound);
+  result->polarity = film.ref.polarity;
+  result->width = film.ref.width;
+  result->height = film.ref.height;
+}
+
+// The frames of `source` as they are (levels already scaled): opened, learnt, followed in
+// chunks of options.chunk_frames on `threads` workers, stitched, finished.
+SequenceResult TrackFramesAsGiven(FrameSource& source, const SequenceOptions& options,
+                                  const std::function<void(size_t)>& on_progress,
+                                  const std::function<void(const SkippedFrame&)>& on_skip) {
+  const int threads = options.threads > 0 ? options.threads
+                                          : int(std::max(1u, std::thread::hardware_concurrency()));
+  SequenceResult result;
+  Film film;
+  film.chunk_opts = options.tracker;
+  bool have_ref = false;
+  size_t next = 0;
+  bool exhausted = false;
+  const bool sequence_level = options.tracker.method == Method::kTemplate ||
+                              options.tracker.method == Method::kAuto;
+  std::deque<std::future<ChunkResult>> inflight;
+  auto launch = [&]() {
+    std::vector<Frame> buffer;
+    size_t count = options.chunk_frames;
+    if (!source.random_access()) {  // decode ahead on this thread
+      Frame f;
+      while (buffer.size() < options.chunk_frames && source.Next(&f)) buffer.push_back(f);
+      count = buffer.size();
+    } else {
+      count = std::min(count, source.size() - next);
+    }
+    if (count == 0) {
+      exhausted = true;
+      return;
+    }
+    if (!have_ref) {
+      const FrameAt in_chunk = [&](size_t j) {
+        return buffer.empty() ? source.Read(next + j) : buffer[j];
+      };
+      have_ref = OpenFilm(in_chunk, count, options, &film, &result);
+      if (have_ref && sequence_level) {
+        const FrameAt learning_at = [&](size_t i) {
+          return buffer.empty() ? source.Read(i) : buffer[i];
+        };
+        LearnFilm(learning_at, buffer.empty() ? source.size() : buffer.size(), options, threads,
+                  &film, &result);
+      }
+    }
+    inflight.push_back(std::async(std::launch::async, TrackChunk, std::cref(source), next, count,
+                                  std::move(buffer), film.chunk_opts, film.ref,
+                                  std::cref(result.defects), film.undistort));
+    next += count;
+    if (source.random_access() && next >= source.size()) exhausted = true;
+  };
+  while (true) {
+    // Exactly `threads` chunks run at once (each on its own std::thread via std::async): more
+    // would oversubscribe the cores; results do not depend on it (chunks are joined in order).
+    while (!exhausted && !InterruptRequested() && int(inflight.size()) < threads) launch();
+    if (inflight.empty()) break;
+    ChunkResult chunk = inflight.front().get();
+    inflight.pop_front();
+    for (const auto& s : chunk.skipped) {
+      if (on_skip) on_skip(s);
+      result.skipped.push_back(s);
+    }
+    if (!result.complete) continue;  // after an interruption keep only whole prefixes
+    Stitch(result.frames, &chunk.frames);
+    result.frames.insert(result.frames.end(), chunk.frames.begin(), chunk.frames.end());
+    result.names.insert(result.names.end(), chunk.names.begin(), chunk.names.end());
+    if (chunk.interrupted) result.complete = false;
+    if (on_progress) on_progress(result.frames.size() + result.skipped.size());
+  }
+  FinishFilm(film, options, sequence_level, &result);
+  return result;
+}
+
+}  // namespace
+
+void SequenceOptions::Check() const {
+  tracker.Check();
+  if (threads < 0 || threads > 256) throw UsageError("--threads must be 0 (all cores) .. 256");
+  if (chunk_frames < 1) throw UsageError("--chunk-frames must be >= 1");
+  if (learn_passes < 0 || learn_passes > 20) throw UsageError("learning passes must be 0 .. 20");
+  if (jackknife_groups < 0 || jackknife_groups > 64) {
+    throw UsageError("jackknife groups must be 0 .. 64");
+  }
+  if (!(seed_agreement_px >= 0 && seed_agreement_px <= 64)) {
+    throw UsageError("the seeds' agreement must be 0 (the default) .. 64 px");
+  }
+  if (camera_bits != 0 && (camera_bits < 8 || camera_bits > 16)) {
+    throw UsageError("--bits must be 8 .. 16 (the camera's bits per pixel)");
+  }
+  if (!std::isnan(plate_motion_scale) &&
+      !(plate_motion_scale > 0 && std::isfinite(plate_motion_scale))) {
+    throw UsageError("the plate's motion scale must be > 0");
+  }
+}
+
+SequenceResult TrackSequence(FrameSource& source, const SequenceOptions& options,
+                             const std::function<void(size_t)>& on_progress,
+                             const std::function<void(const SkippedFrame&)>& on_skip) {
+  options.Check();
+  // Stage "levels": a 10- or 12-bit camera's 16-bit frames, scaled to the range the levels are
+  // fractions of (level_scale.h); positions do not change with a gain.
+  const LevelScale scale = ChooseLevelScale(source, options.camera_bits);
+  SequenceResult result;
+  if (scale.factor != 1) {
+    const auto scaled = ScaledLevels(source, scale.factor);
+    result = TrackFramesAsGiven(*scaled, options, on_progress, on_skip);
+    result.level_scale = scale;
+    result.level_scale.clipped_frames = scaled->clipped_frames();
+    result.level_scale.first_clipped = scaled->first_clipped();
+  } else {
+    result = TrackFramesAsGiven(source, options, on_progress, on_skip);
+    result.level_scale = scale;
+  }
+  return result;
+}
+
+}  // namespace dimer::tracking
