@@ -32,6 +32,7 @@ function abs(x) { return x < 0 ? -x : x }
     count[mode]++; total++
     if (g < 0.65 && mode != "rest") low_g_not_rest++
     if (ar < 2.8 && mode == "drift") short_drift++
+    if (g > 1) { above1++; above1_mode[mode]++; if (ar >= 3) { above1_long++; above1_long_mode[mode]++ } }
   } else if (file == "fig4a_drops") {
     cell = f SUBSEP key
     dn[cell]++; if (mode == "drift") { dd[cell]++; DS[cell, dd[cell]] = s }
@@ -160,6 +161,12 @@ END {
     num("map." MODES[i], c); num("map." MODES[i] "_pct", sprintf("%.1f", 100 * c / total))
   }
   num("map.points", total); num("map.low_gamma_not_rest", low_g_not_rest + 0); num("map.short_drift", short_drift + 0)
+  # Above Gamma 1: the share of each outcome, over all A_r and over A_r >= 3.
+  num("map.above1.points", above1 + 0)
+  num("map.above1.irregular_pct", sprintf("%.0f", 100 * above1_mode["irregular"] / above1))
+  num("map.above1.drift_pct", sprintf("%.0f", 100 * above1_mode["drift"] / above1))
+  num("map.above1.ar3.irregular_pct", sprintf("%.0f", 100 * above1_long_mode["irregular"] / above1_long))
+  num("map.above1.ar3.drift_pct", sprintf("%.0f", 100 * above1_long_mode["drift"] / above1_long))
 
   print "== fig4a_drops: drift orbits from random drops (seeds per point, fraction ending in drift)"
   m = sorted_keys(dars, DK)
