@@ -17,6 +17,15 @@ namespace {
 
 using testing::Scaled;
 
+// A reproducible uniform draw (a 64-bit LCG's top 53 bits): the same runs on every machine.
+struct Uniform {
+  uint64_t state;
+  double operator()(double lo, double hi) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return lo + (hi - lo) * static_cast<double>(state >> 11) * 0x1.0p-53;
+  }
+};
+
 // Deepest penetration a healthy run may show: the gap tolerance, and round-off of a position.
 double PenetrationLimit(const SimOptions& o) {
   return o.gap_tol + kPositionRoundoffRel * 0.5 * o.diameter_m;
@@ -27,7 +36,7 @@ double PenetrationLimit(const SimOptions& o) {
 // the other has just bounced; putting the resting one onto the plate lowered the other below
 // -gap_tol, where the impact event could no longer see it, and it sank 9 mm through the plate
 // while the run reported "rest".
-TEST(Penetration, SpinningShortDimerAfterACollapseStaysAbovethePlate) {
+TEST(Penetration, SpinningShortDimerAfterACollapseStaysAboveThePlate) {
   SimOptions o;
   o.ar = 2;
   o.gamma = 0.644;
@@ -45,11 +54,7 @@ TEST(Penetration, SpinningShortDimerAfterACollapseStaysAbovethePlate) {
 // plate) with large spins over Gamma 0.5-1.0, the range of the mode map where 32 of 606 points
 // went through the plate. Every run must end without an error and without penetration.
 TEST(Penetration, RandomSpinningReleasesOfShortDimersNeverPassThroughThePlate) {
-  uint64_t seed = 0x9e3779b97f4a7c15ULL;
-  auto uniform = [&](double lo, double hi) {
-    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
-    return lo + (hi - lo) * static_cast<double>(seed >> 11) * 0x1.0p-53;
-  };
+  Uniform uniform{0x9e3779b97f4a7c15ULL};
   const int runs = static_cast<int>(Scaled(1000));
   int with_rest = 0;
   for (int k = 0; k < runs; ++k) {
@@ -97,11 +102,7 @@ TEST(Penetration, ShortFlightsNextToARestingSphereAreSeen) {
 // Property: random drops over the upper half of the mode map (A_r 3-9, Gamma 1.1-1.4), where the
 // plate's acceleration exceeds gravity and contacts open and close within a step.
 TEST(Penetration, RandomDropsAboveGammaOneNeverPassThroughThePlate) {
-  uint64_t seed = 0x2545f4914f6cdd1dULL;
-  auto uniform = [&](double lo, double hi) {
-    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
-    return lo + (hi - lo) * static_cast<double>(seed >> 11) * 0x1.0p-53;
-  };
+  Uniform uniform{0x2545f4914f6cdd1dULL};
   const int runs = static_cast<int>(Scaled(200));
   for (int k = 0; k < runs; ++k) {
     SimOptions o;
