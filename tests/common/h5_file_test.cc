@@ -96,8 +96,8 @@ TEST(H5File, IdenticalContentGivesIdenticalBytes) {
 // Property: any one corrupted byte of a file's metadata (superblock, object headers, the group
 // and attribute structures in its first 2 KiB) gives the file's data or an InputError naming
 // it, never a crash or another exception. libhdf5 1.10 itself leaks the cache entry of an
-// object header it fails to decode (under H5O_protect): tests/lsan.supp suppresses that frame
-// alone, so that this test runs under ./dimerlab.sh sanitize.
+// object header it fails to decode (under H5O_protect): tests/common/sanitizer_options.cc
+// suppresses that frame alone, so that this test runs under ./dimerlab.sh sanitize.
 TEST(H5File, EveryCorruptedMetadataByteIsReadOrRefused) {
   // libhdf5's free lists reuse blocks, and a leaked reused block would be reported with the
   // stack of its first use: no free lists, so that a leak names where it happened.
