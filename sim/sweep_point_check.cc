@@ -2,14 +2,18 @@
 
 #include <cmath>
 
+#include "common/modes.h"
 #include "sim/constants.h"
 #include "sim/model.h"
 
 namespace dimer::sim {
 namespace {
 
-bool IsMode(const std::string& s) {
-  return s == "rest" || s == "drift" || s == "jump" || s == "flutter" || s == "irregular";
+bool IsMode(const std::string& s) {  // the project's one table of mode names (common/modes.h)
+  for (const auto& [name, mode] : ModeNames()) {
+    if (name == s) return true;
+  }
+  return false;
 }
 bool IsImpactType(const std::string& s) {
   return s == "none" || s == "continuous_slide" || s == "slip_stick" || s == "slip_reversal";
