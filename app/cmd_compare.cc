@@ -106,6 +106,7 @@ void RegisterAnalyze(CLI::App& app) {
     cli->args.compare.commands = {CommandLine()};
     // RunAnalyze tracks with the compare options' --quiet.
     cli->args.track.on_diagnostic = PrintTrackDiagnostics(cli->args.compare.quiet);
+    cli->args.track.on_summary = PrintSummaryLine;
     compare::RunAnalyze(cli->args);
   });
 }

@@ -1,7 +1,10 @@
 // `dimerlab render sim.h5 -o FRAMES_DIR`: parses into RenderArgs and calls RunRender.
+#include <cstdio>
 #include <memory>
+#include <string>
 
 #include "app/commands.h"
+#include "app/track_messages.h"
 #include "render/render.h"
 
 namespace dimer::app {
@@ -53,6 +56,8 @@ void RegisterRender(CLI::App& app) {
   AddRenderOptions(sub, cli.get());
   sub->callback([cli]() {
     cli->args.image.lighting = tracking::ParseLighting(cli->lighting);
+    cli->args.on_note = [](const std::string& s) { std::fprintf(stderr, "render: %s\n", s.c_str()); };
+    cli->args.on_summary = PrintSummaryLine;
     tracking::RunRender(cli->args);
   });
 }

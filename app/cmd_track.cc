@@ -54,6 +54,7 @@ void RegisterTrack(CLI::App& app) {
   AddTrackOptions(sub, args.get());
   sub->callback([args]() {
     args->on_diagnostic = PrintTrackDiagnostics(args->quiet);
+    args->on_summary = PrintSummaryLine;
     tracking::RunTrack(*args);
   });
 }

@@ -12,4 +12,6 @@ tracking::Diagnostics::Sink PrintTrackDiagnostics(bool quiet) {
   };
 }
 
+void PrintSummaryLine(const std::string& line) { std::printf("%s\n", line.c_str()); }
+
 }  // namespace dimer::app

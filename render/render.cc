@@ -11,6 +11,7 @@
 
 #include "common/atomic_output.h"
 #include "common/error.h"
+#include "common/format.h"
 #include "common/h5_file.h"
 #include "common/interrupt.h"
 #include "common/plate_frame.h"
@@ -192,9 +193,10 @@ void RunRender(const RenderArgs& args) {
       FileKind(reader) == "sim" ? reader.AttrDouble("/", "tilt_deg").value_or(0.0) : 0.0;
   if (!std::isfinite(tilt_deg)) throw InputError(args.input + ": 'tilt_deg' is not a number");
   const Trajectory traj = InPlateFrame(ReadTrajectory(reader), tilt_deg);
-  if (tilt_deg != 0 && !args.quiet) {
-    std::fprintf(stderr, "render: %s: plate tilted %s deg: drawn in the plate's frame (a camera turned with "
-                 "the plate; truth.csv likewise)\n", args.input.c_str(), Num10(tilt_deg).c_str());
+  if (tilt_deg != 0 && !args.quiet && args.on_note) {
+    args.on_note(args.input + ": plate tilted " + Num10(tilt_deg) +
+                 " deg: drawn in the plate's frame (a camera turned with the plate; truth.csv "
+                 "likewise)");
   }
   const size_t n = args.max_frames > 0 ? std::min(args.max_frames, traj.size()) : traj.size();
   CheckTrajectory(args.input, traj, n);
@@ -302,9 +304,13 @@ void RunRender(const RenderArgs& args) {
   std::ofstream(out.temp_path() + "/render.json") << RenderJson(args, plan, diameter, n, tilt_deg);
   out.Commit();
   // The one-line summary every subcommand ends with (stdout; -q silences progress only).
-  std::printf("%s: %zu frames %dx%d, %d-bit %s, %s lighting, %.3g m/px; truth.csv, render.json\n",
-              args.output.c_str(), n, args.image.width, args.image.height, args.image.bit_depth,
-              args.format.c_str(), ToString(args.image.lighting).c_str(), args.m_per_px);
+  if (args.on_summary) {
+    args.on_summary(Format("%s: %zu frames %dx%d, %d-bit %s, %s lighting, %.3g m/px; truth.csv, "
+                           "render.json",
+                           args.output.c_str(), n, args.image.width, args.image.height,
+                           args.image.bit_depth, args.format.c_str(),
+                           ToString(args.image.lighting).c_str(), args.m_per_px));
+  }
 }
 
 }  // namespace dimer::tracking

@@ -12,6 +12,7 @@
 // samples; the truth is the position at the sample time, the blur's centre.
 #include <cstdint>
 #include <limits>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,9 @@ struct RenderArgs {
   size_t max_frames = 0;        // render only the first N samples (0: all)
   bool quiet = false;
   RenderOptions image;          // size, lighting, noise, gradient, bit depth, seed
+  // The library prints nothing: its notes (left out under quiet) and the closing one-line
+  // summary go to these, which app/ prints on stderr and stdout. Either may be empty.
+  std::function<void(const std::string&)> on_note, on_summary;
   void Check() const;           // InputError listing every invalid field
 };
 

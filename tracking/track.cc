@@ -14,6 +14,7 @@
 #include "common/stderr_capture.h"
 #include "tracking/calibration.h"
 #include "tracking/dimer_length_scale.h"
+#include "tracking/dimer_presence.h"
 #include "tracking/io/frame_range.h"
 #include "tracking/sphere/impact_vertex.h"
 #include "tracking/track_file.h"
@@ -137,14 +138,24 @@ SequenceResult TrackWithLibraryMessagesCaptured(const TrackArgs& args, const Seq
   return r;
 }
 
-// The one-line summary every subcommand ends with (stdout; -q silences progress only).
-void PrintSummary(const TrackArgs& args, const SequenceResult& r, const Calibration& cal) {
+// Stage "a dimer is here" (dimer_presence.h): a film of something else is refused before anything
+// is written.
+void RequireADimer(const std::string& input, const SequenceResult& r) {
+  const DimerPresence dimer = MeasureDimerPresence(r);
+  if (!dimer.seen()) throw InputError(input + ": " + NoDimerMessage(dimer));
+}
+
+// The one-line summary every subcommand ends with (app/ prints it on stdout; -q silences
+// progress only).
+void Summarize(const TrackArgs& args, const SequenceResult& r, const Calibration& cal) {
+  if (!args.on_summary) return;
   size_t both = 0;
   for (const auto& f : r.frames) both += f.found[0] && f.found[1];
-  std::printf("%s: %zu frames tracked, %zu skipped, both spheres found in %zu, %s, %.4g m/px%s\n",
-              (args.output_label.empty() ? args.output : args.output_label).c_str(), r.frames.size(),
-              r.skipped.size(), both, ToString(r.method).c_str(),
-              cal.m_per_px, r.complete ? "" : " (interrupted: partial)");
+  args.on_summary(Format("%s: %zu frames tracked, %zu skipped, both spheres found in %zu, %s, "
+                         "%.4g m/px%s",
+                         (args.output_label.empty() ? args.output : args.output_label).c_str(),
+                         r.frames.size(), r.skipped.size(), both, ToString(r.method).c_str(),
+                         cal.m_per_px, r.complete ? "" : " (interrupted: partial)"));
 }
 
 }  // namespace
@@ -168,12 +179,13 @@ void RunTrack(const TrackArgs& args) {
     throw InputError(args.input + ": no readable frame (all " +
                      std::to_string(r.skipped.size()) + " were skipped)");
   }
+  if (r.complete) RequireADimer(args.input, r);  // a partial film is kept whatever it shows
   ReportFilm(args, rec, r, &diag);
   const Calibration cal = Calibrate(args, r, length_scale);
   if (!std::isnan(args.ar)) ReportLengthScale(args, cal, &diag);
   WriteTrackFile(out.temp_path(), resolved, r, cal, rec);
   out.Commit();
-  PrintSummary(args, r, cal);
+  Summarize(args, r, cal);
   if (!r.complete) throw Interrupted();
 }
 

@@ -41,6 +41,8 @@ struct TrackArgs {
   // Each note and warning about the film as it is made (diagnostics.h), from the calling
   // thread; app/ prints them. May be empty.
   Diagnostics::Sink on_diagnostic;
+  // The closing one-line summary (app/ prints it on stdout); may be empty.
+  std::function<void(const std::string&)> on_summary;
   void Check() const;           // InputError listing every invalid field
 };
 
