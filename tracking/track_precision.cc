@@ -9,9 +9,18 @@ namespace dimer::tracking {
 std::array<SpherePrecision, 2> MeasurePrecision(const std::vector<FrameTrack>& frames,
                                                 const std::array<Eigen::Vector2d, 2>& bound) {
   std::array<SpherePrecision, 2> out;
+  std::vector<double> length;
+  length.reserve(frames.size());
+  for (const FrameTrack& f : frames) {
+    length.push_back(f.found[0] && f.found[1] ? (f.centre[1] - f.centre[0]).norm()
+                                              : std::numeric_limits<double>::quiet_NaN());
+  }
+  const double length_measured = GapNoise(length);
+  const bool length_holds = length_measured <= kNotFollowedMinPx;  // false for NaN
   for (int k = 0; k < 2; ++k) {
     SpherePrecision& p = out[k];
     p.bound = bound[k];
+    p.length_measured = length_measured;
     for (int axis = 0; axis < 2; ++axis) {
       std::vector<double> v;
       v.reserve(frames.size());
@@ -23,7 +32,11 @@ std::array<SpherePrecision, 2> MeasurePrecision(const std::vector<FrameTrack>& f
       p.measured[axis] = GapNoise(v);
       if (p.measured[axis] > kNotFollowedFactor * p.bound[axis] &&
           p.measured[axis] > kNotFollowedMinPx) {
-        p.followed = false;
+        if (length_holds) {
+          p.uneven_motion = true;
+        } else {
+          p.followed = false;
+        }
       }
       if (p.bound[axis] > kPoorFootageBoundPx) p.poor = true;
     }

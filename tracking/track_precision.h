@@ -36,7 +36,17 @@ struct SpherePrecision {
   // frame too small or clipped for its noise).
   Eigen::Vector2d bound{std::numeric_limits<double>::quiet_NaN(),
                         std::numeric_limits<double>::quiet_NaN()};
-  bool followed = true;  // false: measured beyond kNotFollowedFactor x bound and kNotFollowedMinPx
+  // The dimer's length from frame to frame (the same measure on the centres' distance where
+  // both are found), px; NaN with fewer than 3 triples. It does not depend on the pose, so it
+  // tells the motion's unevenness from the tracker's: separate poses of a calibration film, or a
+  // jolt, scatter the centres and leave the length as it is.
+  double length_measured = std::numeric_limits<double>::quiet_NaN();
+  // false: measured beyond kNotFollowedFactor x bound and kNotFollowedMinPx, and the length too
+  // beyond kNotFollowedMinPx (or unknown)
+  bool followed = true;
+  // Measured beyond those while the length holds within kNotFollowedMinPx: the centres move
+  // unevenly, the tracker follows them (TrackPrecision.SeparatePosesAreMotionNotScatter).
+  bool uneven_motion = false;
   bool poor = false;     // the bound beyond kPoorFootageBoundPx
 };
 

@@ -219,6 +219,13 @@ void ReportPrecision(const TrackArgs& args, const SequenceResult& r, Diagnostics
                         "light or a larger image of the spheres helps",
                         args.input.c_str(), side, p.bound.x(), p.bound.y()));
     }
+    if (p.uneven_motion) {
+      diag->Note("uneven_motion",
+                 Format("%s sphere: centres move unevenly from frame to frame (%.2f / %.2f px, "
+                        "col / row) while the dimer's length holds to %.3f px: the motion "
+                        "(separate poses, a jolt), not the tracking",
+                        side, p.measured.x(), p.measured.y(), p.length_measured));
+    }
     if (!p.followed) {
       diag->Warn("not_followed",
                  Format("%s: the %s sphere's centres scatter %.2f / %.2f px from frame to frame, "

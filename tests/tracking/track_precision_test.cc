@@ -44,6 +44,36 @@ TEST(TrackPrecision, TheScatterIsMeasuredOnTheTrackAlone) {
   EXPECT_FALSE(p[1].poor);
 }
 
+// A still plate with the dimer set down in a new pose in every frame (one sphere resting, the
+// other lifted up to 3 degrees, the dimer moved along the plate): the centres jump by pixels
+// from frame to frame, the length stays what it is. That is the motion, not a tracker failing;
+// with the same jumps and each centre's own 0.3 px error, it is the tracker.
+TEST(TrackPrecision, SeparatePosesAreMotionNotScatter) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::normal_distribution<double> n(0, 1);
+  const double length = 138.7;
+  for (double own_sd : {0.02, 0.3}) {
+    std::vector<FrameTrack> frames(30);
+    for (size_t i = 0; i < frames.size(); ++i) {
+      FrameTrack& f = frames[i];
+      f.index = i;
+      f.found = {true, true};
+      const double tilt = 0.05 * u(rng);
+      f.centre[0] = Eigen::Vector2d(100 + 60 * u(rng), 150);
+      f.centre[1] = f.centre[0] + length * Eigen::Vector2d(std::cos(tilt), -std::sin(tilt));
+      for (int k = 0; k < 2; ++k) f.centre[k] += own_sd * Eigen::Vector2d(n(rng), n(rng));
+    }
+    const auto p = MeasurePrecision(frames, {Eigen::Vector2d(0.02, 0.02), Eigen::Vector2d(0.02, 0.02)});
+    for (int k = 0; k < 2; ++k) {
+      SCOPED_TRACE(::testing::Message() << "own error " << own_sd << " sphere " << k);
+      EXPECT_GT(p[k].measured.x(), 5.0);  // the poses' jumps
+      EXPECT_EQ(p[k].followed, own_sd < 0.1);
+      EXPECT_EQ(p[k].uneven_motion, own_sd < 0.1);
+    }
+  }
+}
+
 TEST(TrackPrecision, PoorFootageIsTheBoundsOwnVerdict) {
   const auto frames = Track({0.25, 0.25}, {0.02, 0.02});
   const double nan = std::numeric_limits<double>::quiet_NaN();
