@@ -168,7 +168,7 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
     }
     std::vector<double> rows, plate;
     for (const FrameTrack& f : frames) {
-      rows.push_back(f.found[k] ? f.centre[k].y() : std::nan(""));
+      rows.push_back(f.found[k] && f.appearance[k] == k ? f.centre[k].y() : std::nan(""));
       plate.push_back(f.PlateRowAt(f.centre[k].x()));  // (the plate under this sphere)
     }
     // On a sloping plate the centre stands R along the plate's normal: R sqrt(1 + slope^2)
@@ -209,7 +209,8 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
 void ApplyOffsets(const TemplateOffsets& o, std::vector<FrameTrack>* frames) {
   for (FrameTrack& f : *frames) {
     for (int k = 0; k < 2; ++k) {
-      if (f.found[k]) f.centre[k] += Eigen::Vector2d(o.col[k].value, o.row[k].value);
+      const int a = f.appearance[k];  // the offsets of the appearance it was measured with
+      if (f.found[k]) f.centre[k] += Eigen::Vector2d(o.col[a].value, o.row[a].value);
     }
   }
 }

@@ -79,24 +79,6 @@ Reference MakeReference(const cv::Mat& image, const TrackerOptions& opts) {
   return ref;
 }
 
-// Swaps a chunk's identities when that continues the previous chunk's positions better.
-void Stitch(const std::vector<FrameTrack>& done, std::vector<FrameTrack>* chunk) {
-  auto both = [](const FrameTrack& t) { return t.found[0] && t.found[1]; };
-  auto last = std::find_if(done.rbegin(), done.rend(), both);
-  auto first = std::find_if(chunk->begin(), chunk->end(), both);
-  if (last == done.rend() || first == chunk->end()) return;
-  const double keep = (first->centre[0] - last->centre[0]).norm() +
-                      (first->centre[1] - last->centre[1]).norm();
-  const double cross = (first->centre[0] - last->centre[1]).norm() +
-                       (first->centre[1] - last->centre[0]).norm();
-  if (cross >= keep) return;
-  for (FrameTrack& t : *chunk) {
-    std::swap(t.found[0], t.found[1]);
-    std::swap(t.centre[0], t.centre[1]);
-    std::swap(t.radius_px[0], t.radius_px[1]);
-  }
-}
-
 // An over-exposed plate: the clipped side's level shared by the frames, then every clipped
 // frame's row fitted again at it (clipped_edge.h). The profiles are dropped afterwards.
 PlateClip RefitClippedPlate(double psf_sigma_px, bool fit_blur, std::vector<FrameTrack>* frames) {
@@ -248,7 +230,9 @@ void FinishFilm(const Film& film, const SequenceOptions& options, bool sequence_
   if (InterruptRequested()) result->complete = false;
   result->method = sequence_level ? film.prepared.choice.method : options.tracker.method;
   result->method_reason = film.prepared.choice.reason;
-  // Before anything reads the found spheres (the plate's motion scale, the offsets).
+  // Before anything reads the found spheres (the plate's motion scale, the offsets): the chunks'
+  // names made the film's, then the matches that are not a sphere dropped.
+  result->dimer_names = NameSpheresByTheDimer(&result->frames);
   result->scores = DropOutlyingMatches(&result->frames);
   result->plate_clip = RefitClippedPlate(options.tracker.psf_sigma_px,
                                          options.tracker.fit_psf_sigma, &result->frames);
@@ -261,7 +245,7 @@ void FinishFilm(const Film& film, const SequenceOptions& options, bool sequence_
 }
 
 // The frames of `source` as they are (levels already scaled): opened, learnt, followed in
-// chunks of options.chunk_frames on `threads` workers, stitched, finished.
+// chunks of options.chunk_frames on `threads` workers, joined, finished.
 SequenceResult TrackFramesAsGiven(FrameSource& source, const SequenceOptions& options,
                                   const std::function<void(size_t)>& on_progress,
                                   const std::function<void(const SkippedFrame&)>& on_skip) {
@@ -321,7 +305,6 @@ SequenceResult TrackFramesAsGiven(FrameSource& source, const SequenceOptions& op
       result.skipped.push_back(s);
     }
     if (!result.complete) continue;  // after an interruption keep only whole prefixes
-    Stitch(result.frames, &chunk.frames);
     result.frames.insert(result.frames.end(), chunk.frames.begin(), chunk.frames.end());
     result.names.insert(result.names.end(), chunk.names.begin(), chunk.names.end());
     if (chunk.interrupted) result.complete = false;

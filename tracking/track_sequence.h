@@ -3,14 +3,14 @@
 // stages (docs/DESIGN.md, "The tracking pipeline"): a camera's levels scaled; the first readable
 // frame opened (its size, polarity and radius; the sensor's stuck pixels, the lens, the plate
 // edge's slope); the method chosen and, for the template, the appearances learnt; the frames
-// followed in chunks and stitched; then matches that were not the sphere dropped, an
+// followed in chunks and joined; the spheres named by the rigid dimer; then matches that were not the sphere dropped, an
 // over-exposed plate's rows refitted, the contact line, the template's offsets and the
 // precision. `dimerlab track` (track.h) calibrates and writes what this returns.
 //
 // Parallelism with deterministic results: the sequence is cut into chunks of a fixed number of
 // frames; each chunk is decoded and tracked by its own worker with its own SequenceTracker
-// (which acquires at the chunk start), and chunks are joined in order, identities stitched by
-// nearest position across the boundary. Results depend on the chunk size, never on the number
+// (which acquires at the chunk start), and chunks are joined in order; the spheres' names are
+// then the film's, given by the rigid dimer over the whole film (dimer_identity.h). Results depend on the chunk size, never on the number
 // of threads or on scheduling. Memory: at most `threads` chunks of results in flight, and
 // frames are decoded one at a time per worker (sequential sources such as video decode ahead
 // one chunk per worker).
@@ -26,6 +26,7 @@
 #include "tracking/io/frame_source.h"
 #include "tracking/io/lens_undistortion.h"
 #include "tracking/io/level_scale.h"
+#include "tracking/dimer_identity.h"
 #include "tracking/match_scores.h"
 #include "tracking/plate_slope.h"
 #include "tracking/template_sequence.h"
@@ -99,6 +100,7 @@ struct SequenceResult {
   PlateClip plate_clip;          // an over-exposed plate's level and the rows fitted at it
   PlateSlope plate_slope;        // the plate edge's slope in the image (plate_slope.h)
   DefectPixels defects;          // the sensor's stuck pixels, replaced in every frame
+  DimerNames dimer_names;        // the spheres named by the rigid dimer (dimer_identity.h)
   MatchScores scores;            // template: matches far below their sphere's scores, dropped
   // Template: the first readable frame's noise (grey levels, precision_bound.h) and each
   // sphere's bound (col, row; px) on how precisely its learnt appearance can be placed in it.
