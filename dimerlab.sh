@@ -5,7 +5,7 @@
 #   ./dimerlab.sh demo       setup + build + the pipeline on the bundled sample scene
 #   ./dimerlab.sh test       setup + build + the whole GoogleTest suite through CTest
 #   ./dimerlab.sh sanitize   setup + ASan/UBSan build with warnings as errors + the suite
-#   ./dimerlab.sh bench      setup + build + every benchmark program (prints tables)
+#   ./dimerlab.sh bench      setup + build + every benchmark program (tables, and TSVs in bench/results/)
 #   ./dimerlab.sh fuzz       setup + clang build of tests/fuzz + each target for FUZZ_SECONDS (60)
 #   ./dimerlab.sh install    setup + build + install `dimerlab` into PREFIX/bin (PREFIX: env, default
 #                            /usr/local, already on the PATH) and its docs into PREFIX/share/doc
@@ -84,17 +84,25 @@ sanitize() {
       -E '^povray[.](plate|coverage|scatter)[.]|^Fit[.]StartedAtTheTruthStaysThere$'
 }
 
+# Every benchmark program; each one's tables also go to bench/results/MACHINE/NAME.tsv
+# (bench/tables.sh), from which docs/BENCHMARKS.md's tables are made (docs.benchmark_tables).
 bench() {
   setup; build
+  local results="bench/results/${DIMERLAB_BENCH_MACHINE:-$(hostname -s)}" b name
+  mkdir -p "$results"
   for b in build/bench/bench_*; do
+    name=${b##*/}
     echo "== $b =="
     case "$b" in
       */bench_compare) "$b" "$ROOT/build/app/dimerlab" ;;  # times the CLI as a user runs it
       */bench_start) "$b" "$ROOT/build/app" ;;
+      */bench_plate_edge) "$b" --psf-sensitivity ;;  # the others need footage folders
       */bench_tracking_footage) "$b" 40 6 "$ROOT/build/bench_footage_cache" ;;  # POV-Ray footage, cached
       *) "$b" ;;
-    esac
+    esac | tee "build/$name.out"
+    bench/tables.sh tsv <"build/$name.out" >"$results/$name.tsv"
   done
+  echo "tables: $results/*.tsv (docs/BENCHMARKS.md shows them: bench/tables.sh md < FILE)"
 }
 
 # Each libFuzzer target of tests/fuzz for FUZZ_SECONDS on a copy of its seed corpus; a crash,
@@ -105,7 +113,7 @@ fuzz() {
     -DDIMERLAB_WITH_TRACKING=OFF -DDIMERLAB_TESTS=OFF -DDIMERLAB_BENCH=OFF
   local seconds=${FUZZ_SECONDS:-60} failed=0 t name work
   mkdir -p build-fuzz/crashes
-  printf '| target | seconds | executions | exec/s | result |\n|---|---:|---:|---:|---|\n'
+  printf '| target | seconds | executions | exec/s | result |\n|---|---:|---:|---:|---|\n' | tee build-fuzz/table.md
   for t in build-fuzz/tests/fuzz/fuzz_*; do
     name=${t##*/fuzz_}
     work=$(mktemp -d)
@@ -114,9 +122,11 @@ fuzz() {
         "$work" >"build-fuzz/$name.log" 2>&1; then result=ok; else result=FAILED; failed=1; fi
     awk -v n="$name" -v s="$seconds" -v r="$result" '
       /stat::number_of_executed_units/ { e = $2 } /stat::average_exec_per_sec/ { x = $2 }
-      END { printf "| %s | %s | %s | %s | %s |\n", n, s, e, x, r }' "build-fuzz/$name.log"
+      END { printf "| %s | %s | %s | %s | %s |\n", n, s, e, x, r }' "build-fuzz/$name.log" | tee -a build-fuzz/table.md
     rm -rf "$work"
   done
+  mkdir -p "bench/results/${DIMERLAB_BENCH_MACHINE:-$(hostname -s)}"
+  bench/tables.sh tsv <build-fuzz/table.md >"bench/results/${DIMERLAB_BENCH_MACHINE:-$(hostname -s)}/fuzz.tsv"
   [ "$failed" = 0 ] || { echo "fuzz: a target failed; its log is in build-fuzz/, the input in build-fuzz/crashes/" >&2; exit 1; }
 }
 

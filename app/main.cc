@@ -1,7 +1,7 @@
 // dimerlab: the binary users run. The commands that need only the simulator (`sim`, `sweep`,
 // `merge`, and `--version`) run here, in a process that loads no OpenCV: OpenCV's video and
 // image back-ends pull in ~200 shared libraries and cost ~90 ms at every start, which a script
-// or a Slurm array calling `dimerlab sim` many times would pay each time (docs/BENCHMARKS.md, "Start time"). Every other
+// or a Slurm array calling `dimerlab sim` many times would pay each time (docs/BENCHMARKS.md, bench_start). Every other
 // command line (render, track, compare, analyze, --help, mistakes) is handed unchanged to
 // dimerlab-full by exec: same process, same arguments, same exit code, one set of messages.
 #include <unistd.h>

@@ -1,5 +1,5 @@
 // compare benchmark: the speed of the analysis as a user runs it, and the fit's budget against
-// its accuracy (docs/BENCHMARKS.md, "compare").
+// its accuracy (docs/BENCHMARKS.md, bench_compare).
 //   bench_compare DIMERLAB_BINARY [work_dir]
 // 1. A 20,000-frame track (250 periods of the paper's drift at 2000 frames/s, rendered backlit
 //    with sensor noise and tracked, 0.4 mm/px): `dimerlab compare track.h5 -o REPORT` wall time

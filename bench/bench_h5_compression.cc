@@ -1,6 +1,6 @@
 // HDF5 compression level: file size, write CPU and wall time and read time of a realistic sim
-// file at deflate levels 0..9, always with shuffle and Fletcher32 (docs/BENCHMARKS.md, "HDF5
-// compression level"; the default level is common/h5_file.h's kDefaultDeflateLevel). A second
+// file at deflate levels 0..9, always with shuffle and Fletcher32 (docs/BENCHMARKS.md,
+// bench_h5_compression; the default level is common/h5_file.h's kDefaultDeflateLevel). A second
 // table at the default level: HDF5's own filter pipeline (one thread) against dimerlab's chunks
 // filtered on 1 thread and on every core (common/h5_chunk_filter.h), at three chunk sizes. A
 // third, when libdeflate is installed: zlib against libdeflate, a faster encoder of the same

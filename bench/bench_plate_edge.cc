@@ -1,6 +1,6 @@
 // Plate-edge accuracy on folders of frames with truth.csv (`dimerlab render` or the POV-Ray
 // footage of tests/footage, e.g. its lightings one_sided_gain_ramp, underexposed, overexposed,
-// mirror_plate), docs/BENCHMARKS.md:
+// mirror_plate), docs/BENCHMARKS.md, bench_plate_edge:
 //   bench_plate_edge DIR...
 //   bench_plate_edge --time [calls]   (cost of one RefinePlateRow call on a rendered frame)
 //   bench_plate_edge --psf-sensitivity (a clipped edge's error when the camera's blur differs)

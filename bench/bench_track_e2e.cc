@@ -1,5 +1,5 @@
 // End-to-end tracking speed from files on disk, the way a user runs it (docs/BENCHMARKS.md,
-// "Tracking end to end from files").
+// bench_track_e2e).
 //   bench_track_e2e [PATH/TO/dimerlab [frames (2000)] [workdir (/tmp/bench_track_e2e)]]
 // (without a path: ../app/dimerlab beside this program's folder, i.e. the build tree's)
 // Writes `frames` drift-like frames of 512x256 (the project's renderer, reflect lighting, noise

@@ -1,7 +1,7 @@
 // Tracker accuracy on POV-Ray footage (tests/footage): every lighting of the issue at A_r 3.9 and
 // front-lit touching spheres at A_r 2.0, 2.1, 2.3, each tracked by every method, against the
-// issue's targets (tests/footage/track_accuracy.h). docs/BENCHMARKS.md, "Tracker on POV-Ray
-// footage".
+// issue's targets (tests/footage/track_accuracy.h). docs/BENCHMARKS.md,
+// bench_tracking_footage.
 //   bench_tracking_footage [frames] [subframes] [cache_dir] [methods]
 //   bench_tracking_footage --ecc [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --learn-passes [frames] [subframes] [cache_dir]

@@ -3,7 +3,7 @@
 # (lossless), Motion JPEG and H.264 at two qualities (ffmpeg), each tracked as a video file and
 # compared with the simulation. Prints, per export: the file size, the tracked centres and plate
 # against truth.csv, the offsets' stated uncertainties, A_r as compare measures it, the drift and
-# the slip. docs/BENCHMARKS.md, "Compressed video".
+# the slip. docs/BENCHMARKS.md, compressed_video.sh.
 #   bench/compressed_video.sh [BUILD_DIR] [FILM_DIR]
 # FILM_DIR: a folder made by bench/povray_film.sh (frames/, sim.h5); default povray_film.
 set -euo pipefail

@@ -4,7 +4,7 @@
 # the plate's front edge nearer the camera than the dimer), tracked and compared with the
 # simulation. Prints the tracker's accuracy against the scene's truth, then the compare table
 # (track against simulation), then Gamma again with the plate edge's own scale given.
-# docs/BENCHMARKS.md, "The whole pipeline on a POV-Ray film".
+# docs/BENCHMARKS.md, povray_film.sh.
 #   bench/povray_film.sh [BUILD_DIR] [WORK_DIR] [CYCLES] [ROLL_DEG] [TILT_DEG] [INIT] [LIGHTING]
 # Defaults: build, povray_film, 30 plate periods (2401 frames at 2000 frames/s), a level camera
 # (ROLL_DEG: the camera turned about its axis, the plate's edge sloping) and a level plate

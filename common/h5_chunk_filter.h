@@ -3,7 +3,7 @@
 // common/h5_file.h), run by dimerlab itself so that the chunks of a dataset are compressed on
 // worker threads and handed to HDF5 already filtered (H5Dwrite_chunk). zlib is about half of the
 // CPU time of a sim file with samples, which inside H5Dwrite would all run on the calling
-// thread (docs/BENCHMARKS.md, "Simulator speed").
+// thread (docs/BENCHMARKS.md, bench_sim_speed).
 //
 // Each step does what the HDF5 1.10 filter does, byte for byte, so readers see the same
 // datasets as from HDF5's own pipeline (h5py and h5dump with no plugin) and the file's bytes do

@@ -27,7 +27,7 @@ namespace dimer {
 using Dims = std::vector<hsize_t>;
 
 // Deflate level used by default: the knee of the size/speed table in docs/BENCHMARKS.md
-// ("HDF5 compression level", bench/bench_h5_compression.cc).
+// (bench_h5_compression).
 constexpr int kDefaultDeflateLevel = 1;
 
 struct H5WriteOptions {

@@ -148,7 +148,7 @@ Analysis Analyze(const SampledRun& input, const AnalysisOptions& options) {
   if (run.video_lossy) {
     a.warnings.push_back("the track comes from a lossy video (codec '" + run.video_codec +
                          "'): compression moves the spheres' edges by tenths of a pixel to pixels "
-                         "(positions, A_r) and can hide impacts (docs/BENCHMARKS.md, \"Compressed video\")");
+                         "(positions, A_r) and can hide impacts (docs/BENCHMARKS.md, compressed_video.sh)");
   }
   // 1. Plate drive.
   if (run.kind == "sim" && std::isfinite(run.sim_freq_hz) && std::isfinite(run.sim_gamma)) {

@@ -33,7 +33,7 @@ void Say(bool quiet, const std::string& line) {
 // slip filter. Otherwise the two slips are read over different frames: the drift's resting end
 // lifts by up to 84 um at fixed plate phases, within a track's threshold (~140 um at 0.4 mm/px)
 // and outside the simulation's own (0.01 d, 95 um), and the slip before the impact read off
-// POV-Ray films was 2.7-3.7 mm/s against the simulation's 2.30 (docs/BENCHMARKS.md).
+// POV-Ray films was 2.7-3.7 mm/s against the simulation's 2.30 (the POV-Ray films of bench/povray_film.sh).
 Analysis SimulationFor(const CompareArgs& args, const Analysis& track, const std::string& dir,
                        std::vector<std::string>* notes) {
   const AnalysisOptions seen = SeenAsTrack(track, args.analysis);

@@ -5,8 +5,8 @@
 // that radius is what the tracker measures worst: the grazing rim reflects the dark backdrop, so
 // the outline recedes 0.2-0.7 px inside the true limb (the scale 2-4 % off on the POV-Ray
 // footage), and where the two outlines disagree the silhouette methods' radius is used, 25 % off
-// under a soft box and 2.2x under a one-sided lamp (docs/BENCHMARKS.md, "The scale from the
-// dimer's length"). The distance between the two centres is what it measures best: both spheres
+// under a soft box and 2.2x under a one-sided lamp (see povray.dimer_length.CASE). The
+// distance between the two centres is what it measures best: both spheres
 // carry alike offsets, which cancel, so it is within 0.15 % over 20 frames on every POV-Ray film
 // once the radius is near. A_r = length / diameter gives the centre distance (A_r - 1) d, hence
 // m/px = (A_r - 1) d / (median centre distance in px).
@@ -74,7 +74,7 @@ struct LengthScale {
 };
 
 // That radius (outline_radius_px) is within 4.1 % of the one --ar settles on for every POV-Ray
-// film where it is measured (docs/BENCHMARKS.md, "The scale from the dimer's length"); a radius
+// film where it is measured (see povray.dimer_length.CASE); a radius
 // from --ar further from it than this fraction is warned about (A_r - 1, the centre distance
 // over the diameter, given for A_r puts it 53 % off at A_r 3.9).
 inline constexpr double kOutlineRadiusCheck = 0.10;

@@ -5,7 +5,7 @@
 // leaving the frame cannot be matched whole, and the best match left inside the frame lies beside
 // it: on POV-Ray front_point drifting out of a narrow frame the right sphere came out 9-10 px short
 // of its centre, scoring 0.53-0.63 where it had scored 0.989-0.991 in every frame before
-// (docs/BENCHMARKS.md, "A sphere leaving the frame"). What is low is relative to the sphere's own
+// (see povray.leaving_the_frame). What is low is relative to the sphere's own
 // scores: after the sequence, a match scoring far below its sphere's median is taken for no match.
 // Where ECC did not converge there is no score to compare, and such a match 10 px short of a sphere
 // at the frame's edge stayed; but the dimer is rigid and moves in the image's plane, so the

@@ -68,8 +68,8 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
   // Rough centres from the highlights where the silhouette methods give both spheres in fewer
   // than half the learning frames: at a lower gain front-lit steel shows parts of its outline
   // in some frames, and a mean of those few (6 of 20 at 0.7 of front_point's levels) put the
-  // columns 0.18 px off; the highlights seed every frame there (docs/BENCHMARKS.md, "Seeding
-  // every learning frame from the highlights"). The film's seeds are of one kind: a highlight
+  // columns 0.18 px off; the highlights seed every frame there (see
+  // povray.lower_levels). The film's seeds are of one kind: a highlight
   // stands off the centre by as much as 12 px (the one-sided light), farther than the learning's
   // search, so silhouette and highlight seeds are not mixed. The highlights are taken where they
   // agree in more frames than the silhouettes give pairs.
@@ -89,8 +89,8 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
       blobs.push_back(FindHighlightBlobs(s.image, highest, reference.radius_px));
     }
     // A seed farther off than the learning's search is averaged in where it is; a frame whose
-    // two seeds are not a dimer's length apart has one of them off (docs/BENCHMARKS.md,
-    // "Highlight seeds"), and is left out.
+    // two seeds are not a dimer's length apart has one of them off (see
+    // SeedFilm.FramesWhoseSeedsAreNotADimersLengthApartAreMarked), and is left out.
     const double agreement = learn.seed_agreement_px > 0
                                  ? learn.seed_agreement_px
                                  : 2.0 * LearnSearchPx(reference.radius_px);

@@ -61,7 +61,7 @@ Recording ResolveFps(const RecordingInfo& info, TrackArgs* args, Diagnostics* di
 
 // Lossy compression moves edges and smooths the noise the offsets are measured against: on
 // POV-Ray footage exported as H.264 the columns came out up to 3 px off while stating 0.2-0.4
-// px (docs/BENCHMARKS.md, "Compressed video"). Said before the work, and kept in the file.
+// px (docs/BENCHMARKS.md, compressed_video.sh). Said before the work, and kept in the file.
 void WarnLossyCodec(const TrackArgs& args, const Recording& rec, Diagnostics* diag) {
   if (rec.info.video_codec.empty() || LosslessVideoCodec(rec.info.video_codec)) return;
   diag->WarnInput("lossy_codec",

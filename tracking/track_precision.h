@@ -6,7 +6,7 @@
 // far above the bound the tracker is not following the sphere as the footage allows: on a
 // POV-Ray film at a quarter of the light and 0.4 mm/px (spheres of 11.9 px) both spheres were
 // "found" in 95-99 % of the frames and more than a pixel off in 44 and 75 % of them, with no
-// word of it (docs/BENCHMARKS.md, "Every lighting through the pipeline").
+// word of it (see povray.precision).
 #include <Eigen/Core>
 #include <array>
 #include <limits>

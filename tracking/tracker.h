@@ -38,7 +38,7 @@ struct TrackerOptions {
   // Method::kTemplate: ECC's stopping rule for every frame's registration. Stopping when the
   // correlation gains under 1e-5 (rather than 1e-7, which the learning keeps) costs 30 % less
   // CPU per frame and moves the answers by under 0.01 px (bench/bench_tracking.cc and
-  // bench/bench_tracking_footage.cc --ecc, docs/BENCHMARKS.md).
+  // bench/bench_tracking_footage.cc --ecc).
   EccStop ecc{50, 1e-5};
   // Method::kTemplate: the learnt appearances (left, right), shared by every chunk's tracker.
   std::shared_ptr<const std::array<Appearance, 2>> appearance;

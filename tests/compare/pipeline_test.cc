@@ -36,9 +36,8 @@ struct Film {
   double m_per_px;
   int width;
   int supersample;
-  // Impact times, 95th percentile of |error|, frames: the target, 0.1 frame. Mirror-lit steel
-  // missed it when its tracker had ~5x a silhouette's scatter (0.13 frame, 2026-11-23); it has
-  // met it since (0.057 on 2026-11-26, docs/BENCHMARKS.md).
+  // Impact times, 95th percentile of |error|, frames: the target, 0.1 frame, on mirror-lit steel
+  // as on silhouettes (docs/BENCHMARKS.md, bench_compare, gives the films' figures).
   double impact_p95_frames;
   bool fit = false;  // also fit the coefficients from the tracked film
   // The plate's tilt (sim --tilt-deg): rendered in the plate's frame, tracked, compared there;

@@ -76,9 +76,9 @@ TEST(PovrayTiltedPlate, FlightsGiveThePlatesTiltNotTheEdgesSlope) {
   const Analysis track = Analyze(LoadSampledRun(track_path), {});
 
   // The rows against the scene's truth. Neither sphere rests in the jump mode: each one's
-  // contact is where its impacts' approach and rebound meet (tracking/sphere/impact_vertex.h). The
-  // mean of the frames next to the impacts, before, put the rows +0.11 / +0.18 px off, the
-  // right one stated +-0.03 (docs/BENCHMARKS.md, "A sphere that never rests").
+  // contact is where its impacts' approach and rebound meet (tracking/sphere/impact_vertex.h): the
+  // mean of the frames next to the impacts would put the rows +0.11 / +0.18 px off, the right
+  // one stated +-0.03, which the assertions below catch.
   const footage::TrackAccuracy acc = footage::MeasureTrackAccuracy(dir, "auto");
   for (int s = 0; s < 2; ++s) {
     EXPECT_LE(std::abs(acc.sphere[s].bias.y()), footage::kBiasTargetPx) << s;

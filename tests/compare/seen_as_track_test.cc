@@ -3,8 +3,8 @@
 // end is read over the frames its gap puts in contact; a camera's noise raises that threshold
 // (4 sigma), and the resting end lifts by tens of micrometres at fixed plate phases, so a
 // simulation read with its own threshold reports the slip over other frames. On POV-Ray films
-// the slip before the impact was 2.7-3.7 mm/s against the simulation's 2.30 read so
-// (docs/BENCHMARKS.md, "Every lighting through the pipeline").
+// (bench/povray_film.sh) the slip before the impact read 2.7-3.7 mm/s against the simulation's
+// 2.30 read with its own threshold.
 #include <gtest/gtest.h>
 
 #include <cmath>

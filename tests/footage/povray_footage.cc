@@ -102,7 +102,7 @@ std::vector<Instant> Slices(const Motion& m, size_t i, double exposure_s, int n)
 // with a lens is rendered at kLensSupersample times the resolution, bent there and averaged
 // over each pixel (INTER_AREA: exact box sums). Bending the 1x render instead (interpolating
 // between its pixels) put the plate edge 0.072 px off at worst against 0.033; the spheres'
-// mean errors were the same within 0.01 px (docs/BENCHMARKS.md, "A lens that is not a pinhole").
+// mean errors were the same within 0.01 px (see povray.lens).
 constexpr int kLensSupersample = 3;
 
 // The camera that renders `c`'s frame at `s` times its resolution: pixel centre u of `c` is

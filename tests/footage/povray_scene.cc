@@ -103,8 +103,8 @@ std::string Lights(Lighting l) {
       // What stands around a dimer in a lab: a grey wall 150 mm behind it, lit by the same
       // lamps, with a white ruler across it above the dimer (black ticks every 5 mm, taller
       // every 10), its edges steps larger than the plate's; two steel bolt heads on the plate
-      // beside the dimer; the steel's rims mirror the wall. Added 2026-11-27 (ninth session),
-      // the tracker not tuned on it.
+      // beside the dimer; the steel's rims mirror the wall. A scene the
+      // tracker was not tuned on, to find faults (see povray.targets.cluttered_backdrop).
       {
         std::string s = std::string(kFrontLamps) +
                         "plane { z, 150 texture { pigment { rgb 0.12 } finish { ambient 0 "

@@ -3,8 +3,8 @@
 // command's whole path: the track file written and read back), with the scale given
 // (--m-per-px), from the dimer's length (--ar) or from the spheres' size (neither), and each
 // sphere's mean error against the folder's truth.csv: what the scale's origin does to the
-// scale and to the rows, which rest on the sphere radius it implies (docs/BENCHMARKS.md, "The
-// scale from the dimer's length").
+// scale and to the rows, which rest on the sphere radius it implies (see
+// povray.dimer_length.CASE).
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>

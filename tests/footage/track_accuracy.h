@@ -84,7 +84,7 @@ inline constexpr double kCoverageSigmas = 2.0;
 // Cramér-Rao bound of the learnt appearance in the frames' noise: the POV-Ray under-exposed
 // spheres, 0.12 px), no unbiased method meets the target; the template method is then held to
 // within this factor of the bound, the efficiency asked of the refined disc fit on our own
-// renderer (docs/BENCHMARKS.md). Not one of the targets, which stay as they are.
+// renderer (docs/BENCHMARKS.md, bench_tracking). Not one of the targets, which stay as they are.
 inline constexpr double kScatterBoundFactor = 1.5;
 
 // Tracks `folder` (every image in it) with `method` (a `--method` name of tracking/sphere/refiner.h)

@@ -1,4 +1,4 @@
-// Numerical stability at the extremes (docs/BENCHMARKS.md targets): every run must end without NaN, without
+// Numerical stability at the extremes (the simulator's robustness targets): every run must end without NaN, without
 // penetration deeper than the gap tolerance, with a bounded number of events per period and
 // without numerical failures; the counts are reported as test properties.
 #include <gtest/gtest.h>

@@ -7,7 +7,7 @@
 // `--m-per-px` from the camera's calibration: the template method's plate-contact offset rests
 // on it. The method is the one the tracker will use by default: the environment variable
 // DIMERLAB_POVRAY_METHOD, else the compile-time DIMERLAB_POVRAY_TEST_METHOD (CMake cache
-// variable of the same name, default `centroid`, today's default). The targets are the issue's
+// variable of the same name, default `auto`, the tracker's default). The targets are the issue's
 // and are never loosened here: a failing case is a finding about the tracker.
 //
 // Footage is rendered on first use into the build tree (DIMERLAB_POVRAY_CACHE) and reused while
@@ -347,8 +347,7 @@ TEST(PovrayFootageThreads, RolledCameraIdenticalForOneAndTwoThreads) {
 
 // A high-speed sensor's hot pixels (tracking/io/defect_pixels.h): 60 of them (1 in 3,400 pixels,
 // seeded; some in the spheres' path) put on the front_point footage at full scale. Without the
-// repair one sphere's scatter was 0.54 px (docs/BENCHMARKS.md, "What stands behind the dimer,
-// and the sensor's stuck pixels").
+// repair one sphere's scatter was 0.54 px.
 TEST(PovrayStuckPixels, HotPixelsAreFoundAndReplacedAndTheTargetsStillMet) {
   const std::string src = Footage(Case{"front_point", Lighting::kFrontPoint, 3.9});
   dimer::testing::TempDir tmp;
@@ -404,8 +403,8 @@ TEST(PovrayCine, TenBitAndColourPhantomFilesMeetTheTargets) {
     bayer.push_back(dimer::testing::WarmBayerMosaic(img));
     // The colour camera's film made grey by its own software (a 3x3 filter) and exported as 16-bit
     // frames of 8-bit levels (x 257): a dark backdrop whose noise the filter and the 8-bit step
-    // hide. The highlights' floor was half a 16-bit level there, every noisy pixel a highlight,
-    // and the spheres 30 px off (now the frame's own level step, template_sequence.cc).
+    // hide. A highlight floor of half a 16-bit level makes every noisy pixel a highlight and puts
+    // the spheres 30 px off; the floor is the frame's own level step (template_sequence.cc).
     cv::Mat g8, g16;
     tracking::MosaicFilterToGrey(bayer.back()).convertTo(g8, CV_8U);
     g8.convertTo(g16, CV_16U, 257);
@@ -432,13 +431,12 @@ TEST(PovrayCine, TenBitAndColourPhantomFilesMeetTheTargets) {
     EXPECT_TRUE(measure(name).MeetsTargets(&why)) << name << ": " << why;
   }
   // The filtered film misses the scatter target in 8 bits too (the filter's leak at the
-  // highlights, docs/BENCHMARKS.md): its 16-bit export must track as its 8-bit frames do. Its
+  // highlights): its 16-bit export must track as its 8-bit frames do. Its
   // learning is seeded from highlights that scatter by 2-13 px, and there the registrations'
   // whole-pixel peaks are near ties that float rounding decides: the same seeds (checked by
   // hand) give columns 0.016 px apart for the 8-bit frames and their x 257 copy, and per-frame
-  // positions up to 0.05 px apart (docs/BENCHMARKS.md, "Highlight seeds"). The biases must
-  // agree within a quarter of the uncertainty the track file states for them, at least 0.01 px
-  // (0.01 px flat before the highlight seeds were weighed, when the pair agreed within 0.002).
+  // positions up to 0.05 px apart. The biases must
+  // agree within a quarter of the uncertainty the track file states for them, at least 0.01 px.
   const TrackAccuracy a8 = measure("narrow.cine"), a16 = measure("wide.cine");
   for (int k = 0; k < 2; ++k) {
     EXPECT_EQ(a16.sphere[k].found, a8.sphere[k].found) << k;
@@ -461,7 +459,7 @@ TEST(PovrayCine, TenBitAndColourPhantomFilesMeetTheTargets) {
 // right sphere is within the 0.1 px target. What the undistortion costs: the tracker reads
 // resampled frames ~0.05 px to the right in its columns (the pinhole film shifted by a quarter
 // pixel with Lanczos read 0.045 px long; the undistorted frames themselves are within 0.02 px of
-// the pinhole's; docs/BENCHMARKS.md, "A lens that is not a pinhole"), so this case's left
+// the pinhole's), so this case's left
 // column, 0.101 px, is at the target and the case is registered short of it (5 of 9 noise seeds
 // meet it); the scatter, rows, plate and stated uncertainties all hold.
 TEST(PovrayLens, TheLensCalibrationTakesTheBendOut) {
@@ -507,7 +505,7 @@ TEST(PovrayLens, TheLensCalibrationTakesTheBendOut) {
 // quarter-light film's 20 frames give no learning frame and auto falls back to the centroid):
 // front_point is tracked at its bound; the quarter-light film places its spheres to ~0.18 px
 // at best (on that film both spheres' offsets were 0.7 and 1.5 px off, stating 0.08-0.16:
-// docs/BENCHMARKS.md, "Every lighting through the pipeline").
+// bench/povray_film.sh with the underexposed lighting).
 TEST(PovrayPrecision, TheScatterIsMeasuredAndPoorFootageIsFlagged) {
   for (const Case& c : {Case{"front_point", Lighting::kFrontPoint, 3.9},
                         Case{"underexposed", Lighting::kUnderexposed, 3.9}}) {
@@ -658,17 +656,17 @@ TEST(PovrayQuarterRange, SixteenBitFramesOfAQuarterOfTheRangeTrackAsTheirEightBi
 
 // Front-lit steel at a lower gain: each film's levels x 0.7 (8-bit, rounded; the noise scaled
 // with the signal, so only the levels change). Where the silhouette methods find nothing the
-// rough centres come from the highlights; splitting them at the widest gap between columns put a
-// steel rod's glints of the ring light with a sphere (ring_light's right sphere not found, the
-// left 49 px off) and, under-exposed, lost 10-15 % of the frames. The highlights are now weighed
-// by their light, and a film's learning frames whose seeds are not a dimer's length apart are
-// left out (tracking/sphere/highlight_seed.h). The cluttered backdrop also at x 0.5: there the
-// highlight floor, read from the levels' spread about their median (the backdrop's shading, in
-// whole levels), stood over the lamps' reflections, and the left sphere came out 22 px off, the
-// right not found; it is now read from the noise. ring_light at x 0.7 and x 0.5: its bouncing
-// sphere's row, carried over from the resting one through the two faint outlines and midway with
-// the registered transfer, was 0.33 px off; the two transfers are now weighed by how alike the
-// two appearances are (tracking/sphere/appearance_mismatch.h). Each film: both spheres found, no swap,
+// rough centres come from the highlights, weighed by their light: split at the widest gap
+// between columns, a steel rod's glints of the ring light join a sphere (ring_light's right
+// sphere not found, the left 49 px off) and an under-exposed film loses 10-15 % of its frames;
+// learning frames whose seeds are not a dimer's length apart are left out
+// (tracking/sphere/highlight_seed.h). The cluttered backdrop also at x 0.5: a highlight floor
+// read from the levels' spread about their median (the backdrop's shading, in whole levels)
+// stands over the lamps' reflections (the left sphere 22 px off, the right not found), so the
+// floor is read from the noise. ring_light at x 0.7 and x 0.5: its bouncing sphere's row,
+// carried over through the two faint outlines and midway with the registered transfer, is
+// 0.33 px off; the two transfers are weighed by how alike the two appearances are
+// (tracking/sphere/appearance_mismatch.h). Each film: both spheres found, no swap,
 // each bias within 3 of its stated uncertainties (the track file's word on its column), the plate
 // within the target, and the issue's bias target. CTest `povray.lower_levels`.
 TEST(PovrayLowerLevels, FrontLitSteelAtALowerGainIsFoundAndItsStatedUncertaintyHolds) {
@@ -744,7 +742,7 @@ TEST(PovrayNoiseSeeds, StatedColumnUncertaintyMatchesTheSpreadOverSeeds) {
 // error (the rows rest on the radius the scale implies) within the issue's bias target. From
 // the spheres' size (no --ar) these films gave the scale 2.2 % (front_point) to 190 %
 // (underexposed) off and the rows 0.45-15 px off, or no sphere at all (the camera turned 8
-// degrees); docs/BENCHMARKS.md, "The scale from the dimer's length". The columns are printed,
+// degrees; bench_tracking_footage --scale). The columns are printed,
 // not held: they do not rest on the scale, but on one-sided light and defocus a radius 0.01 px
 // different moves a column by 0.05-0.12 px either way, whatever the scale's origin.
 // CTest `povray.dimer_length.CASE`.

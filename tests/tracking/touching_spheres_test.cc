@@ -4,7 +4,7 @@
 // >= 99 % of the spheres found (every frame here is a good one: both spheres in view), no
 // identity swap, and the same result for 1 and 2 threads.
 // Mirror (reflect) spheres: the rim fit has a constant vertical offset of 0.10-0.13 px with
-// motion blur at every A_r (0.10 at A_r 3.9 in this same test; docs/BENCHMARKS.md), which
+// motion blur at every A_r (0.10 at A_r 3.9 in this same test), which
 // misses the 0.1 px bias target with or without touching; only the horizontal bias is held to
 // it there, and the vertical one is printed (a known miss, reported, not hidden).
 #include <gtest/gtest.h>

@@ -3,8 +3,7 @@
 // scene is. A high-speed CMOS sensor has some (more when warm and at long exposures; a black
 // reference removes most, not all). One inside a sphere's template window is an outlier that the
 // registration fits as if it were the sphere: 60 hot pixels on POV-Ray front_point footage (1 in
-// 3,400) put one sphere's scatter at 0.54 px against 0.04 (docs/BENCHMARKS.md, "What stands
-// behind the dimer, and the sensor's stuck pixels").
+// 3,400) put one sphere's scatter at 0.54 px against 0.04 (see povray.stuck_pixels).
 //
 // They are found once per sequence, on frames spread over the first chunk (those the plate's slope
 // is measured on), and each is replaced in every frame by an interpolation across it from its

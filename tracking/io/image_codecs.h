@@ -3,7 +3,7 @@
 //
 // Why: on Debian, linking imgcodecs and videoio makes every start of the process load ~190 more
 // shared libraries (GDAL, GDCM, OpenEXR, FFmpeg, GStreamer, ...), ~0.09 s of CPU, most of the
-// start of `dimerlab track` (docs/BENCHMARKS.md, "Tracking end to end from files"). The inputs
+// start of `dimerlab track` (docs/BENCHMARKS.md, bench_track_e2e). The inputs
 // tracked most (grey BMP, plain TIFF, .cine) are decoded by our own readers and need neither. So
 // dimer_tracking and dimer_compare do not link them: the few calls below go through
 // libdimer_codecs.so (image_codecs_plugin.cc), which links them and is dlopen()ed, once per

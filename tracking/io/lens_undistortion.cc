@@ -94,7 +94,7 @@ cv::Mat LensUndistortion::Apply(const cv::Mat& frame) const {
   // Lanczos (8 x 8): on exact discs it keeps their centroids within 0.010 px where bicubic was
   // 0.027 off; bilinear (0.008) smooths by an amount that varies with the fraction it reads at.
   // On the POV-Ray lens films all three gave the same columns; Lanczos costs ~1.2 ms a 320 x 160
-  // frame (docs/BENCHMARKS.md, "A lens that is not a pinhole").
+  // frame (see povray.lens).
   cv::remap(frame, out, map_x_, map_y_, cv::INTER_LANCZOS4, cv::BORDER_REPLICATE);
   return out;
 }

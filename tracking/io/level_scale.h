@@ -18,8 +18,7 @@
 // camera looks the same (its frames brighter than those sampled, if beyond 2^bits, would clip);
 // else tracked as stored. Guessed at 10 and 12 bits only, 16-bit frames filling a quarter of
 // the range (8-bit levels x 64) lost spheres and plate on 8 of 22 POV-Ray films (ring light
-// 49 px off, an over-exposed plate 0.41 px; docs/BENCHMARKS.md, "16-bit frames that fill part
-// of the range").
+// 49 px off, an over-exposed plate 0.41 px; see povray.quarter_range).
 #include <map>
 #include <memory>
 #include <mutex>

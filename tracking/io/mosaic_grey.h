@@ -20,7 +20,7 @@
 // Why not the filter everywhere: on POV-Ray front_point under a warm light (B, G, R = 0.55,
 // 0.8, 1) it left scatter 0.068 / 0.051 px against 0.042 / 0.034 for the grey frames, the
 // pattern's leak at the highlights' sharp edges, and its blur after the sensor clips is not the
-// clipped plate edge's model (docs/BENCHMARKS.md); balanced, the same frames track as grey ones.
+// clipped plate edge's model (see povray.cine); balanced, the same frames track as grey ones.
 //
 // The borders are mirrored without repeating the edge pixel (BORDER_REFLECT_101), which keeps
 // each mirrored pixel's colour. 8-bit and 16-bit frames come back in their own depth, rounded to

@@ -131,7 +131,7 @@ int PlateStepIndex(const std::vector<double>& profile, double* size) {
 // Rows kBracketRows off the step a sharp edge has levelled off, a defocused one not: through a
 // lens blurring by 2 px (Gaussian sigma), 4 % of the step is still to come there, the coverage
 // sum counts it on the wrong side, and the row came out 0.2 px high on average, 0.37 px at worst
-// (POV-Ray defocus_2px, docs/BENCHMARKS.md "Scale, defocus and bit depth"). So the bracket
+// (POV-Ray defocus_2px, see povray.plate.defocus_2px). So the bracket
 // widens, one row on each side at a time up to kMaxBracketRows, while a row at either end still
 // differs from the next one in by more than kBracketTailFraction of the step (and half the
 // smallest step that counts as an edge, above the noise), and that difference is the tail of

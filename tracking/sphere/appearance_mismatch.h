@@ -9,8 +9,8 @@
 // faint: POV-Ray ring_light at 0.7 of its levels). Their midpoint spent the registration's
 // precision where it held. Whether it holds can be read from the pixels: once registered, two
 // alike appearances differ by their noise only, unlike ones by more; the two transfers are
-// weighed with that (CombineRowTransfers, appearance_model.h; docs/BENCHMARKS.md, "The row
-// carried over, weighed by how alike the spheres look").
+// weighed with that (CombineRowTransfers, appearance_model.h; see
+// AppearanceOffset.RowTransfersAreWeighedByHowAlikeTheAppearancesAre).
 //
 // Measure: the mean squared difference of `to` shifted onto `from` (cv::findTransformECC's
 // translation, RegisterTranslation) over the pixels both know (eroded by the interpolation's

@@ -54,8 +54,7 @@ inline constexpr size_t kLearnSpanFrames = 4000;
 // pass after it moves them by that noise again (POV-Ray front_point: rms 0.13 px, then
 // 0.023-0.030 px on each of passes 1, 2 and 3, with no downward trend), so one is kept: each
 // pass cost ~16 ms of CPU per frame of a 40-frame film (90 ms with three, 57 with one) and the
-// answers move within their stated uncertainty (bench/bench_tracking_footage --learn-passes;
-// docs/BENCHMARKS.md).
+// answers move within their stated uncertainty (bench/bench_tracking_footage --learn-passes).
 inline constexpr int kLearnPasses = 1;
 
 // Groups of learning samples for the delete-a-group jackknife (LearntSphere::jackknife): as
@@ -148,7 +147,7 @@ double JackknifeError(const std::vector<double>& values);
 // are a fraction of the radius (a centroid on a front-lit steel sphere sits ~0.45 R low, on its
 // reflection of the plate), so reaches fixed in pixels failed at a finer scale: at 0.1 mm/px
 // (R = 47.5 px) the first template cut off the sphere's top and one column was 4.3 px off
-// (docs/BENCHMARKS.md, "Scale, defocus and bit depth").
+// (see povray.targets.fine_scale).
 
 // Re-centring (footage without clean silhouettes): the first template reaches this much beyond
 // the radius to hold a sphere whose rough centre is off by up to that,
@@ -166,7 +165,7 @@ inline constexpr double kLimbOffsetMaxR = 0.16;
 // reflection is not fixed to the sphere: its horizon (the plate's far edge seen in the sphere, a
 // strong horizontal step) moves as the sphere rises, and near the rim the reflection ends before
 // the outline does, by different amounts on the two sides. Matched with it, a bouncing sphere's
-// row drifted by 0.05 px per px of lift on the POV-Ray footage (docs/BENCHMARKS.md). So when the
+// row drifted by 0.05 px per px of lift on the POV-Ray footage (reflection_cut_test.cc). So when the
 // horizon of either sphere moves with its height above the plate in the learning frames (a
 // straight-line fit, appearance_model.cc HorizonMoves), both final appearances leave out
 // everything from HorizonGuard(R) above their horizon down (at R = 23.75 px, 2 px did better
@@ -218,7 +217,7 @@ inline constexpr double kOutlineRadiusAgreement = 0.03;
 
 // The silhouette methods' own bias on footage they were not made on, px: the centroid on the
 // POV-Ray backlit and bright-background films is 0.028-0.031 px off in each column, toward the
-// rod (docs/BENCHMARKS.md, "Tracker on POV-Ray footage"). A silhouette offset inherits it, and
+// rod (docs/BENCHMARKS.md, bench_tracking_footage). A silhouette offset inherits it, and
 // stated only the scatter of its median (0.003 px there: 12 of its own sigmas off).
 inline constexpr double kSilhouetteBiasPx = 0.03;
 
@@ -245,8 +244,7 @@ OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
 // groups (LearntSphere::jackknife). The pairs' scatter alone treats neighbouring rays as
 // independent edges; they are not (at R = 23.75 px the 120 rays are 1.2 px apart, within the
 // gradient's reach): on POV-Ray A_r 5.5 the left column spread over seven noise seeds by
-// 0.058 px where the pairs stated 0.018-0.043 (docs/BENCHMARKS.md, "The column's stated
-// uncertainty over noise seeds").
+// 0.058 px where the pairs stated 0.018-0.043 (see povray.noise_seeds).
 OffsetEstimate LimbColumnOffset(const LearntSphere& s, double row_offset);
 OffsetEstimate LimbColumnOffset(const Appearance& a, double row_offset);
 // Symmetry axis of the appearance, relative to its reference column.
@@ -300,7 +298,7 @@ OffsetEstimate CombineRowTransfers(const OffsetEstimate& registered,
 // The outline transfer's own error where its outlines are clear, px: measured against the truth
 // on the POV-Ray films, 0.04-0.16 px (front_point 0.04, soft box 0.05, one-sided light 0.10, 0.1
 // and 0.4 mm/px 0.10 and 0.15, a camera rolled 8 degrees 0.13), beyond the noise its jackknife
-// states (docs/BENCHMARKS.md, "The row carried over, weighed by how alike the spheres look").
+// states (see OutlineTransfer.TheJackknifeStatesItsNoise).
 inline constexpr double kOutlineTransferModelPx = 0.1;
 // Outline fits for the transfer reach Reach(kTransferOutlineMaxShiftPx, ...R, R) from the
 // reference: the bouncing sphere's template is framed on its lowest frames and can sit more

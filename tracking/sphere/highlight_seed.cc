@@ -21,7 +21,7 @@ constexpr double kHighlightSigmas = 10.0;
 // QuantisedMedian). The spread of the levels about their median measured the scene instead: a
 // cluttered backdrop's shading, and in whole levels, so that at half the gain the floor stood at
 // 30 levels over the median where the noise was 1 and the spheres' highlights 31
-// (docs/BENCHMARKS.md, "The highlight floor from the sensor's noise"). At least half the
+// (see FindHighlightBlobs.TheFloorFollowsTheNoiseNotTheBackdropsShading). At least half the
 // data's level step: a backdrop whose noise the quantisation hides must not make every level
 // above its median a highlight. The step is the frame's own (the greatest common divisor of
 // its levels): 16-bit frames of coarser data (8-bit levels x 257, a 10-bit camera's x 64) with
@@ -105,7 +105,8 @@ std::vector<HighlightBlob> FindHighlightBlobs(const cv::Mat& image, double plate
   }
   // Each blob's mass: how much light stands above the level, not how many pixels do. A steel
   // rod's reflections of a ring light are a row of dots a few levels above it; the spheres'
-  // highlights carry tens of times more (docs/BENCHMARKS.md, "Highlight seeds").
+  // highlights carry tens of times more (see
+  // FindHighlightBlobs.MassesSetTheRodsGlintsApartFromTheSpheresHighlights).
   std::vector<double> mass(size_t(std::max(n, 1)), 0.0);
   for (int r = 0; r < labels.rows; ++r) {
     const int* l = labels.ptr<int>(r);

@@ -19,7 +19,7 @@ namespace dimer::tracking {
 inline constexpr double kGravity = 9.81;
 
 // Frames in each arm of the V, the frame nearest the impact included in one of them. Measured on
-// the POV-Ray jump film of docs/BENCHMARKS.md ("A sphere that never rests"): with 3 the slopes
+// the POV-Ray jump film of PovrayTiltedPlate (dimer_compare_povray_test): with 3 the slopes
 // at 0.2 px a frame are within their noise and no V is found; 4 and 5 agree within 0.04 px.
 inline constexpr int kImpactArmFrames = 4;
 // An arm's slope must be at least this many of its own standard errors (from the gap's noise)

@@ -4,8 +4,8 @@
 // sqrt(sum over the used pixels of (dI/d axis)^2). The template method registers the learnt
 // appearance by least squares (cv::findTransformECC), which reaches this bound when the
 // appearance is exact and the noise white; its measured scatter set beside the bound says how
-// much is the method's and how much the footage's (docs/BENCHMARKS.md: dim footage is bound
-// above the 0.05 px target).
+// much is the method's and how much the footage's (dim footage is bound above the 0.05 px
+// target: see povray.precision).
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 

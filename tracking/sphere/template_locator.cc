@@ -24,7 +24,7 @@ constexpr int kEccGaussSize = 5;
 // is a mean of many frames, nearly noise-free; the frame is noisy, and the estimate that uses
 // its noise best (least squares against the clean appearance, the Cramér-Rao bound of
 // tracking/sphere/precision_bound.h) smooths neither. Smoothing both at 5 blurred the highlights, the
-// sharpest detail and most of the information: POV-Ray steel (docs/BENCHMARKS.md) scattered at
+// sharpest detail and most of the information: POV-Ray steel (povray.scatter.CASE) scattered at
 // 1.5-1.8x the bound; at 3 the scatter is within 1.0-1.4x of it (under-exposed 40-frame set:
 // 0.175 -> 0.135 px against a bound of 0.131). At 1 the soft-box footage lost its way (scatter
 // 0.15 px). Registering two appearances (TransferOffset, SymmetryAxis) keeps 5: neither is
@@ -192,8 +192,8 @@ namespace {
 // TM_CCOEFF_NORMED divides by the window's spread. Where the frame is flat, as a background
 // clipped at black or a lossy video's smoothed background is, that spread is 0 and OpenCV gives
 // NaN or +-inf; nearly flat, values past +-1. None of them is a correlation (which lies in
-// [-1, 1]): all read as -1, no match. Before, an inf in a flat corner of H.264 or MJPEG frames
-// outscored both spheres in every frame (docs/BENCHMARKS.md, "Compressed video").
+// [-1, 1]): all read as -1, no match; an inf in a flat corner of H.264 or MJPEG frames would
+// outscore both spheres in every frame (see FindAppearance.AFlatRegionOfTheFrameIsNoMatch).
 void KeepCorrelations(cv::Mat* res) {
   constexpr double kRoundOff = 1e-3;  // float sums can pass 1 by round-off on a perfect match
   const cv::Mat valid = (*res >= -1.0 - kRoundOff) & (*res <= 1.0 + kRoundOff);  // NaN: false

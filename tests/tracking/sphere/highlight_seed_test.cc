@@ -1,6 +1,6 @@
 // Rough centres from the highlights (tracking/sphere/highlight_seed.h): the blobs' masses, the two
 // splits into the spheres' groups, the film's choice between them, and the highlight floor. The
-// blob layouts are those measured on the POV-Ray films (docs/BENCHMARKS.md, "Highlight seeds").
+// blob layouts are those measured on the POV-Ray films (bench_tracking_footage --seeds).
 #include "tracking/sphere/highlight_seed.h"
 
 #include <gtest/gtest.h>
@@ -167,7 +167,7 @@ TEST(FindHighlightBlobs, MassesSetTheRodsGlintsApartFromTheSpheresHighlights) {
 
 // A backdrop of broad bands two levels apart (a cluttered lab: shelves, a poster), noise of one
 // level, and two spheres' highlights 30 levels above it, as the cluttered backdrop at half the
-// gain (docs/BENCHMARKS.md, "Highlight seeds"). The highlight floor is set by the noise, read
+// gain (bench_tracking_footage --seeds). The highlight floor is set by the noise, read
 // from neighbouring pixels; read from the levels' spread about their median (the bands) it stood
 // at 44 levels above the median, over the highlights.
 TEST(FindHighlightBlobs, TheFloorFollowsTheNoiseNotTheBackdropsShading) {

@@ -69,7 +69,7 @@ ErrorStats Measure(Method method, Lighting lighting, double noise, int n, uint64
 //    0.008 px RMS, measured 0.002).
 //  - sigma > 0: the Cramér-Rao bound for a 47 px disc with contrast 173 levels is ~0.002 px per
 //    axis at sigma = 2 and scales with sigma; the centroid's clamped weights are close to it.
-//    Bounds are 0.01 px at sigma = 2 and 0.02 px at sigma = 5 (the project's target, docs/BENCHMARKS.md "Tracker", is 0.02 px at
+//    Bounds are 0.01 px at sigma = 2 and 0.02 px at sigma = 5 (the project's target, docs/BENCHMARKS.md bench_tracking, is 0.02 px at
 //    sigma = 2).
 //  - reflect: a mirror sphere is located by its rim (rim_fit.h), at a constant offset from the
 //    centre (the bias, ~0.1 px, from the unresolved backdrop sliver at the rim; below 0.2 px).
@@ -154,12 +154,12 @@ double LockingPeakToPeak(Method method, double lift_px) {
 class PixelLocking : public ::testing::TestWithParam<Method> {};
 
 TEST_P(PixelLocking, FreeSphereMeetsTheTarget) {
-  // The project's target (docs/BENCHMARKS.md, "Tracker"): <= 0.01 px peak to peak (rod mask active, plate out of the window).
+  // The project's target (docs/BENCHMARKS.md, bench_tracking): <= 0.01 px peak to peak (rod mask active, plate out of the window).
   EXPECT_LE(LockingPeakToPeak(GetParam(), 10.0), 0.01);
 }
 
 TEST_P(PixelLocking, SphereRestingOnThePlate) {
-  // The project's target (docs/BENCHMARKS.md, "Tracker"), 0.01 px peak to peak, for a sphere in contact and just above the plate
+  // The project's target (docs/BENCHMARKS.md, bench_tracking), 0.01 px peak to peak, for a sphere in contact and just above the plate
   // (the plate cut active at every lift here). The centroid's plate cut is a double wedge whose
   // ramps run along the disc's edge, not across it (refiner.cc, CentroidMask): measured
   // 0.0028-0.0038 px (it was 0.014 with a horizontal 8 px ramp); discfit 0.0006-0.001 px.
