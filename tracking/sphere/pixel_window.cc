@@ -1,5 +1,6 @@
 #include "tracking/sphere/pixel_window.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -15,16 +16,40 @@ void Copy(const cv::Mat& frame, int polarity, PixelWindow* w) {
   }
 }
 
+// Copy for a window that leaves the frame: coordinates clamped to the frame (its edge pixels
+// repeated outward).
+template <typename T>
+void CopyClamped(const cv::Mat& frame, int polarity, PixelWindow* w) {
+  for (int y = 0; y < w->size; ++y) {
+    const T* src = frame.ptr<T>(std::clamp(w->row0 + y, 0, frame.rows - 1));
+    float* dst = &w->v[size_t(y) * w->size];
+    for (int x = 0; x < w->size; ++x) {
+      dst[x] = float(polarity * int(src[std::clamp(w->col0 + x, 0, frame.cols - 1)]));
+    }
+  }
+}
+
 }  // namespace
 
 bool ExtractWindow(const cv::Mat& frame, const Eigen::Vector2d& centre, int half, int polarity,
-                   PixelWindow* w) {
-  w->col0 = int(std::lround(centre.x())) - half;
-  w->row0 = int(std::lround(centre.y())) - half;
+                   PixelWindow* w, int inside) {
+  const int col = int(std::lround(centre.x())), row = int(std::lround(centre.y()));
+  w->col0 = col - half;
+  w->row0 = row - half;
   w->size = 2 * half + 1;
   if (w->col0 < 0 || w->row0 < 0 || w->col0 + w->size > frame.cols ||
       w->row0 + w->size > frame.rows) {
-    return false;
+    const int in = inside < 0 ? half : std::min(inside, half);
+    if (col - in < 0 || row - in < 0 || col + in >= frame.cols || row + in >= frame.rows) {
+      return false;
+    }
+    w->v.resize(size_t(w->size) * w->size);
+    if (frame.depth() == CV_8U) {
+      CopyClamped<uint8_t>(frame, polarity, w);
+    } else {
+      CopyClamped<uint16_t>(frame, polarity, w);
+    }
+    return true;
   }
   w->v.resize(size_t(w->size) * w->size);
   if (frame.depth() == CV_8U) {

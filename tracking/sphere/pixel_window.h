@@ -15,11 +15,24 @@ struct PixelWindow {
   float at(int x, int y) const { return v[size_t(y) * size + x]; }
 };
 
+// A sphere near the frame's edge is measured when its disc and this many px around it are in
+// the frame: the window's part beyond the edge repeats the frame's edge pixels, which are
+// then background (Tracker.ASphereAtTheFramesEdgeIsMeasured).
+inline constexpr double kEdgeGuardPx = 2.0;
+
 // Copies the square of half-size `half` (side 2 half + 1) around the pixel nearest `centre`
 // (col, row), 8- or 16-bit, times `polarity` (+1 or -1). False, leaving `w` unfilled, when the
-// square leaves the frame (a clipped sphere). Reuses w's buffer.
+// square of half-size `inside` (<= half) about that pixel leaves the frame (a clipped sphere);
+// the rest of the window beyond the frame repeats its nearest edge pixel. `inside` < 0: the
+// whole window must be inside. Reuses w's buffer.
 bool ExtractWindow(const cv::Mat& frame, const Eigen::Vector2d& centre, int half, int polarity,
-                   PixelWindow* w);
+                   PixelWindow* w, int inside = -1);
+
+// The half-size that must be inside the frame for a sphere of `radius` px (its disc and
+// kEdgeGuardPx), at most `half`.
+inline int InsideHalf(double radius, int half) {
+  return std::min(half, int(std::ceil(radius + kEdgeGuardPx)));
+}
 
 // Visits the pixels of `w` whose centres lie between the circles of radii `inner` and `outer`
 // about `c` (frame coordinates): per row, only the columns between the two circles on each

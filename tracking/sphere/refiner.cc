@@ -52,9 +52,11 @@ const std::pair<Method, const char*> kMethodNames[] = {{Method::kCentroid, "cent
 
 using Window = PixelWindow;
 
+// The window about a sphere of `radius` px: near the frame's edge, measured while the disc is
+// in the frame (pixel_window.h, kEdgeGuardPx).
 bool Extract(const cv::Mat& frame, const Eigen::Vector2d& centre, int half, int polarity,
-             Window* w) {
-  return ExtractWindow(frame, centre, half, polarity, w);
+             double radius, Window* w) {
+  return ExtractWindow(frame, centre, half, polarity, w, InsideHalf(radius, half));
 }
 
 // The median of a window's levels, reordering `v` (no copy per frame); 0 for an empty one.
@@ -423,7 +425,7 @@ bool Iterate(const cv::Mat& frame, const RefineContext& ctx, double radius, int 
     last_step = step;
     if ((c - window_centre).cwiseAbs().maxCoeff() > kRecentreWindowPx) {  // keep it centred
       last_step.setZero();
-      if (!Extract(frame, c, half, ctx.polarity, &s->window)) {
+      if (!Extract(frame, c, half, ctx.polarity, radius, &s->window)) {
         out->status = SphereMeasurement::Status::kClipped;
         return false;
       }
@@ -442,7 +444,7 @@ SphereMeasurement Centroid(const cv::Mat& frame, const Eigen::Vector2d& guess, d
   const int half = int(std::ceil(radius + kWindowMarginPx));
   const double win_r = half - 1.0;  // stays inside the window while |c - centre| <= 1 px
   Eigen::Vector2d c = guess;
-  if (!Extract(frame, c, half, ctx.polarity, &s->window)) {
+  if (!Extract(frame, c, half, ctx.polarity, radius, &s->window)) {
     out.status = SphereMeasurement::Status::kClipped;
     return out;
   }
@@ -500,7 +502,7 @@ void DiscFit(const cv::Mat& frame, const RefineContext& ctx, const Levels& start
     const Eigen::Vector2d c(p(0), p(1));
     const Eigen::Vector2d window_centre(w.col0 + w.size / 2, w.row0 + w.size / 2);
     if (!have_window || (c - window_centre).cwiseAbs().maxCoeff() > kRecentreWindowPx) {
-      if (!Extract(frame, c, half, ctx.polarity, &w)) {
+      if (!Extract(frame, c, half, ctx.polarity, radius_guess, &w)) {
         m->status = SphereMeasurement::Status::kClipped;
         return;
       }

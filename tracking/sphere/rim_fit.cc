@@ -58,8 +58,9 @@ constexpr double kMaxMovePx = 4.0;
 
 using Window = PixelWindow;
 
-bool Extract(const cv::Mat& frame, const Eigen::Vector2d& c, int half, int polarity, Window* w) {
-  return ExtractWindow(frame, c, half, polarity, w);
+bool Extract(const cv::Mat& frame, const Eigen::Vector2d& c, int half, int polarity,
+             double radius, Window* w) {
+  return ExtractWindow(frame, c, half, polarity, w, InsideHalf(radius, half));
 }
 
 // True where a point (offset d from the centre) may be the sphere's rim: not on the plate or
@@ -361,7 +362,7 @@ RimFitResult FitRim(const cv::Mat& frame, const Eigen::Vector2d& centre, double 
   const int half = int(std::ceil(radius_px + kRimWindowMarginPx));
   const double min_contrast = kMinRimContrastFraction * (frame.depth() == CV_8U ? 255.0 : 65535.0);
   thread_local Window w;
-  if (!Extract(frame, centre, half, input.polarity, &w)) return out;
+  if (!Extract(frame, centre, half, input.polarity, radius_px, &w)) return out;
   Usable usable{input, centre.y(), radius_px, centre.x()};
   Vec p = Vec::Zero();
   p.head<3>() << centre.x(), centre.y(), radius_px;

@@ -36,6 +36,10 @@ constexpr double kEccMaxMovePx = 1.0;
 // Acquisition: the rod's direction is unknown, so a horizontal corridor on both sides of this
 // half-width (units of R) is cut; the dimer's tilt stays well inside it near the sphere.
 constexpr double kAcquireRodHalfWidthR = 0.45;
+// A sphere at the frame's edge: the template's pixels within this many px of the edge are left
+// out besides those beyond it (ECC moves the estimate by up to kEccMaxMovePx; the edge pixel
+// row itself can be a sensor's odd one).
+constexpr int kEdgeMaskGuardPx = 2;
 
 cv::Mat ToFloat(const cv::Mat& m) {
   cv::Mat f;
@@ -45,6 +49,45 @@ cv::Mat ToFloat(const cv::Mat& m) {
 
 bool Inside(const cv::Mat& frame, const cv::Rect& r) {
   return r.x >= 0 && r.y >= 0 && r.x + r.width <= frame.cols && r.y + r.height <= frame.rows;
+}
+
+// The frame's pixels in `r`, as float; where `r` leaves the frame, its edge pixels repeated
+// (they are masked out: CutAtTheFramesEdge).
+cv::Mat FloatPatch(const cv::Mat& frame, const cv::Rect& r) {
+  if (Inside(frame, r)) return ToFloat(frame(r));
+  const cv::Rect in = r & cv::Rect(0, 0, frame.cols, frame.rows);
+  cv::Mat out;
+  if (in.empty()) return cv::Mat(r.size(), CV_32F, cv::Scalar(0));
+  cv::copyMakeBorder(ToFloat(frame(in)), out, in.y - r.y, r.y + r.height - in.y - in.height,
+                     in.x - r.x, r.x + r.width - in.x - in.width, cv::BORDER_REPLICATE);
+  return out;
+}
+
+// Whether the disc of `radius` px about pixel `g` is in the frame. A sphere cut by the edge is
+// not matched: on partly cut mirror-lit spheres the template's columns scattered 1.4 px, up to
+// 7.6 px off, against 0.09 px while the disc was whole (DimerIdentity tests' walks).
+bool DiscInside(const cv::Mat& frame, const cv::Point& g, double radius) {
+  const int r = int(std::ceil(radius));
+  return g.x - r >= 0 && g.y - r >= 0 && g.x + r < frame.cols && g.y + r < frame.rows;
+}
+
+// A sphere at the frame's edge: the template's pixels that fall beyond the frame, or within
+// `guard` px of its edge (the search's and ECC's reach), when the template's reference point is
+// at frame pixel `g`, are left out; what shows of the sphere is matched.
+void CutAtTheFramesEdge(const cv::Mat& frame, const cv::Point& g, int half, int guard,
+                        cv::Mat* mask) {
+  for (int y = 0; y < mask->rows; ++y) {
+    const int row = g.y - half + y;
+    uint8_t* m = mask->ptr<uint8_t>(y);
+    if (row < guard || row >= frame.rows - guard) {
+      std::fill(m, m + mask->cols, uint8_t(0));
+      continue;
+    }
+    for (int x = 0; x < mask->cols; ++x) {
+      const int col = g.x - half + x;
+      if (col < guard || col >= frame.cols - guard) m[x] = 0;
+    }
+  }
 }
 
 // Vertex of the parabola through (-1, a), (0, b), (1, c), clamped to half a pixel.
@@ -209,12 +252,18 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   const cv::Point g(int(std::lround(guess.x())), int(std::lround(guess.y())));
   const cv::Rect search(g.x - a.half - search_px, g.y - a.half - search_px, size + 2 * search_px,
                         size + 2 * search_px);
-  if (!Inside(frame, search)) {
+  const bool at_edge = !Inside(frame, search);
+  if (at_edge && !DiscInside(frame, g, a.radius_px + kEdgeMaskGuardPx + search_px)) {
     out.clipped = true;
     return out;
   }
   cv::Mat mask = FrameMask(a, guess, ctx);
-  if (cv::countNonZero(mask) < kMinMaskedFraction * size * size) return out;
+  if (at_edge) CutAtTheFramesEdge(frame, g, a.half, search_px + kEdgeMaskGuardPx, &mask);
+  if (cv::countNonZero(mask) < kMinMaskedFraction * size * size) {
+    out.clipped = at_edge;
+    return out;
+  }
+  out.at_edge = at_edge;
   Eigen::Vector2d start = guess;
   if (search_px > 0) {
     // Template pixels outside the mask weigh nothing in the masked correlation: the template,
@@ -223,7 +272,8 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
     const cv::Rect window(search.x + box.x, search.y + box.y, box.width + 2 * search_px,
                           box.height + 2 * search_px);
     cv::Mat res;
-    cv::matchTemplate(ToFloat(frame(window)), a.image(box), res, cv::TM_CCOEFF_NORMED, mask(box));
+    cv::matchTemplate(FloatPatch(frame, window), a.image(box), res, cv::TM_CCOEFF_NORMED,
+                      mask(box));
     KeepCorrelations(&res);
     double best = 0;
     cv::Point at;
@@ -240,10 +290,10 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   const cv::Rect patch(g2.x - a.half, g2.y - a.half, size, size);
   out.position = start;
   out.ok = search_px > 0;  // without the search, only a converged ECC counts
-  if (!Inside(frame, patch)) return out;
-  const cv::Mat frame_patch = ToFloat(frame(patch));
+  const cv::Mat frame_patch = FloatPatch(frame, patch);
   // Following (no search) refines from the guess itself, whose mask is already cut.
-  const cv::Mat refine_mask = start == guess ? mask : FrameMask(a, start, ctx);
+  cv::Mat refine_mask = start == guess ? mask : FrameMask(a, start, ctx);
+  if (at_edge && start != guess) CutAtTheFramesEdge(frame, g2, a.half, kEdgeMaskGuardPx, &refine_mask);
   Eigen::Vector2d t(g2.x - start.x(), g2.y - start.y());
   double rho = 0;
   if (!RegisterTranslation(frame_patch, a.image, refine_mask, &t, &rho, kEccFrameGaussSize,

@@ -54,7 +54,8 @@ cv::Mat FrameMask(const Appearance& a, const Eigen::Vector2d& position, const Ma
 
 struct Located {
   bool ok = false;              // false: window outside the frame, too few pixels, flat peak
-  bool clipped = false;         // the window left the frame
+  bool clipped = false;         // too little of the sphere is in the frame to match
+  bool at_edge = false;         // matched on the part in the frame (the rest left out)
   Eigen::Vector2d position{0, 0};  // reference point in the frame (col, row), px
   double score = 0;             // correlation coefficient at the peak (-1..1)
   // ECC's correlation coefficient at the refined position, where ECC converged (NaN else):
