@@ -284,6 +284,23 @@ TEST(RunTrack, TheLensCalibrationIsCheckedFirstAndRecorded) {
     EXPECT_NE(std::string(e.what()).find(dir / "missing.yml"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(std::filesystem::exists(t.output));
+  // An image size that is not one (it became INT_MAX and skipped the size check): refused in one
+  // line naming the file and the field, before any work.
+  std::ofstream(dir / "bad_width.yml")
+      << "%YAML:1.0\n---\nimage_width: abc\nimage_height: 256\n"
+         "camera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+         "   data: [ 2000., 0., 255.5, 0., 2000., 127.5, 0., 0., 1. ]\n"
+         "distortion_coefficients: !!opencv-matrix\n   rows: 5\n   cols: 1\n   dt: d\n"
+         "   data: [ 0.1, 0., 0., 0., 0. ]\n";
+  t.lens = dir / "bad_width.yml";
+  try {
+    RunTrack(t);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              dir / "bad_width.yml" + ": image_width is 'abc', not an integer in 1..65536");
+  }
+  EXPECT_FALSE(std::filesystem::exists(t.output));
   // Our renderer's frames are 512 x 256; a lens of 0.2 % at the corner, centred on the frame.
   std::ofstream(dir / "lens.yml")
       << "%YAML:1.0\n---\nimage_width: 512\nimage_height: 256\n"

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <initializer_list>
+#include <iterator>
 
 #include "common/error.h"
 
@@ -65,6 +67,28 @@ std::string MatrixProblem(const cv::FileNode& node, const std::string& name, con
   return "";
 }
 
+// OpenCV 4.6's parsers read past the end of their buffer on a NUL byte inside the text or on
+// XML that ends inside a tag (a truncated copy): both crashed it (tests/fuzz/fuzz_lens). A
+// calibration file is text, and every XML file OpenCV writes ends with its closing root tag, so
+// such files are refused before OpenCV parses them (gzip-compressed ones, which OpenCV reads
+// too, are left to it). Returns the reason, or "".
+std::string UnparsableTextProblem(const std::string& path) {
+  if (path.size() > 3 && path.compare(path.size() - 3, 3, ".gz") == 0) return "";
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (const size_t nul = text.find('\0'); nul != std::string::npos) {
+    return "a NUL byte at offset " + std::to_string(nul) + ": not a text calibration file";
+  }
+  const size_t start = text.find_first_not_of(" \t\r\n");
+  if (start == std::string::npos || text.compare(start, 5, "<?xml") != 0) return "";
+  const size_t end = text.find_last_not_of(" \t\r\n");
+  const std::string closing = "</opencv_storage>";
+  if (end + 1 < closing.size() || text.compare(end + 1 - closing.size(), closing.size(), closing)) {
+    return "XML that does not end with " + closing + " (truncated?)";
+  }
+  return "";
+}
+
 }  // namespace
 
 LensCalibration ReadLensCalibration(const std::string& path) {
@@ -73,6 +97,7 @@ LensCalibration ReadLensCalibration(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec)) fail("no such file (--lens)");
   LensCalibration c;
   c.path = path;
+  if (const std::string problem = UnparsableTextProblem(path); !problem.empty()) fail(problem);
   try {
     cv::FileStorage fs(path, cv::FileStorage::READ);
     if (!fs.isOpened()) fail("not an OpenCV calibration file (YAML, XML or JSON)");
@@ -134,8 +159,14 @@ LensCalibration ReadLensCalibration(const std::string& path) {
     }
     const cv::FileNode e = FirstOf(fs, {"avg_reprojection_error", "Avg_Reprojection_Error"});
     if (!e.empty() && e.isReal()) c.reprojection_error = double(e);
+  } catch (const InputError&) {
+    throw;
   } catch (const cv::Exception& ex) {
     fail(std::string("unreadable as an OpenCV calibration file: ") + ex.err);
+  } catch (const std::exception& ex) {
+    // OpenCV's parser lets the standard library's own exceptions out too: std::length_error on
+    // an empty key in a map (found by tests/fuzz/fuzz_lens).
+    fail(std::string("unreadable as an OpenCV calibration file: ") + ex.what());
   }
   return c;
 }

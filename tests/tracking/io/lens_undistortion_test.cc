@@ -155,6 +155,26 @@ TEST(LensCalibration, BadImageSizesAndMatrixShapesAreOneLineErrorsNamingTheField
   EXPECT_NE(e.find("camera_matrix has 8 data values for its 3 x 3"), std::string::npos) << e;
 }
 
+// What crashed OpenCV 4.6's parsers inside ReadLensCalibration (tests/fuzz/fuzz_lens): XML that
+// ends inside a tag, a NUL byte in the text, an empty key in a map (std::length_error out of
+// OpenCV). Each is a one-line error naming the file.
+TEST(LensCalibration, TextThatCrashedOpenCvsParserIsRefusedInOneLine) {
+  dimer::testing::TempDir dir;
+  WriteText(dir / "truncated.xml",
+            "<?xml version=\"1.0\"?>\n<opencv_storage>\n<Camera_Matrix type_id=");
+  EXPECT_EQ(ErrorOf(dir / "truncated.xml"),
+            dir / "truncated.xml" +
+                ": XML that does not end with </opencv_storage> (truncated?)");
+  std::string nul = SampleYaml(0.1);
+  nul[20] = '\0';
+  WriteText(dir / "nul.yml", nul);
+  EXPECT_EQ(ErrorOf(dir / "nul.yml"),
+            dir / "nul.yml" + ": a NUL byte at offset 20: not a text calibration file");
+  WriteText(dir / "key.yml", "%YAML:1.0\n---\nD:\n   rows: 5\n   : ocsl1\n");  // an empty key
+  EXPECT_EQ(ErrorOf(dir / "key.yml"),
+            dir / "key.yml" + ": unreadable as an OpenCV calibration file: basic_string::_M_create");
+}
+
 // Bright discs of radius 6 px seen through a lens with k1 = 0.3 (f = 1000 px): each pixel is the
 // mean of 8 x 8 samples, each sample's light coming from its undistorted position (the radial
 // model inverted by fixed-point iteration, as a lens maps the scene onto the sensor).
