@@ -105,25 +105,43 @@ bench() {
   echo "tables: $results/*.tsv (docs/BENCHMARKS.md shows them: bench/tables.sh md < FILE)"
 }
 
-# Each libFuzzer target of tests/fuzz for FUZZ_SECONDS on a copy of its seed corpus; a crash,
-# leak or sanitizer report fails the command and leaves the input in build-fuzz/crashes/.
+# One libFuzzer target ($1) for $2 seconds on a copy of its seed corpus: its log in
+# build-fuzz/NAME.log, "ok" or "FAILED" in build-fuzz/NAME.result.
+fuzz_one() {
+  local t=$1 seconds=$2 name=${1##*/fuzz_} work result
+  work=$(mktemp -d)
+  cp "tests/fuzz/corpus/$name/"* "$work/"
+  if "$t" -max_total_time="$seconds" -print_final_stats=1 -artifact_prefix=build-fuzz/crashes/ \
+      "$work" >"build-fuzz/$name.log" 2>&1; then result=ok; else result=FAILED; fi
+  echo "$result" >"build-fuzz/$name.result"
+  rm -rf "$work"
+}
+
+# Each libFuzzer target of tests/fuzz for FUZZ_SECONDS on a copy of its seed corpus, JOBS
+# targets at a time (a target is one process: the wall time is about ceil(targets / JOBS) x
+# FUZZ_SECONDS); a crash, leak or sanitizer report fails the command and leaves the input in
+# build-fuzz/crashes/.
 fuzz() {
   setup
   CC=clang CXX=clang++ build_dir build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDIMERLAB_FUZZ=ON \
     -DDIMERLAB_WITH_TRACKING=OFF -DDIMERLAB_TESTS=OFF -DDIMERLAB_BENCH=OFF
-  local seconds=${FUZZ_SECONDS:-60} failed=0 t name work
+  local seconds=${FUZZ_SECONDS:-60} failed=0 t name result
+  local targets=(build-fuzz/tests/fuzz/fuzz_*)
   mkdir -p build-fuzz/crashes
+  rm -f build-fuzz/*.result
+  for t in "${targets[@]}"; do
+    while (($(jobs -rp | wc -l) >= JOBS)); do wait -n || true; done
+    fuzz_one "$t" "$seconds" &
+  done
+  wait
   printf '| target | seconds | executions | exec/s | result |\n|---|---:|---:|---:|---|\n' | tee build-fuzz/table.md
-  for t in build-fuzz/tests/fuzz/fuzz_*; do
+  for t in "${targets[@]}"; do
     name=${t##*/fuzz_}
-    work=$(mktemp -d)
-    cp "tests/fuzz/corpus/$name/"* "$work/"
-    if "$t" -max_total_time="$seconds" -print_final_stats=1 -artifact_prefix=build-fuzz/crashes/ \
-        "$work" >"build-fuzz/$name.log" 2>&1; then result=ok; else result=FAILED; failed=1; fi
+    result=$(cat "build-fuzz/$name.result" 2>/dev/null || echo FAILED)
+    [ "$result" = ok ] || failed=1
     awk -v n="$name" -v s="$seconds" -v r="$result" '
       /stat::number_of_executed_units/ { e = $2 } /stat::average_exec_per_sec/ { x = $2 }
       END { printf "| %s | %s | %s | %s | %s |\n", n, s, e, x, r }' "build-fuzz/$name.log" | tee -a build-fuzz/table.md
-    rm -rf "$work"
   done
   mkdir -p "bench/results/${DIMERLAB_BENCH_MACHINE:-$(hostname -s)}"
   bench/tables.sh tsv <build-fuzz/table.md >"bench/results/${DIMERLAB_BENCH_MACHINE:-$(hostname -s)}/fuzz.tsv"

@@ -79,7 +79,7 @@ void RegisterAnalyze(CLI::App& app) {
   tracking::TrackArgs& t = cli->args.track;
   c->add_option("input", t.input, "folder of frames, multi-page TIFF, .cine or video")->required();
   c->add_option("--frames", t.frames, "track frames A..B-1 only (A:B, A: or :B; 0-based)");
-  c->add_option("--fps", t.fps, "frame rate, frames/s [a .cine's header, else 2000]");
+  c->add_option("--fps", t.fps, "frame rate, frames/s [a .cine's time stamps or header, else 2000]");
   c->add_option("--m-per-px", t.m_per_px, "metres per pixel [from --diameter]");
   c->add_option("--diameter", t.diameter, "sphere diameter, m (calibrates m/px)")->capture_default_str();
   c->add_option("--ar", t.ar,

@@ -14,7 +14,7 @@ void AddTrackOptions(CLI::App* sub, tracking::TrackArgs* a) {
   sub->add_option("--frames", a->frames, "frames A..B-1 only (A:B, A: or :B; 0-based)");
   sub->add_option("-o,--output", a->output, "track file to write (HDF5)")->required();
   sub->add_flag("--force", a->force, "replace an existing output file");
-  sub->add_option("--fps", a->fps, "frame rate, frames/s [a .cine's header, else 2000]");
+  sub->add_option("--fps", a->fps, "frame rate, frames/s [a .cine's time stamps or header, else 2000]");
   sub->add_option("--m-per-px", a->m_per_px, "metres per pixel [from --diameter]");
   sub->add_option("--diameter", a->diameter, "sphere diameter, m (calibrates m/px)")
       ->capture_default_str();

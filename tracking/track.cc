@@ -15,6 +15,7 @@
 #include "tracking/calibration.h"
 #include "tracking/dimer_length_scale.h"
 #include "tracking/dimer_presence.h"
+#include "tracking/io/cine_time_stamps.h"
 #include "tracking/io/frame_range.h"
 #include "tracking/sphere/impact_vertex.h"
 #include "tracking/track_file.h"
@@ -43,20 +44,52 @@ SequenceOptions SequenceOptionsOf(const TrackArgs& args) {
   return seq;
 }
 
-// The frame rate: --fps when given (warning when a .cine header says another), else the
-// header's, else kDefaultFps.
+// The frame rate: --fps when given (warning when a .cine header says another), else the one
+// of the frames' own time stamps (warning when the header's differs by more than 1 %: a film
+// saved with a decimation), else the header's, else kDefaultFps. A .cine whose header says 0
+// and that has no time stamps needs --fps: 2000 would silently scale every velocity.
 Recording ResolveFps(const RecordingInfo& info, TrackArgs* args, Diagnostics* diag) {
   Recording rec{"option", info};
   const bool header = info.known && info.fps > 0;
-  if (std::isnan(args->fps)) {
-    args->fps = header ? info.fps : kDefaultFps;
-    rec.fps_from = header ? "header" : "default";
-  } else if (header && args->fps != info.fps) {
-    diag->WarnInput("fps", Format("%s: --fps %.10g differs from the .cine header's %.10g frames/s; "
-                                  "using --fps %.10g",
-                                  args->input.c_str(), args->fps, info.fps, args->fps));
+  const double stamped = FrameRateOfTimes(info.frame_times);
+  if (!std::isnan(args->fps)) {
+    rec.info.frame_times.clear();  // --fps wins: t is frame_index / fps
+    if (header && args->fps != info.fps) {
+      diag->WarnInput("fps", Format("%s: --fps %.10g differs from the .cine header's %.10g "
+                                    "frames/s; using --fps %.10g",
+                                    args->input.c_str(), args->fps, info.fps, args->fps));
+    }
+  } else if (stamped > 0) {
+    args->fps = stamped;
+    rec.fps_from = "time_stamps";
+    if (header && std::abs(stamped - info.fps) > 0.01 * info.fps) {
+      diag->WarnInput("fps", Format("%s: the frames' time stamps give %.6g frames/s, the header "
+                                    "says %.10g (saved with a decimation?); using the time stamps",
+                                    args->input.c_str(), stamped, info.fps));
+    }
+  } else if (header) {
+    args->fps = info.fps;
+    rec.fps_from = "header";
+    rec.info.frame_times.clear();
+  } else if (info.known) {
+    throw InputError(args->input + ": the .cine header's frame rate is 0 and the file has no "
+                     "time stamps; give the rate with --fps");
+  } else {
+    args->fps = kDefaultFps;
+    rec.fps_from = "default";
   }
   return rec;
+}
+
+// A camera set to flip its image vertically: the frames are read as stored (cine_source.h),
+// which is how Phantom's software shows them; said, since gravity then points up the frame if
+// the camera was not mounted upside down.
+void WarnFlip(const TrackArgs& args, const Recording& rec, Diagnostics* diag) {
+  if (!rec.info.flip_v) return;
+  diag->WarnInput("cine_flip_v",
+                  Format("%s: the camera was set to flip its image vertically (bFlipV); the "
+                         "frames are read as stored, the plate must be at the bottom",
+                         args.input.c_str()));
 }
 
 // Lossy compression moves edges and smooths the noise the offsets are measured against: on
@@ -172,6 +205,7 @@ void RunTrack(const TrackArgs& args) {
   // g in px per frame^2 is this times the radius in px (whichever the film is tracked with).
   seq.gravity_per_radius_px = 2.0 * kGravity / (args.diameter * resolved.fps * resolved.fps);
   WarnLossyCodec(args, rec, &diag);
+  WarnFlip(args, rec, &diag);
   const LengthScale length_scale = RadiusFromDimerLength(args, &seq, &diag);
   const SequenceResult r = TrackWithLibraryMessagesCaptured(resolved, seq, *source, &diag);
   if (r.frames.empty()) {

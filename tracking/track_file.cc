@@ -125,7 +125,10 @@ struct TrackColumns {
   std::vector<uint8_t> found;
 };
 
-TrackColumns ColumnsOf(const SequenceResult& r, const Calibration& cal, double fps) {
+// t: each frame's own time stamp when the source has them (Recording's frame_times), else
+// frame_index / fps.
+TrackColumns ColumnsOf(const SequenceResult& r, const Calibration& cal, double fps,
+                       const std::vector<double>& times) {
   const size_t n = r.frames.size();
   TrackColumns out;
   Trajectory& traj = out.traj;
@@ -152,7 +155,8 @@ TrackColumns ColumnsOf(const SequenceResult& r, const Calibration& cal, double f
     const double plate_col = f.found[0] && f.found[1] ? 0.5 * (f.centre[0].x() + f.centre[1].x())
                                                       : f.plate_col;
     plate_row[i] = f.PlateRowAt(plate_col);
-    traj.Append(double(f.index) / fps, tip[0], tip[1],
+    const double t = f.index < times.size() ? times[f.index] : double(f.index) / fps;
+    traj.Append(t, tip[0], tip[1],
                 cal.ToMetres({plate_col, plate_row[i]}).y(), std::atan2(axis.y(), axis.x()));
     index[i] = int64_t(f.index);
   }
@@ -190,6 +194,10 @@ void RecordingAttributes(const SequenceResult& r, const Recording& rec, AttrList
     attrs.push_back({"cine_colour", rec.info.colour});
     attrs.push_back({"cine_cfa", rec.info.cfa});
     attrs.push_back({"cine_mosaic_balance", rec.info.mosaic_balance});
+    attrs.push_back({"cine_flip_v", int64_t{rec.info.flip_v}});
+    attrs.push_back({"cine_header_fps", rec.info.fps});
+    units["cine_flip_v"] = "1";
+    units["cine_header_fps"] = "1/s";
     units["exposure_ns"] = "ns";
     units["trigger_time_seconds"] = "s";
     units["trigger_time_fraction"] = "2^-32 s";
@@ -369,7 +377,7 @@ std::string PsfSource(const TrackArgs& args, const PlateClip& clip) {
 
 void WriteTrackFile(const std::string& path, const TrackArgs& args, const SequenceResult& r,
                     const Calibration& cal, const Recording& rec) {
-  const TrackColumns columns = ColumnsOf(r, cal, args.fps);
+  const TrackColumns columns = ColumnsOf(r, cal, args.fps, rec.info.frame_times);
   const RootAttrs root = RootAttributes(args, r, cal, rec);
   H5Writer w(path);
   WriteProvenance(w, "track", root.attrs, root.units,

@@ -13,7 +13,7 @@ namespace dimer::tracking {
 
 // Where the frame rate came from, and the recording's header values (a .cine's) when known.
 struct Recording {
-  std::string fps_from;  // option | header | default
+  std::string fps_from;  // option | time_stamps | header | default
   RecordingInfo info;
 };
 

@@ -21,6 +21,7 @@
 #include "tests/common/test_tmpdir.h"
 #include "tests/tracking/synthetic.h"
 #include "render/render.h"
+#include "tracking/io/cine_writer.h"
 
 namespace dimer::tracking {
 namespace {
@@ -283,6 +284,23 @@ TEST(RunTrack, TheLensCalibrationIsCheckedFirstAndRecorded) {
     EXPECT_NE(std::string(e.what()).find(dir / "missing.yml"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(std::filesystem::exists(t.output));
+  // An image size that is not one (it became INT_MAX and skipped the size check): refused in one
+  // line naming the file and the field, before any work.
+  std::ofstream(dir / "bad_width.yml")
+      << "%YAML:1.0\n---\nimage_width: abc\nimage_height: 256\n"
+         "camera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+         "   data: [ 2000., 0., 255.5, 0., 2000., 127.5, 0., 0., 1. ]\n"
+         "distortion_coefficients: !!opencv-matrix\n   rows: 5\n   cols: 1\n   dt: d\n"
+         "   data: [ 0.1, 0., 0., 0., 0. ]\n";
+  t.lens = dir / "bad_width.yml";
+  try {
+    RunTrack(t);
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              dir / "bad_width.yml" + ": image_width is 'abc', not an integer in 1..65536");
+  }
+  EXPECT_FALSE(std::filesystem::exists(t.output));
   // Our renderer's frames are 512 x 256; a lens of 0.2 % at the corner, centred on the frame.
   std::ofstream(dir / "lens.yml")
       << "%YAML:1.0\n---\nimage_width: 512\nimage_height: 256\n"
@@ -460,6 +478,66 @@ TEST(RunTrack, VideoFileIsTrackedInOrder) {
   ASSERT_EQ(left.size(), png_left.size());
   // MJPEG is lossy like JPEG (same bound and reason as above).
   for (size_t i = 0; i < left.size(); ++i) EXPECT_NEAR(left[i], png_left[i], 0.05) << i;
+}
+
+// A .cine's own per-frame time stamps give t and fps (a film saved with a decimation: the
+// header's recording rate is 4 times theirs, and a one-line warning says so); a header rate of
+// 0 without time stamps is an error unless --fps is given.
+TEST(RunTrack, ACinesTimeStampsGiveTheFrameTimes) {
+  dimer::testing::TempDir dir;
+  RenderDrift(dir, 12, Lighting::kBacklit, "cine");
+  std::vector<cv::Mat> frames;
+  {
+    auto rendered = FrameSource::Open(dir / "frames/frames.cine");
+    for (size_t i = 0; i < rendered->size(); ++i) frames.push_back(rendered->Read(i).image);
+  }
+  ASSERT_EQ(frames.size(), 12u);
+  CineWriteOptions o;
+  o.frame_rate = 2000;
+  o.time_stamp_rate = 500;
+  WriteCine(dir / "decimated.cine", frames, o);
+  TrackArgs t = Track(dir);
+  t.input = dir / "decimated.cine";
+  std::vector<Diagnostic> said;
+  t.on_diagnostic = [&](const Diagnostic& d) { said.push_back(d); };
+  RunTrack(t);
+  {
+    H5Reader h(t.output);
+    EXPECT_NEAR(*h.AttrDouble("/", "fps"), 500.0, 1e-4);  // stamps in 2^-32 s
+    EXPECT_EQ(*h.AttrString("/", "fps_source"), "time_stamps");
+    EXPECT_EQ(*h.AttrDouble("/", "cine_header_fps"), 2000.0);
+    EXPECT_EQ(*h.AttrDouble("/", "cine_flip_v"), 0.0);
+    const Trajectory traj = ReadTrajectory(h);
+    ASSERT_EQ(traj.size(), 12u);
+    for (size_t i = 0; i < 12; ++i) EXPECT_NEAR(traj.t[i], double(i) / 500, 1e-9) << i;
+  }
+  size_t fps_warnings = 0;
+  for (const Diagnostic& d : said) {
+    if (d.code != "fps") continue;
+    ++fps_warnings;
+    EXPECT_EQ(d.message.find('\n'), std::string::npos);
+    EXPECT_NE(d.message.find("time stamps give 500 frames/s, the header says 2000"),
+              std::string::npos) << d.message;
+  }
+  EXPECT_EQ(fps_warnings, 1u);
+
+  o.frame_rate = 0;
+  o.time_stamp_rate = 0;
+  WriteCine(dir / "no_rate.cine", frames, o);
+  t.input = dir / "no_rate.cine";
+  t.output = dir / "no_rate.h5";
+  try {
+    RunTrack(t);
+    FAIL() << "a header rate of 0 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), dir / "no_rate.cine" + ": the .cine header's frame rate is 0 "
+              "and the file has no time stamps; give the rate with --fps");
+  }
+  EXPECT_FALSE(std::filesystem::exists(t.output));
+  t.fps = 1000;
+  RunTrack(t);
+  H5Reader h(t.output);
+  EXPECT_EQ(*h.AttrString("/", "fps_source"), "option");
 }
 
 TEST(LosslessVideoCodec, KeepsEveryPixelOnlyForTheLosslessCodecs) {

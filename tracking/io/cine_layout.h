@@ -6,6 +6,7 @@
 //   CINEFILEHEADER (44 bytes at 0)  ->  OffImageHeader: BITMAPINFOHEADER (40 bytes)
 //                                       OffSetup:       SETUP (Length bytes, "ST" marker)
 //                                       OffImageOffsets: ImageCount int64 file offsets
+//                                       tagged blocks: from OffSetup + Length to OffImageOffsets
 //   at each image offset: AnnotationSize (uint32, includes itself and ImageSize), annotation
 //   bytes, ImageSize (uint32, the last 4 bytes of the annotation block), then the pixels.
 //
@@ -35,7 +36,8 @@ inline constexpr uint32_t kBiPacked10 = 256; // 10 bits per pixel, 4 pixels in 5
 
 // SETUP
 inline constexpr int kSFrameRate16 = 0, kSShutter16 = 2, kSMark = 140, kSLength = 142,
-                     kSImWidth = 737, kSImHeight = 739, kSFrameRate = 768, kSShutterUs = 772,
+                     kSImWidth = 737, kSImHeight = 739, kSFlipH = 756, kSFlipV = 760,
+                     kSFrameRate = 768, kSShutterUs = 772,
                      kSCfa = 808, kSRealBpp = 896, kSShutterNs = 1568, kSDescription = 1596;
 inline constexpr uint16_t kSetupMarkST = 0x5453;  // the bytes 'S','T'
 // SETUP.CFA: the colour filter array's code in the low byte (0: grey sensor; 1-6: Bayer layouts,
@@ -45,5 +47,11 @@ inline constexpr uint32_t kCfaCodeMask = 0xFF;
 // length most files of the cameras in use carry. Readers need only up to ShutterNs.
 inline constexpr uint16_t kSetupLengthWritten = 5740;
 inline constexpr int kSetupMinRead = kSRealBpp + 4;  // what the reader needs at the least
+
+// Tagged information blocks (between SETUP and the offset table): uint32 BlockSize (the whole
+// block), uint16 Type, uint16 Reserved, then the data. TIME_ONLY holds one TIME64 per image (the
+// image's own time stamp); RANGE_DATA ends the list (readers stop there, as the description says).
+inline constexpr int kTagHeaderSize = 8;
+inline constexpr uint16_t kTagTimeOnly = 1002, kTagRangeData = 1004;
 
 }  // namespace dimer::tracking::cine

@@ -16,6 +16,7 @@
 
 #include "common/error.h"
 #include "tracking/io/cine_layout.h"
+#include "tracking/io/cine_time_stamps.h"
 #include "tracking/io/cine_writer.h"
 #include "tracking/io/mosaic_grey.h"
 
@@ -77,6 +78,10 @@ class CineSource : public FrameSource {
  private:
   [[noreturn]] void NotCine(const std::string& why) const {
     throw InputError(path_ + ": not a Phantom .cine file (" + why + ")");
+  }
+  // The header's redundant fields disagree: whichever is wrong, every frame would be misread.
+  [[noreturn]] void Inconsistent(const std::string& why) const {
+    throw InputError(path_ + ": corrupt .cine header: " + why);
   }
 
   // Reads exactly n bytes at `offset`; false when any of them lies outside the file.
@@ -162,6 +167,7 @@ class CineSource : public FrameSource {
                        ") is not supported: only 8-bit, 16-bit and 10-bit packed grey or raw "
                        "colour, and 24- or 48-bit colour");
     }
+    CheckRedundantFields(b, s.data(), bits);
     if (image_count == 0) throw InputError(path_ + ": the .cine file holds no images");
     // Every image needs at least its 8-byte table entry: a larger count is not a cine's.
     if (image_count > uint64_t(size_) / 8) {
@@ -182,6 +188,15 @@ class CineSource : public FrameSource {
     const uint32_t rate = Le<uint32_t>(s.data() + kSFrameRate);
     info_.fps = rate > 0 ? rate : Le<uint16_t>(s.data() + kSFrameRate16);
     const uint16_t setup_length = Le<uint16_t>(s.data() + kSLength);
+    ReadFrameTimes(int64_t(off_setup) + setup_length, off_offsets);
+    // bFlipV is recorded, not applied: the row order comes from biHeight alone. Evidence: pims'
+    // reader (soft-matter/pims, cine.py) reads every unpacked image bottom row first and never
+    // looks at bFlipV, and the 2019 Phantom film of tests/data/cine (bFlipV = 1, biHeight > 0)
+    // read that way shows its two round objects standing on their stem. FFmpeg's demuxer
+    // instead reads bFlipV = 1 files top row first, which shows that film upside down; Vision
+    // Research's description says only "Flips image vertically" (a camera setting whose flip
+    // is already in the stored pixels).
+    info_.flip_v = Le<int32_t>(s.data() + kSFlipV) != 0;
     uint8_t ns[4];
     // ShutterNs exists from SETUP version 631 (2005) on; older files give microseconds only.
     const bool have_ns = setup_length >= kSShutterNs + 4 && ReadAt(off_setup + kSShutterNs, ns, 4);
@@ -200,6 +215,47 @@ class CineSource : public FrameSource {
     if (mosaic_) FindMosaicBalance();
   }
 
+  // Cross-checks the bitmap header against itself and the setup (whole-file errors): biSizeImage
+  // against the size and depth, the setup's image size against the bitmap's, a packed file's
+  // biBitCount.
+  void CheckRedundantFields(const uint8_t* b, const uint8_t* s, uint16_t bits) const {
+    using namespace cine;
+    const std::string size = std::to_string(width_) + "x" + std::to_string(height_);
+    const uint32_t bi_size_image = Le<uint32_t>(b + kBSizeImage);
+    const size_t padded = (row_bytes_ + 3) / 4 * 4 * size_t(height_);
+    // 0 is the BMP rule's "not given" for uncompressed images.
+    if (bi_size_image != 0 && bi_size_image != image_bytes_ &&
+        (pixels_ == Pixels::kPacked10 || bi_size_image != padded)) {
+      Inconsistent("biSizeImage " + std::to_string(bi_size_image) + " is not the " +
+                   std::to_string(image_bytes_) + " bytes of a " + size + " image of " +
+                   (pixels_ == Pixels::kPacked10 ? std::string("10-bit packed")
+                                                 : std::to_string(bits) + "-bit") +
+                   " pixels");
+    }
+    const uint16_t setup_w = Le<uint16_t>(s + kSImWidth), setup_h = Le<uint16_t>(s + kSImHeight);
+    if ((setup_w != 0 || setup_h != 0) && (setup_w != width_ || setup_h != height_)) {
+      Inconsistent("the setup's image size " + std::to_string(setup_w) + "x" +
+                   std::to_string(setup_h) + " is not the bitmap header's " + size);
+    }
+    // FFmpeg's demuxer and dimerlab's writer give packed images biBitCount 16; 10 says the same.
+    if (pixels_ == Pixels::kPacked10 && bits != 16 && bits != 10) {
+      Inconsistent("10-bit packed images with biBitCount " + std::to_string(bits) +
+                   " (10 or 16 expected)");
+    }
+  }
+
+  // The frames' own time stamps, from the tagged blocks between the setup and the offset table
+  // (cine_time_stamps.h); none when the file has no such blocks or they lie outside it.
+  void ReadFrameTimes(int64_t from, int64_t to) {
+    // A TIME_ONLY block takes 8 bytes an image; the other blocks are as small: a larger span is
+    // not read (no allocation a header's number can blow up).
+    constexpr int64_t most = int64_t{1} << 20;
+    if (to <= from || to - from > most + 16 * int64_t(count_)) return;
+    std::vector<uint8_t> blocks(size_t(to - from));
+    if (!ReadAt(from, blocks.data(), blocks.size())) return;
+    info_.frame_times = CineFrameTimes(blocks.data(), blocks.size(), count_);
+  }
+
   std::string PastEnd(const std::string& what) const {
     return what + " past the end of the file (" + std::to_string(size_) +
            " bytes: truncated or corrupt)";
@@ -211,6 +267,14 @@ class CineSource : public FrameSource {
     if (index >= count_) return "frame index past the last image";
     if (index >= offsets_.size()) return PastEnd("image offset table entry");
     const int64_t at = offsets_[index];
+    // The table's offsets strictly increase: an entry that repeats or goes back (a duplicated
+    // entry would make this frame a copy of another) is a damaged table, and this frame is not
+    // trusted.
+    if (index > 0 && at <= offsets_[index - 1]) {
+      return "image offset " + std::to_string(at) + " does not follow frame " +
+             std::to_string(index - 1) + "'s (" + std::to_string(offsets_[index - 1]) +
+             "): corrupt offset table";
+    }
     uint8_t word[4];
     if (!ReadAt(at, word, 4)) return PastEnd("image offset " + std::to_string(at));
     const uint32_t annotation = Le<uint32_t>(word);
@@ -222,19 +286,33 @@ class CineSource : public FrameSource {
     const int64_t data = at + annotation;
     size_t stride = row_bytes_;
     size_t bytes = image_bytes_;
-    if (pixels_ != Pixels::kPacked10) {
-      // Assumption (FORMATS.md): rows are not padded; a file whose ImageSize says rows padded
-      // to 4 bytes (the BMP rule) is read with that stride.
-      const size_t padded = (row_bytes_ + 3) / 4 * 4;
-      if (padded != row_bytes_ && image_size == padded * size_t(height_)) {
-        stride = padded;
-        bytes = image_size;
-      }
+    // Assumption (FORMATS.md): rows are not padded; a file whose ImageSize says rows padded to
+    // 4 bytes (the BMP rule) is read with that stride.
+    const size_t padded = (row_bytes_ + 3) / 4 * 4;
+    if (pixels_ != Pixels::kPacked10 && padded != row_bytes_ &&
+        image_size == padded * size_t(height_)) {
+      stride = padded;
+      bytes = image_size;
+    }
+    // ImageSize repeats what the header says: when it does not, the annotation block's size is
+    // wrong (a changed AnnotationSize shifts every pixel) and the pixels are not where it says.
+    if (image_size != bytes) {
+      return "ImageSize " + std::to_string(image_size) + " at the end of the annotation block " +
+             "(AnnotationSize " + std::to_string(annotation) + ") is not the image's " +
+             std::to_string(bytes) + " bytes: corrupt annotation block";
     }
     if (data > size_ || int64_t(bytes) > size_ - data) {
       const int64_t present = std::max<int64_t>(0, size_ - data);
       return "image data past the end of the file (" + std::to_string(present) + " of " +
              std::to_string(bytes) + " bytes present: truncated)";
+    }
+    // The annotation and the image fit before the next frame's offset.
+    if (index + 1 < offsets_.size() && offsets_[index + 1] > at &&
+        int64_t(bytes) > offsets_[index + 1] - data) {
+      return "annotation block (AnnotationSize " + std::to_string(annotation) + ") and image (" +
+             std::to_string(bytes) + " bytes) at offset " + std::to_string(at) +
+             " overrun the next frame's offset " + std::to_string(offsets_[index + 1]) +
+             ": corrupt annotation block";
     }
     const int type = CV_MAKETYPE(pixels_ == Pixels::k8 ? CV_8U : CV_16U, channels_);
     cv::Mat img(height_, width_, type);

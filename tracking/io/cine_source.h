@@ -16,10 +16,17 @@
 // read top row first. Frames are numbered by position in the file (0-based) and named
 // "FILE#i".
 //
+// The frames' own time stamps (the TIME_ONLY tagged block, cine_time_stamps.h) are delivered
+// as RecordingInfo::frame_times when the file has them; SETUP.bFlipV as RecordingInfo::flip_v,
+// not applied (the evidence is beside the code that reads it).
+//
 // Reads are random access and thread-safe (pread on one descriptor). A header that is not a
-// cine throws InputError "FILE: not a Phantom .cine file (...)"; an offset table or image that
-// lies past the end of the file (a truncated copy) makes only those frames unusable, each with
-// a one-line reason; nothing is read outside the file.
+// cine throws InputError "FILE: not a Phantom .cine file (...)", one whose redundant fields
+// disagree (biSizeImage, the setup's image size, a packed file's biBitCount) "FILE: corrupt
+// .cine header: ...". An offset table or image that lies past the end of the file (a truncated
+// copy), an offset that does not follow the one before, an ImageSize that is not the image's
+// size or an image that overruns the next frame's offset makes only those frames unusable, each
+// with a one-line reason; nothing is read outside the file.
 #include <memory>
 #include <string>
 

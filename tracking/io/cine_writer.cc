@@ -1,5 +1,6 @@
 #include "tracking/io/cine_writer.h"
 
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -59,8 +60,10 @@ CineWriter::CineWriter(const std::string& path, int width, int height, size_t fr
   }
   file_ = std::fopen(path.c_str(), "wb");
   if (!file_) throw InputError(path + ": cannot create the .cine file");
+  const uint32_t tagged = options.time_stamp_rate > 0 ? uint32_t(kTagHeaderSize + 8 * frames) : 0;
   const uint32_t off_bitmap = kFileHeaderSize, off_setup = off_bitmap + kBitmapHeaderSize,
-                 off_offsets = off_setup + kSetupLengthWritten;
+                 off_offsets = off_setup + kSetupLengthWritten + tagged;
+  table_at_ = off_offsets;
   const size_t image_bytes = BytesPerImage(options.pixels, options.channels, width, height);
   std::vector<uint8_t> h(off_offsets, 0);
   Set<uint16_t>(&h, kHType, kTypeCI);
@@ -108,6 +111,18 @@ CineWriter::CineWriter(const std::string& path, int width, int height, size_t fr
   // moved to tracking/io/): renders stay bit-identical across versions.
   const char kDescription[] = "written by dimerlab (tracking/cine_writer.cc)";
   std::memcpy(h.data() + off_setup + kSDescription, kDescription, sizeof kDescription);
+  if (tagged > 0) {
+    const uint32_t block = off_setup + kSetupLengthWritten;
+    Set<uint32_t>(&h, block, tagged);
+    Set<uint16_t>(&h, block + 4, kTagTimeOnly);
+    const uint64_t trigger = uint64_t(options.trigger_seconds) << 32 | options.trigger_fraction;
+    for (size_t i = 0; i < frames; ++i) {
+      const uint64_t t = trigger + uint64_t(std::llround(double(i) / options.time_stamp_rate *
+                                                         4294967296.0));
+      Set<uint32_t>(&h, block + kTagHeaderSize + 8 * i, uint32_t(t));
+      Set<uint32_t>(&h, block + kTagHeaderSize + 8 * i + 4, uint32_t(t >> 32));
+    }
+  }
   Put(h.data(), h.size());
   // The offset table is written last (Close), its place reserved here, before the images, where
   // the cameras' own software puts it.
@@ -162,8 +177,7 @@ void CineWriter::Close() {
   if (offsets_.size() != frames_) throw std::logic_error("cine writer: fewer frames than declared");
   std::vector<uint8_t> table(8 * frames_);
   for (size_t i = 0; i < frames_; ++i) Set<int64_t>(&table, 8 * i, offsets_[i]);
-  const long at = cine::kFileHeaderSize + cine::kBitmapHeaderSize + cine::kSetupLengthWritten;
-  if (std::fseek(file_, at, SEEK_SET) != 0 ||
+  if (std::fseek(file_, long(table_at_), SEEK_SET) != 0 ||
       std::fwrite(table.data(), 1, table.size(), file_) != table.size() ||
       std::fclose(file_) != 0) {
     file_ = nullptr;

@@ -32,6 +32,10 @@ struct CineWriteOptions {
   // 48-bit pixels (blue first); `cfa` is then the camera's code (the file says so; the pixels
   // are already colour). 10-bit packed files are single-channel.
   int channels = 1;
+  // Not 0: a TIME_ONLY tagged block (between SETUP and the offset table, as Phantom's software
+  // writes it) with image i's time stamp at TriggerTime + i / time_stamp_rate s, as a camera
+  // saving with a decimation has them (the header's frame_rate then says the recording's rate).
+  double time_stamp_rate = 0;
 };
 
 class CineWriter {
@@ -58,6 +62,7 @@ class CineWriter {
   int width_, height_;
   CineWriteOptions options_;
   std::vector<int64_t> offsets_;
+  int64_t table_at_ = 0;  // where the offset table goes
   size_t frames_ = 0;
   int64_t position_ = 0;
   std::vector<uint8_t> buffer_;

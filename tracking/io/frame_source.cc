@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -13,6 +14,7 @@
 #include "tracking/io/bmp_decode.h"
 #include "tracking/io/cine_source.h"
 #include "tracking/io/image_codecs.h"
+#include "tracking/io/library_messages.h"
 #include "tracking/io/png_check.h"
 #include "tracking/io/tiff_decode.h"
 
@@ -75,13 +77,19 @@ class ListSource : public FrameSource {
     f.index = index;
     f.name = e.name;
     std::vector<cv::Mat> pages;
+    std::string said;  // OpenCV's own message, said in the frame's reason instead
     try {
+      CerrToString capture(&said);
       codecs::ReadPages(e.path, &pages, e.page, 1, kDecodeFlags);
-    } catch (const cv::Exception&) {
+    } catch (const cv::Exception& ex) {
       pages.clear();
+      said += ex.what();
     }
     if (!pages.empty()) f.image = pages[0];
     f.error = Normalise(&f.image);
+    if (f.image.empty() && !said.empty()) {
+      f.error = "not a decodable image: " + OneLineLibraryMessage(said);
+    }
     return f;
   }
   bool Next(Frame* frame) override {
@@ -147,14 +155,23 @@ class VideoSource : public FrameSource {
 };
 
 // Pages of a TIFF (1 for single-page or unreadable files: those are then reported on read).
+// OpenCV's complaint while counting (a truncated stack) becomes one warning naming the file: its
+// pages past the damage are not read.
 int TiffPages(const std::string& path) {
   if (TiffHasOnePage(path)) return 1;  // the common case, without opening libtiff
+  std::string said;
+  size_t n = 1;
   try {
-    const size_t n = codecs::CountPages(path, kDecodeFlags);
-    return n > 1 ? int(n) : 1;
-  } catch (const cv::Exception&) {
-    return 1;
+    CerrToString capture(&said);
+    n = codecs::CountPages(path, kDecodeFlags);
+  } catch (const cv::Exception& e) {
+    said += e.what();
   }
+  if (!said.empty()) {
+    std::fprintf(stderr, "dimerlab: warning: %s: cannot count its pages (%s); read as one image\n",
+                 path.c_str(), OneLineLibraryMessage(said).c_str());
+  }
+  return n > 1 ? int(n) : 1;
 }
 
 void AddEntries(const fs::path& file, std::vector<Entry>* out) {
@@ -250,12 +267,18 @@ Frame DecodeImageFile(const std::string& path, size_t index, const std::string& 
   // directly (bmp_decode.h, tiff_decode.h); the same pixels as through OpenCV, less CPU.
   if (DecodeGreyBmp(bytes.data(), bytes.size(), &f.image)) return f;
   if (DecodePlainTiff(bytes.data(), bytes.size(), &f.image)) return f;
+  std::string said;  // OpenCV's own message, said in the frame's reason instead
   try {
+    CerrToString capture(&said);
     f.image = codecs::Decode(bytes, kDecodeFlags);
-  } catch (const cv::Exception&) {
+  } catch (const cv::Exception& e) {
     f.image = cv::Mat();
+    said += e.what();
   }
   f.error = Normalise(&f.image);
+  if (f.image.empty() && !said.empty()) {
+    f.error = "not a decodable image: " + OneLineLibraryMessage(said);
+  }
   return f;
 }
 

@@ -35,7 +35,7 @@ inline constexpr double kDefaultFps = 2000.0;
 
 struct RecordingInfo {
   bool known = false;
-  double fps = 0;                 // frames/s
+  double fps = 0;                 // frames/s, as the header says (0: it does not)
   int64_t exposure_ns = 0;        // exposure (shutter open) time, ns
   int64_t trigger_seconds = 0;    // trigger time: seconds since 1970-01-01 UTC
   int64_t trigger_fraction = 0;   // trigger time: fraction of a second, units of 2^-32 s
@@ -47,6 +47,10 @@ struct RecordingInfo {
   int64_t cfa = 0;                // the colour filter array code as stored (SETUP.CFA)
   // "mosaic" only: each phase's level over its cell's mean (mosaic_grey.h) and the cells found.
   std::string mosaic_balance;
+  // Each frame's time, s after the source's first frame, from the frames' own time stamps (a
+  // .cine's TIME_ONLY block); empty when the source has none. Indexed like Frame::index.
+  std::vector<double> frame_times;
+  bool flip_v = false;            // a .cine's SETUP.bFlipV as stored (cine_source.h)
   // Video files (whatever `known` says): the codec's four characters as the container declares
   // them (e.g. "h264", "MJPG", "FFV1"); "" for other sources or when not declared.
   std::string video_codec;

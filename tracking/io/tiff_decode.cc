@@ -80,6 +80,9 @@ bool DecodePlainTiff(const uint8_t* b, size_t size, cv::Mat* image) {
     return true;
   };
   const size_t row_bytes = size_t(width) * size_t(bits / 8);
+  // Uncompressed: every pixel lies in the buffer, so an image larger than the file is refused
+  // before it is allocated (a forged size asked for 8 GB; found by tests/fuzz/fuzz_tiff_decode).
+  if (uint64_t(height) * row_bytes > size) return false;
   cv::Mat img(int(height), int(width), bits == 8 ? CV_8UC1 : CV_16UC1);
   for (uint32_t s = 0; s < strips; ++s) {
     uint64_t at = 0, count = 0;

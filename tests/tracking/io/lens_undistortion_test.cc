@@ -99,6 +99,82 @@ TEST(LensCalibration, BadFilesAreNamedWithWhatIsWrong) {
   }
 }
 
+// The image size must be an integer in 1..65536 and the matrices' rows and cols what they must
+// be, checked before OpenCV reads the data ('abc' columns made it ask for 80 GiB): each bad file
+// is one line naming the file and the field.
+TEST(LensCalibration, BadImageSizesAndMatrixShapesAreOneLineErrorsNamingTheField) {
+  dimer::testing::TempDir dir;
+  for (const std::string bad : {"=", "abc", "1e12", "-200", "0", "65537", "320.5"}) {
+    std::string yaml = SampleYaml(0.1);
+    yaml.replace(yaml.find("image_width: 320"), 16, "image_width: " + bad);
+    const std::string path = dir / "width.yml";
+    WriteText(path, yaml);
+    const std::string e = ErrorOf(path);
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    EXPECT_EQ(e.rfind(path + ": image_width is ", 0), 0u) << bad << ": " << e;
+    EXPECT_NE(e.find("not an integer in 1..65536"), std::string::npos) << bad << ": " << e;
+  }
+  std::string no_height = SampleYaml(0.1);
+  no_height.erase(no_height.find("image_height: 160\n"), 18);
+  WriteText(dir / "no_height.yml", no_height);
+  EXPECT_NE(ErrorOf(dir / "no_height.yml").find("image_width without image_height"),
+            std::string::npos);
+  // The largest size is read, and its check does not overflow (area() would).
+  WriteText(dir / "largest.yml", SampleYaml(0.1, 65536, 65536));
+  const LensCalibration largest = ReadLensCalibration(dir / "largest.yml");
+  EXPECT_THROW(LensUndistortion(largest, cv::Size(320, 160)), InputError);
+
+  const std::string xml_head = "<?xml version=\"1.0\"?>\n<opencv_storage>\n";
+  const std::string distortion =
+      "<Distortion_Coefficients type_id=\"opencv-matrix\"><rows>4</rows><cols>1</cols>"
+      "<dt>d</dt><data>-0.1 0.02 0.001 -0.002</data></Distortion_Coefficients>\n";
+  WriteText(dir / "cols.xml",
+            xml_head +
+                "<Camera_Matrix type_id=\"opencv-matrix\"><rows>3</rows><cols>abc</cols>"
+                "<dt>d</dt><data>800. 0. 320. 0. 810. 240. 0. 0. 1.</data></Camera_Matrix>\n" +
+                distortion + "</opencv_storage>\n");
+  std::string e = ErrorOf(dir / "cols.xml");
+  EXPECT_EQ(e, dir / "cols.xml" + ": Camera_Matrix has rows 3 and cols 'abc', not integers");
+  WriteText(dir / "wide.xml",
+            xml_head +
+                "<Camera_Matrix type_id=\"opencv-matrix\"><rows>3</rows><cols>100000</cols>"
+                "<dt>d</dt><data>800. 0. 320. 0. 810. 240. 0. 0. 1.</data></Camera_Matrix>\n" +
+                distortion + "</opencv_storage>\n");
+  e = ErrorOf(dir / "wide.xml");
+  EXPECT_EQ(e, dir / "wide.xml" + ": Camera_Matrix is 3 x 100000 (300000 values), not 3 x 3");
+  std::string square = SampleYaml(0.1);
+  square.replace(square.find("rows: 5\n   cols: 1"), 18, "rows: 5\n   cols: 2");
+  WriteText(dir / "square.yml", square);
+  e = ErrorOf(dir / "square.yml");
+  EXPECT_NE(e.find("distortion_coefficients is 5 x 2 (10 coefficients), not one row or column"),
+            std::string::npos) << e;
+  std::string short_data = SampleYaml(0.1);
+  short_data.replace(short_data.find(", 0., 0., 1. ]"), 14, ", 0., 1. ]");
+  WriteText(dir / "short.yml", short_data);
+  e = ErrorOf(dir / "short.yml");
+  EXPECT_NE(e.find("camera_matrix has 8 data values for its 3 x 3"), std::string::npos) << e;
+}
+
+// What crashed OpenCV 4.6's parsers inside ReadLensCalibration (tests/fuzz/fuzz_lens): XML that
+// ends inside a tag, a NUL byte in the text, an empty key in a map (std::length_error out of
+// OpenCV). Each is a one-line error naming the file.
+TEST(LensCalibration, TextThatCrashedOpenCvsParserIsRefusedInOneLine) {
+  dimer::testing::TempDir dir;
+  WriteText(dir / "truncated.xml",
+            "<?xml version=\"1.0\"?>\n<opencv_storage>\n<Camera_Matrix type_id=");
+  EXPECT_EQ(ErrorOf(dir / "truncated.xml"),
+            dir / "truncated.xml" +
+                ": XML that does not end with </opencv_storage> (truncated?)");
+  std::string nul = SampleYaml(0.1);
+  nul[20] = '\0';
+  WriteText(dir / "nul.yml", nul);
+  EXPECT_EQ(ErrorOf(dir / "nul.yml"),
+            dir / "nul.yml" + ": a NUL byte at offset 20: not a text calibration file");
+  WriteText(dir / "key.yml", "%YAML:1.0\n---\nD:\n   rows: 5\n   : ocsl1\n");  // an empty key
+  EXPECT_EQ(ErrorOf(dir / "key.yml"),
+            dir / "key.yml" + ": unreadable as an OpenCV calibration file: basic_string::_M_create");
+}
+
 // Bright discs of radius 6 px seen through a lens with k1 = 0.3 (f = 1000 px): each pixel is the
 // mean of 8 x 8 samples, each sample's light coming from its undistorted position (the radial
 // model inverted by fixed-point iteration, as a lens maps the scene onto the sensor).

@@ -6,6 +6,9 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <sys/resource.h>
+
+#include <cstdlib>
 #include <fstream>
 #include <random>
 
@@ -72,6 +75,39 @@ TEST(PlainTiff, DamagedHeadersNeverReadOutside) {  // meaningful in the sanitize
       EXPECT_FALSE(out.empty());
     }
   }
+}
+
+// Exits 0 when `b` is declined, 1 when decoded; an allocation above 1 GiB aborts.
+[[noreturn]] void DecodeWithin1GiB(const std::vector<uint8_t>& b) {
+  rlimit limit{};
+  limit.rlim_cur = limit.rlim_max = rlim_t(1) << 30;
+  setrlimit(RLIMIT_AS, &limit);
+  cv::Mat out;
+  std::exit(DecodePlainTiff(b.data(), b.size(), &out) ? 1 : 0);
+}
+
+// The fuzz target's find: a 178-byte file whose header says 63,492 x 65,020 16-bit pixels made
+// the decoder allocate 8 GB before finding the strips outside the file. Under a 1 GiB address
+// space limit the allocation would throw; the header is declined before it.
+TEST(PlainTiff, AForgedSizeIsDeclinedBeforeTheImageIsAllocated) {
+  std::vector<uint8_t> b = Encode(Random(4, 3, CV_16UC1, 12), 1);
+  auto set_single = [&](uint16_t tag, uint32_t v) {
+    const uint32_t ifd = uint32_t(b[4] | b[5] << 8 | b[6] << 16 | uint32_t(b[7]) << 24);
+    const int n = b[ifd] | b[ifd + 1] << 8;
+    for (int e = 0; e < n; ++e) {
+      uint8_t* p = b.data() + ifd + 2 + 12 * e;
+      if ((p[0] | p[1] << 8) != tag) continue;
+      p[2] = 4;  // LONG
+      p[3] = 0;
+      for (int k = 0; k < 4; ++k) p[8 + k] = uint8_t(v >> (8 * k));
+      return true;
+    }
+    return false;
+  };
+  ASSERT_TRUE(set_single(256, 63492));  // ImageWidth
+  ASSERT_TRUE(set_single(257, 65020));  // ImageLength
+  ASSERT_TRUE(set_single(278, 65020));  // RowsPerStrip: one strip, as the table has
+  EXPECT_EXIT(DecodeWithin1GiB(b), ::testing::ExitedWithCode(0), "");
 }
 
 }  // namespace
