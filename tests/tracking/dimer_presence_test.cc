@@ -86,6 +86,23 @@ TEST(RunTrack, AFilmWithoutADimerIsRefusedAndNothingIsWritten) {
   }
 }
 
+// A real Phantom film of something else (pims' cine_legacy.cine, tests/data/cine: one bright
+// blob on black, 97 frames) was tracked with exit 0 and "both spheres found in 3".
+TEST(RunTrack, ARealCameraFilmWithoutADimerIsRefused) {
+  dimer::testing::TempDir dir;
+  TrackArgs t;
+  t.input = std::string(DIMERLAB_TEST_DATA) + "/cine/cine_legacy.cine";
+  t.output = dir / "track.h5";
+  t.quiet = true;
+  try {
+    RunTrack(t);
+    FAIL() << "tracked";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no dimer"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "track.h5"));
+}
+
 // The dimer walks out of the frame: in view in 18 of 30 frames it is tracked, in 12 refused.
 TEST(RunTrack, ADimerInViewInMostFramesIsTracked) {
   for (int in_view : {18, 12}) {
