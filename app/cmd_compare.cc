@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "app/usage.h"
 #include "app/scene_file.h"
 #include "app/track_messages.h"
 #include "compare/run_compare.h"
@@ -79,16 +80,16 @@ void RegisterAnalyze(CLI::App& app) {
   tracking::TrackArgs& t = cli->args.track;
   c->add_option("input", t.input, "folder of frames, multi-page TIFF, .cine or video")->required();
   c->add_option("--frames", t.frames, "track frames A..B-1 only (A:B, A: or :B; 0-based)");
-  c->add_option("--fps", t.fps, "frame rate, frames/s [a .cine's time stamps or header, else 2000]");
-  c->add_option("--m-per-px", t.m_per_px, "metres per pixel [from --diameter]");
-  c->add_option("--diameter", t.diameter, "sphere diameter, m (calibrates m/px)")->capture_default_str();
+  c->add_option("--fps", t.fps, "frame rate, frames/s [a .cine's time stamps or header, else 2000]")->check(FiniteNumber());
+  c->add_option("--m-per-px", t.m_per_px, "metres per pixel [from --diameter]")->check(FiniteNumber());
+  c->add_option("--diameter", t.diameter, "sphere diameter, m (calibrates m/px)")->check(FiniteNumber())->capture_default_str();
   c->add_option("--ar", t.ar,
                 "the dimer's aspect ratio, length / diameter: m/px from its centre distance "
                 "(A_r - 1) x diameter, tracked [not given: from the spheres' size]; with "
-                "--m-per-px, a check");
-  c->add_option("--row0", t.row0, "row of z = 0, px [median plate row]");
+                "--m-per-px, a check")->check(FiniteNumber());
+  c->add_option("--row0", t.row0, "row of z = 0, px [median plate row]")->check(FiniteNumber());
   c->add_option("--plate-m-per-px", t.plate_m_per_px,
-                "metres per pixel at the plate edge seen; needs --m-per-px or --ar [the dimer plane's]");
+                "metres per pixel at the plate edge seen; needs --m-per-px or --ar [the dimer plane's]")->check(FiniteNumber());
   c->add_option("--lens", t.lens,
                 "the lens's calibration (OpenCV YAML/XML: camera_matrix, "
                 "distortion_coefficients): frames undistorted before tracking [as recorded]");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 
 namespace dimer::app {
 namespace {
@@ -110,6 +111,23 @@ std::string ExtrasMessage(const CLI::App& app, const std::vector<std::string>& a
   }
   if (msg.empty()) return cli11_message;
   return msg + " (dimerlab " + sub->get_name() + " --help lists them)";
+}
+
+const CLI::Validator& FiniteNumber() {
+  static const CLI::Validator v(
+      [](std::string& text) -> std::string {
+        double x = 0;
+        try {
+          size_t used = 0;
+          x = std::stod(text, &used);
+          if (used != text.size()) return "";  // not a number: the option's own parse says so
+        } catch (const std::exception&) {
+          return "";
+        }
+        return std::isfinite(x) ? "" : "'" + text + "' is not a finite number";
+      },
+      "FINITE");
+  return v;
 }
 
 }  // namespace dimer::app

@@ -28,4 +28,8 @@ std::optional<std::string> CheckSubcommand(const CLI::App& app,
 std::string ExtrasMessage(const CLI::App& app, const std::vector<std::string>& args,
                           const std::string& cli11_message);
 
+// For options whose unset value is NaN ("not given"): refuses the text "nan" and infinities, so
+// that `--fps nan` is an error and not the default (cli.exit_codes).
+const CLI::Validator& FiniteNumber();
+
 }  // namespace dimer::app

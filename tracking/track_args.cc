@@ -15,7 +15,8 @@ void TrackArgs::Check() const {
   };
   need(!input.empty(), "input: a folder of frames, a TIFF, a .cine or a video is required");
   need(!output.empty(), "-o: the output track file is required");
-  need(std::isnan(fps) || (fps > 0 && std::isfinite(fps)), "--fps must be > 0 frames/s");
+  need(std::isnan(fps) || (fps >= kMinTrackFps && fps <= kMaxTrackFps),
+       "--fps must be 1 .. 1e7 frames/s");
   try {
     ParseFrameRange(frames);
   } catch (const InputError& e) {

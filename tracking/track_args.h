@@ -10,6 +10,10 @@
 
 namespace dimer::tracking {
 
+// The frame rates a film may have, frames/s (docs/FORMATS.md, ranges): a camera's 1 .. 10^7.
+inline constexpr double kMinTrackFps = 1.0;
+inline constexpr double kMaxTrackFps = 1e7;
+
 struct TrackArgs {
   std::string input;            // folder of frames, multi-page TIFF, .cine or video
   std::string frames;           // --frames A:B (frame_range.h); empty: all

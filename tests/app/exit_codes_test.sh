@@ -45,6 +45,12 @@ expect 2 "unknown option '--lightning'; did you mean '--lighting'" render ok.h5 
 expect 2 "--init: bogus" sim --init bogus -o x.h5
 expect 2 "--lighting 'bogus'" render ok.h5 -o f --lighting bogus
 expect 2 "--method 'bogus'" track f -o x.h5 --method bogus
+# NaN means "not given" inside the tracker: the text nan is refused, as are rates no camera has.
+expect 2 "--fps: 'nan' is not a finite number" track f -o x.h5 --fps nan
+expect 2 "--m-per-px: 'inf' is not a finite number" track f -o x.h5 --m-per-px inf
+expect 2 "--fps must be 1 .. 1e7 frames/s" track f -o x.h5 --fps 1e308
+expect 2 "--fps must be 1 .. 1e7 frames/s" track f -o x.h5 --fps 1e-300
+expect 2 "--fps: 'nan' is not a finite number" analyze f -o x --fps nan
 expect 2 "^dimerlab: error: invalid simulation parameters: --ar: 0.5: [^;]*$" sim --ar 0.5 -o x.h5
 expect 2 "^dimerlab: error: invalid simulation parameters: --freq: 0: [^;]*$" sim --freq 0 -o x.h5
 expect 2 "--output is required" sim --cycles 1
