@@ -97,6 +97,22 @@ void ReportCleaning(const SequenceResult& r, Diagnostics* diag) {
   }
 }
 
+// The plate found in no frame: heights are then measured from the frame's bottom row, which is
+// said (RunTrack.APlateFoundInNoFrameIsSaid); found in part of them, a note.
+void ReportPlateFound(const TrackArgs& args, const SequenceResult& r, Diagnostics* diag) {
+  size_t found = 0;
+  for (const FrameTrack& f : r.frames) found += std::isfinite(f.plate_row);
+  if (found == 0) {
+    diag->WarnInput("no_plate",
+                    Format("%s: no plate edge found in any of the %zu frames: heights are taken "
+                           "from the frame's bottom row (give --row0, the row of z = 0)",
+                           args.input.c_str(), r.frames.size()));
+  } else if (found < r.frames.size()) {
+    diag->Note("plate_found", Format("plate edge found in %zu of %zu frames", found,
+                                     r.frames.size()));
+  }
+}
+
 // A camera not level (or a tilted plate): the rows are read under each sphere and the metres
 // run along the plate. The plate's top in view: its row is the contact line found from the
 // mirror images, and its motion scaled to the dimer plane's.
@@ -251,6 +267,7 @@ void ReportFilm(const TrackArgs& args, const Recording& rec, const SequenceResul
   }
   ReportClippedPlate(args, r.plate_clip, diag);
   ReportCleaning(r, diag);
+  ReportPlateFound(args, r, diag);
   ReportPlateGeometry(args, r, diag);
   ReportTemplate(r, diag);
   ReportPrecision(args, r, diag);

@@ -621,5 +621,35 @@ TEST(RunTrack, LibraryMessagesBecomeDimerlabWarnings) {
   EXPECT_NE(err.find("frame_000002.png: not a decodable image"), std::string::npos) << err;
 }
 
+// A film that shows the dimer but no plate (the plate below the frame): tracked, and said, since
+// heights then count from the frame's bottom row.
+TEST(RunTrack, APlateFoundInNoFrameIsSaid) {
+  dimer::testing::TempDir dir;
+  std::filesystem::create_directories(dir.path() / "frames");
+  RenderOptions o;
+  o.lighting = Lighting::kDisc;
+  for (int i = 0; i < 12; ++i) {
+    SceneGeometry s = testing::TiltedDimer(150 + 0.4 * i, 200, 23.75, 0.0, 3.75);
+    s.plate_row = 400;  // below the 256 rows of the frame
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%06d.png", i);
+    ASSERT_TRUE(cv::imwrite(dir / ("frames/" + std::string(name)), RenderFrame({s}, o, uint64_t(i))));
+  }
+  TrackArgs t = Track(dir);
+  t.method = "centroid";
+  std::vector<Diagnostic> said;
+  t.on_diagnostic = [&](const Diagnostic& d) { said.push_back(d); };
+  RunTrack(t);
+  size_t no_plate = 0;
+  for (const Diagnostic& d : said) {
+    if (d.code != "no_plate") continue;
+    ++no_plate;
+    EXPECT_NE(d.message.find("no plate edge found in any of the 12 frames"), std::string::npos)
+        << d.message;
+    EXPECT_TRUE(d.shown_when_quiet);
+  }
+  EXPECT_EQ(no_plate, 1u);
+}
+
 }  // namespace
 }  // namespace dimer::tracking
