@@ -40,7 +40,7 @@ struct MatchScores {
                                std::numeric_limits<double>::quiet_NaN()};
   std::array<double, 2> floor{std::numeric_limits<double>::quiet_NaN(),
                               std::numeric_limits<double>::quiet_NaN()};
-  std::array<size_t, 2> dropped{0, 0};  // matches below the floor, now not found
+  std::array<size_t, 2> dropped{0, 0};  // matches below the floor, set to not found
   double length_px = std::numeric_limits<double>::quiet_NaN();  // median distance of the centres
   std::array<size_t, 2> dropped_length{0, 0};  // matches dropped as the dimer's length was wrong
 };

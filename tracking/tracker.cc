@@ -22,9 +22,9 @@ constexpr double kProvisionalRadiusScale = 1.25;
 // and around an acquisition's coarse match, px. The coarse match is the first sphere's
 // appearance, and the second sphere's is framed differently (a sphere that never rests is
 // framed on its lowest learning frames, above its centre: 3 px at 0.2 mm/px, 6 px at 0.1 mm/px),
-// so the acquisition reaches Reach(kAcquireSearchPx, kAcquireSearchR, R) (tolerances.h):
-// at 0.1 mm/px a 4 px search missed, the first frame came out 1.9 px off, and following,
-// which moves at most a pixel a frame, took three frames to catch up.
+// so the acquisition reaches Reach(kAcquireSearchPx, kAcquireSearchR, R) (tolerances.h): a
+// fixed 4 px search misses at 0.1 mm/px, and following, which moves at most a pixel a frame,
+// needs frames to catch up (povray.targets.fine_scale).
 constexpr int kFollowSearchPx = 2;
 constexpr int kAcquireSearchPx = 4;
 constexpr double kAcquireSearchR = 0.16;

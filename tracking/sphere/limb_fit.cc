@@ -250,7 +250,8 @@ std::vector<Edge> Inliers(const std::vector<Edge>& edges, const Eigen::Vector2d&
 // centre itself: cast from a point delta beside it, mirrored rays meet the outline at different
 // heights and the midpoint lies delta sin^2(theta) toward that point, so the rays near the top
 // only repeat the point they were cast from (cast from the circle fit's centre, two passes left
-// about half of that fit's error in the column: POV-Ray front_point -0.108 px, now -0.061).
+// about half of that fit's error in the column; the full bisector halves it again on POV-Ray
+// front_point, see povray.targets.front_point).
 // A radial error e of either edge moves the bisector by e / (2 cos theta): each pair weighs
 // cos^2 theta over the sum of its edges' variances (inverse squared contrasts). A pair without
 // both edges (the rod's side, one dark side) does not pull the column. False with fewer than
