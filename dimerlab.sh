@@ -111,7 +111,9 @@ fuzz_one() {
   local t=$1 seconds=$2 name=${1##*/fuzz_} work result
   work=$(mktemp -d)
   cp "tests/fuzz/corpus/$name/"* "$work/"
-  if "$t" -max_total_time="$seconds" -print_final_stats=1 -artifact_prefix=build-fuzz/crashes/ \
+  # -timeout: an input that takes 10 s is a hang, reported as a failure with its input (the
+  # default, 1200 s, let one hang hold the run for 20 minutes).
+  if "$t" -max_total_time="$seconds" -timeout=10 -print_final_stats=1 -artifact_prefix=build-fuzz/crashes/ \
       "$work" >"build-fuzz/$name.log" 2>&1; then result=ok; else result=FAILED; fi
   echo "$result" >"build-fuzz/$name.result"
   rm -rf "$work"

@@ -3,6 +3,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -78,6 +79,20 @@ std::string UnparsableTextProblem(const std::string& path) {
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (const size_t nul = text.find('\0'); nul != std::string::npos) {
     return "a NUL byte at offset " + std::to_string(nul) + ": not a text calibration file";
+  }
+  // A YAML document marker with text beside it ("---%YAML:1." and a later "0---") sends OpenCV
+  // 4.6's YAML parser into an endless loop (tests/fuzz/fuzz_lens); OpenCV writes "---" alone
+  // on its line, so any other "---" is refused.
+  for (size_t at = text.find("---"); at != std::string::npos;) {
+    const size_t line = text.rfind('\n', at) == std::string::npos ? 0 : text.rfind('\n', at) + 1;
+    const size_t stop = std::min(text.find('\n', at), text.size());
+    const size_t last = text.find_last_not_of(" \t\r", stop == 0 ? 0 : stop - 1);
+    if (at != line || last != at + 2) {
+      const size_t row = size_t(std::count(text.begin(), text.begin() + std::ptrdiff_t(at), '\n'));
+      return "line " + std::to_string(row + 1) + ": \"---\" not alone on its line (a YAML "
+             "document marker stands alone)";
+    }
+    at = text.find("---", stop);
   }
   const size_t start = text.find_first_not_of(" \t\r\n");
   if (start == std::string::npos || text.compare(start, 5, "<?xml") != 0) return "";

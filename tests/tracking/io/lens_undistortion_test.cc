@@ -173,6 +173,15 @@ TEST(LensCalibration, TextThatCrashedOpenCvsParserIsRefusedInOneLine) {
   WriteText(dir / "key.yml", "%YAML:1.0\n---\nD:\n   rows: 5\n   : ocsl1\n");  // an empty key
   EXPECT_EQ(ErrorOf(dir / "key.yml"),
             dir / "key.yml" + ": unreadable as an OpenCV calibration file: basic_string::_M_create");
+  // The fuzz target's hang: OpenCV's YAML parser loops for ever on a document marker with text
+  // beside it; the file is refused before it is parsed. A calibration as OpenCV writes it,
+  // "---" alone on its line, still reads.
+  WriteText(dir / "loop.yml", "%YAML:1.0\n---%YAML:1.\n0---\na: 1\n");
+  EXPECT_EQ(ErrorOf(dir / "loop.yml"),
+            dir / "loop.yml" +
+                ": line 2: \"---\" not alone on its line (a YAML document marker stands alone)");
+  WriteText(dir / "spaces.yml", SampleYaml(0.1));
+  EXPECT_EQ(ErrorOf(dir / "spaces.yml"), "");
 }
 
 // Bright discs of radius 6 px seen through a lens with k1 = 0.3 (f = 1000 px): each pixel is the
