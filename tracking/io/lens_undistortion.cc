@@ -3,13 +3,13 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <iterator>
+#include <sstream>
 
 #include "common/error.h"
 
@@ -68,6 +68,23 @@ std::string MatrixProblem(const cv::FileNode& node, const std::string& name, con
   return "";
 }
 
+// A YAML document marker with text beside it ("---%YAML:1." and a later "0---") sends OpenCV
+// 4.6's YAML parser into an endless loop (tests/fuzz/hangs); OpenCV writes "---" alone on its
+// line, so a line holding "---" and anything else is refused. Returns the reason, or "".
+std::string DocumentMarkerProblem(const std::string& text) {
+  std::istringstream lines(text);
+  std::string line;
+  for (size_t row = 1; std::getline(lines, line); ++row) {
+    if (line.find("---") == std::string::npos) continue;
+    line.erase(line.find_last_not_of(" \t\r") + 1);
+    if (line != "---") {
+      return "line " + std::to_string(row) + ": \"---\" not alone on its line (a YAML document "
+             "marker stands alone)";
+    }
+  }
+  return "";
+}
+
 // OpenCV 4.6's parsers read past the end of their buffer on a NUL byte inside the text or on
 // XML that ends inside a tag (a truncated copy): both crashed it (tests/fuzz/fuzz_lens). A
 // calibration file is text, and every XML file OpenCV writes ends with its closing root tag, so
@@ -80,20 +97,7 @@ std::string UnparsableTextProblem(const std::string& path) {
   if (const size_t nul = text.find('\0'); nul != std::string::npos) {
     return "a NUL byte at offset " + std::to_string(nul) + ": not a text calibration file";
   }
-  // A YAML document marker with text beside it ("---%YAML:1." and a later "0---") sends OpenCV
-  // 4.6's YAML parser into an endless loop (tests/fuzz/fuzz_lens); OpenCV writes "---" alone
-  // on its line, so any other "---" is refused.
-  for (size_t at = text.find("---"); at != std::string::npos;) {
-    const size_t line = text.rfind('\n', at) == std::string::npos ? 0 : text.rfind('\n', at) + 1;
-    const size_t stop = std::min(text.find('\n', at), text.size());
-    const size_t last = text.find_last_not_of(" \t\r", stop == 0 ? 0 : stop - 1);
-    if (at != line || last != at + 2) {
-      const size_t row = size_t(std::count(text.begin(), text.begin() + std::ptrdiff_t(at), '\n'));
-      return "line " + std::to_string(row + 1) + ": \"---\" not alone on its line (a YAML "
-             "document marker stands alone)";
-    }
-    at = text.find("---", stop);
-  }
+  if (std::string marker = DocumentMarkerProblem(text); !marker.empty()) return marker;
   const size_t start = text.find_first_not_of(" \t\r\n");
   if (start == std::string::npos || text.compare(start, 5, "<?xml") != 0) return "";
   const size_t end = text.find_last_not_of(" \t\r\n");
