@@ -93,8 +93,14 @@ void RegisterAnalyze(CLI::App& app) {
   c->add_option("--lens", t.lens,
                 "the lens's calibration (OpenCV YAML/XML: camera_matrix, "
                 "distortion_coefficients): frames undistorted before tracking [as recorded]");
-  c->add_option("--method", t.method, "tracking method: auto | centroid | discfit | template")->capture_default_str();
-  c->add_option("--polarity", t.polarity, "auto | bright | dark")->capture_default_str();
+  c->add_option_function<std::string>(
+       "--method", [&t](const std::string& s) { t.method = tracking::ParseMethod(s, "--method"); },
+       "tracking method: auto | centroid | discfit | template")
+      ->default_str(tracking::ToString(t.method));
+  c->add_option_function<std::string>(
+       "--polarity", [&t](const std::string& s) { t.polarity = tracking::ParsePolarity(s); },
+       "auto | bright | dark")
+      ->default_str(tracking::ToString(t.polarity));
   c->add_option("--bits", t.sequence.camera_bits,
                 "the camera's bits per pixel in 16-bit frames (8-16; 16: as stored) "
                 "[a .cine's RealBPP, else as stored]");

@@ -4,7 +4,7 @@
 #include "app/commands.h"
 #include "app/usage.h"
 #include "app/track_messages.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 namespace dimer::app {
 namespace {
@@ -30,13 +30,20 @@ void AddTrackOptions(CLI::App* sub, tracking::TrackArgs* a) {
   sub->add_option("--lens", a->lens,
                   "the lens's calibration (OpenCV YAML/XML: camera_matrix, "
                   "distortion_coefficients): frames undistorted before tracking [as recorded]");
-  sub->add_option("--method", a->method, "auto | centroid | discfit | template")->capture_default_str();
-  sub->add_option("--polarity", a->polarity, "auto | bright | dark")->capture_default_str();
-  sub->add_option("--radius-px", a->sequence.tracker.radius_px, "sphere radius, px [measured]")->check(FiniteNumber());
+  // Names typed where they are read: a wrong one is a one-line error naming the option.
+  sub->add_option_function<std::string>(
+         "--method", [a](const std::string& s) { a->method = tracking::ParseMethod(s, "--method"); },
+         "auto | centroid | discfit | template")
+      ->default_str(tracking::ToString(a->method));
+  sub->add_option_function<std::string>(
+         "--polarity", [a](const std::string& s) { a->polarity = tracking::ParsePolarity(s); },
+         "auto | bright | dark")
+      ->default_str(tracking::ToString(a->polarity));
+  sub->add_option("--radius-px", a->sequence.follower.radius_px, "sphere radius, px [measured]")->check(FiniteNumber());
   // Given, the blur is the user's; not given, an over-exposed plate's frames fit it.
-  sub->add_option("--psf-sigma", a->sequence.tracker.psf_sigma_px,
+  sub->add_option("--psf-sigma", a->sequence.follower.psf_sigma_px,
                   "camera blur, Gaussian sigma px (places a clipped plate edge) [fitted]")->check(FiniteNumber())
-      ->each([a](const std::string&) { a->sequence.tracker.fit_psf_sigma = false; });
+      ->each([a](const std::string&) { a->sequence.follower.fit_psf_sigma = false; });
   sub->add_option("--bits", a->sequence.camera_bits,
                   "the camera's bits per pixel in 16-bit frames (8-16; 16: as stored) "
                   "[a .cine's RealBPP, else as stored]");

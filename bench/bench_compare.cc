@@ -21,7 +21,7 @@
 #include "sim/sim_file.h"
 #include "sim/simulator.h"
 #include "render/render.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 using namespace dimer;
 using Clock = std::chrono::steady_clock;

@@ -7,7 +7,7 @@
 //   bench_plate_edge --clipped-sequence (an over-exposed plate over a sequence: the shared level)
 // Per folder: the error of the acquisition's coarse row (FindPlateRowCoarse), of the sub-pixel
 // row refined from it with the spheres' true columns left out (RefinePlateRow, as the tracker
-// calls it), and of the tracker's own plate row (SequenceTracker, spheres found by itself):
+// calls it), and of the tracker's own plate row (FrameFollower, spheres found by itself):
 // RMS and worst, px, and how many frames gave no row.
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -30,7 +30,7 @@
 #include "tracking/plate/plate_edge.h"
 #include "render/scene_renderer.h"
 #include "tracking/tolerances.h"
-#include "tracking/tracker.h"
+#include "tracking/frame_follower.h"
 
 using namespace dimer::tracking;
 
@@ -233,7 +233,7 @@ int main(int argc, char** argv) {
     double radius = 23.75;
     const std::vector<TruthRow> truth = ReadTruth(dir, &radius);
     Stat coarse, refined, tracked;
-    SequenceTracker tracker(TrackerOptions{});
+    FrameFollower tracker(FollowerOptions{});
     for (size_t i = 0; i < truth.size(); ++i) {
       const cv::Mat img = cv::imread(dir + "/" + truth[i].file, cv::IMREAD_UNCHANGED);
       if (img.empty() || img.channels() != 1) {

@@ -40,7 +40,7 @@
 #include "tracking/io/cine_writer.h"
 #include "tracking/io/frame_source.h"
 #include "render/scene_renderer.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 extern char** environ;
 
@@ -116,7 +116,7 @@ Rate ReadOnlyRate(const std::string& input, int threads) {
   for (int rep = 0; rep < kReps; ++rep) {
     const auto t0 = Clock::now();
     const double c0 = SelfCpu();
-    auto src = FrameSource::Open(input);
+    auto src = OpenFrameSource(input);
     std::atomic<size_t> next{0}, bad{0};
     std::vector<std::thread> pool;
     for (int k = 0; k < threads; ++k) {

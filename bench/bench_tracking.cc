@@ -27,9 +27,9 @@
 #include "bench/available_cores.h"
 #include "common/disc_coverage.h"
 #include "tracking/io/frame_source.h"
-#include "tracking/sphere/refiner.h"
+#include "tracking/sphere/measure_sphere.h"
 #include "render/scene_renderer.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 using namespace dimer::tracking;
 using dimer::DiscPixelCoverage;  // common/disc_coverage.h
@@ -133,7 +133,7 @@ double InMemoryRate(Method method, const std::vector<cv::Mat>& frames, int threa
   for (int rep = 0; rep < 3; ++rep) {
     MemorySource src(frames);
     SequenceOptions opts;
-    opts.tracker.method = method;
+    opts.follower.method = method;
     opts.threads = threads;
     const auto t0 = Clock::now();
     const SequenceResult r = TrackSequence(src, opts);
@@ -185,7 +185,7 @@ double SelfCpuSeconds() {
 }
 
 SequenceAccuracy MeasureSequence(Method method, const Sequence& q, int cores,
-                                 const EccStop& ecc = TrackerOptions{}.ecc) {
+                                 const EccStop& ecc = FollowerOptions{}.ecc) {
   SequenceAccuracy a;
   for (int threads : {1, cores}) {
     double best = 0;
@@ -193,10 +193,10 @@ SequenceAccuracy MeasureSequence(Method method, const Sequence& q, int cores,
     for (int rep = 0; rep < 3; ++rep) {
       MemorySource src(q.frames);
       SequenceOptions opts;
-      opts.tracker.method = method;
+      opts.follower.method = method;
       opts.threads = threads;
       opts.contact_radius_px = kRadius;  // the scale is known
-      opts.tracker.ecc = ecc;
+      opts.follower.ecc = ecc;
       const auto t0 = Clock::now();
       const double c0 = SelfCpuSeconds();
       r = TrackSequence(src, opts);
@@ -283,7 +283,7 @@ int main(int argc, char** argv) {
               "tracker's default: %d iterations, epsilon %.0e):\n\n"
               "| max iterations | epsilon | worst |bias| (px) | worst scatter (px) | found | "
               "µs CPU/frame 1 thread |\n|---|---|---|---|---|---|\n", std::min(n, 800),
-              TrackerOptions{}.ecc.max_iterations, TrackerOptions{}.ecc.epsilon);
+              FollowerOptions{}.ecc.max_iterations, FollowerOptions{}.ecc.epsilon);
   {
     const Sequence q = HopSequence(std::min(n, 800), Lighting::kReflect);
     for (const EccStop& rule : std::vector<EccStop>{
@@ -303,7 +303,7 @@ int main(int argc, char** argv) {
     std::snprintf(name, sizeof name, "/frame_%06d.png", i);
     cv::imwrite(dir + name, frames[i]);
   }
-  auto src = FrameSource::Open(dir);
+  auto src = OpenFrameSource(dir);
   double decode = 0, e2e = 0;
   for (int rep = 0; rep < 2; ++rep) {  // alternated, best of two each (shared machine)
     std::atomic<size_t> next{0};

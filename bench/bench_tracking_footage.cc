@@ -28,7 +28,7 @@
 // from the dimer's length (--ar), through the command; defaults 20 frames, 2 slices.)
 // Defaults: 40 frames of the hop motion, 6 exposure slices (300 us at 2000 frames/s), cache
 // folder bench_footage_cache (footage is reused while its scenes are unchanged), methods
-// "auto,centroid,template" (comma-separated `--method` names of tracking/sphere/refiner.h; auto is the
+// "auto,centroid,template" (comma-separated `--method` names of tracking/sphere/measure_sphere.h; auto is the
 // default a user gets). The tracker is given the scale, as with `--m-per-px`.
 // Prints the POV-Ray CPU time per frame of each footage (every slice, antialiased), then one
 // row per footage and method, and the machine (cores, load average).

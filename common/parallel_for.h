@@ -1,6 +1,6 @@
 #pragma once
 // f(i) for every i in [0, n), on up to `threads` threads (the calling one among them). The
-// sequence-level learning (appearance_model.cc, template_sequence.cc) registers each learning
+// sequence-level learning (appearance_model.cc, learn_method.cc) registers each learning
 // frame on its own, ~3 ms of ECC each and ~1,000 of them per run: serial, that was seconds of a
 // single core before the first frame was tracked.
 //

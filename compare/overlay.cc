@@ -39,7 +39,7 @@ constexpr double kMinTextScale = 0.3, kMaxTextScale = 1.2;
 class FrameReader {
  public:
   explicit FrameReader(const std::string& path) : path_(path), folder_(fs::is_directory(path)) {
-    auto source = tracking::FrameSource::Open(path);  // InputError naming the path if unusable
+    auto source = tracking::OpenFrameSource(path);  // InputError naming the path if unusable
     if (!folder_) single_ = std::move(source);
   }
 
@@ -56,7 +56,7 @@ class FrameReader {
       f = tracking::DecodeImageFile((fs::path(path_) / name).string(), 0, name);
     } else if (folder_) {
       auto& src = pages_[file];
-      if (!src) src = tracking::FrameSource::Open((fs::path(path_) / file).string());
+      if (!src) src = tracking::OpenFrameSource((fs::path(path_) / file).string());
       f = ReadIndex(src.get(), static_cast<size_t>(page));
     } else {
       f = ReadIndex(single_.get(), static_cast<size_t>(std::max(page, 0L)));

@@ -11,7 +11,7 @@
 #include "compare/overlay.h"
 #include "compare/simulate.h"
 #include "sim/model.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 namespace dimer::compare {
 

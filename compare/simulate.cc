@@ -6,7 +6,7 @@
 #include "common/error.h"
 #include "common/plate_frame.h"
 #include "compare/text.h"
-#include "sim/frames.h"
+#include "sim/reference_frames.h"
 
 namespace dimer::compare {
 sim::SimOptions SceneFromTrack(const Analysis& track, const sim::SimOptions& given,

@@ -183,95 +183,133 @@ void RenderArgs::Check() const {
   image.Check();
 }
 
-void RunRender(const RenderArgs& args) {
-  args.Check();
-  AtomicOutput out(args.output, args.force, AtomicOutput::Kind::kDirectory);
+namespace {
+
+// What a sim file gives the renderer: the trajectory in the plate's frame, its tilt, the
+// spheres' diameter and how many of its samples become frames.
+struct Scene {
+  Trajectory traj;
+  double tilt_deg = 0;
+  double diameter = 0;
+  size_t frames = 0;
+};
+
+Scene ReadScene(const RenderArgs& args) {
   H5Reader reader(args.input);
+  Scene scene;
   // A tilted plate's simulation is drawn in the plate's frame, as a camera turned with the plate
   // sees it (the renderer's plate is level): the frame `track` measures in.
-  const double tilt_deg =
+  scene.tilt_deg =
       FileKind(reader) == "sim" ? reader.AttrDouble("/", "tilt_deg").value_or(0.0) : 0.0;
-  if (!std::isfinite(tilt_deg)) throw InputError(args.input + ": 'tilt_deg' is not a number");
-  const Trajectory traj = InPlateFrame(ReadTrajectory(reader), tilt_deg);
-  if (tilt_deg != 0 && !args.quiet && args.on_note) {
-    args.on_note(args.input + ": plate tilted " + Num10(tilt_deg) +
+  if (!std::isfinite(scene.tilt_deg)) throw InputError(args.input + ": 'tilt_deg' is not a number");
+  scene.traj = InPlateFrame(ReadTrajectory(reader), scene.tilt_deg);
+  if (scene.tilt_deg != 0 && !args.quiet && args.on_note) {
+    args.on_note(args.input + ": plate tilted " + Num10(scene.tilt_deg) +
                  " deg: drawn in the plate's frame (a camera turned with the plate; truth.csv "
                  "likewise)");
   }
-  const size_t n = args.max_frames > 0 ? std::min(args.max_frames, traj.size()) : traj.size();
-  CheckTrajectory(args.input, traj, n);
-  const double diameter = std::isnan(args.diameter)
-                              ? reader.AttrDouble("/", "diameter").value_or(std::nan(""))
-                              : args.diameter;
-  if (!(diameter > 0)) {
+  const Trajectory& traj = scene.traj;
+  scene.frames = args.max_frames > 0 ? std::min(args.max_frames, traj.size()) : traj.size();
+  CheckTrajectory(args.input, traj, scene.frames);
+  scene.diameter = std::isnan(args.diameter)
+                       ? reader.AttrDouble("/", "diameter").value_or(std::nan(""))
+                       : args.diameter;
+  if (!(scene.diameter > 0)) {
     throw InputError(args.input + ": no root attribute 'diameter' (m); pass --diameter");
   }
+  return scene;
+}
+
+// Where the scene lands in the image: the plate at row0, the dimer's mean column centred.
+RenderPlan PlanOf(const RenderArgs& args, const Scene& scene) {
   RenderPlan plan;
   plan.map.m_per_px = args.m_per_px;
   plan.map.row0 = std::isnan(args.row0) ? kDefaultRow0Fraction * args.image.height : args.row0;
   double mean_x = 0;
-  for (size_t i = 0; i < n; ++i) mean_x += 0.5 * (traj.tip_left[i].x() + traj.tip_right[i].x());
-  plan.map.col_offset = std::isnan(args.col_offset)
-                            ? 0.5 * args.image.width - (mean_x / double(n)) / args.m_per_px
-                            : args.col_offset;
-  plan.radius_px = 0.5 * diameter / args.m_per_px;
+  for (size_t i = 0; i < scene.frames; ++i)
+    mean_x += 0.5 * (scene.traj.tip_left[i].x() + scene.traj.tip_right[i].x());
+  const double mean_col = (mean_x / double(scene.frames)) / args.m_per_px;
+  plan.map.col_offset =
+      std::isnan(args.col_offset) ? 0.5 * args.image.width - mean_col : args.col_offset;
+  plan.radius_px = 0.5 * scene.diameter / args.m_per_px;
   plan.rod_half_width_px = 0.5 * args.rod_diameter / args.m_per_px;
+  return plan;
+}
 
+// --format cine: workers hand frames over; the calling thread appends them in order (frames are
+// taken in increasing order, so only the few in flight wait here).
+class OrderedCineFrames {
+ public:
+  explicit OrderedCineFrames(std::unique_ptr<CineWriter> writer) : writer_(std::move(writer)) {}
+  void Hand(size_t i, const cv::Mat& img) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_[i] = img;
+  }
+  void WriteReady() {
+    while (true) {
+      cv::Mat img;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        auto it = pending_.find(written_);
+        if (it == pending_.end()) return;
+        img = it->second;
+        pending_.erase(it);
+      }
+      writer_->Add(img);
+      ++written_;
+    }
+  }
+  void Close() {
+    WriteReady();
+    writer_->Close();
+  }
+
+ private:
+  std::unique_ptr<CineWriter> writer_;
+  std::mutex mutex_;
+  std::map<size_t, cv::Mat> pending_;
+  size_t written_ = 0;
+};
+
+// Draws every frame on `threads` workers into `folder`: image files written by the workers, or
+// one .cine appended in order by this thread. Throws the first write error; stops on Ctrl-C.
+void RenderFrames(const RenderArgs& args, const RenderPlan& plan, const Scene& scene,
+                  const std::string& folder) {
+  const size_t n = scene.frames;
   const int threads = args.threads > 0 ? args.threads
                                         : int(std::max(1u, std::thread::hardware_concurrency()));
   std::atomic<size_t> next{0}, done{0};
   std::mutex error_mutex;
   std::string error;
-  // --format cine: workers hand frames over in `pending`; this thread appends them in order
-  // (frames are taken in increasing order, so only the few in flight wait there).
-  const bool cine = args.format == "cine";
-  std::unique_ptr<CineWriter> cine_writer;
-  if (cine) {
-    cine_writer = std::make_unique<CineWriter>(out.temp_path() + "/" + kCineFile,
-                                               args.image.width, args.image.height, n,
-                                               CineOptions(args, traj, n));
+  auto fail = [&](const std::string& what) {
+    std::lock_guard<std::mutex> lock(error_mutex);
+    error = what;
+    next = n;
+  };
+  std::unique_ptr<OrderedCineFrames> cine;
+  if (args.format == "cine") {
+    cine = std::make_unique<OrderedCineFrames>(std::make_unique<CineWriter>(
+        folder + "/" + kCineFile, args.image.width, args.image.height, n,
+        CineOptions(args, scene.traj, n)));
   } else {
     // PNG/TIFF frames are written by the workers, whose threads cannot carry the loader's
     // exception out: load OpenCV's codecs (image_codecs.h) here, before any of them starts.
     codecs::Require();
   }
-  std::mutex pending_mutex;
-  std::map<size_t, cv::Mat> pending;
-  size_t written = 0;
-  auto write_ready = [&]() {
-    while (true) {
-      cv::Mat img;
-      {
-        std::lock_guard<std::mutex> lock(pending_mutex);
-        auto it = pending.find(written);
-        if (it == pending.end()) return;
-        img = it->second;
-        pending.erase(it);
-      }
-      cine_writer->Add(img);
-      ++written;
-    }
-  };
   auto worker = [&]() {
     for (size_t i = next++; i < n && !InterruptRequested(); i = next++) {
-      const cv::Mat img = RenderFrame(plan.Exposure(traj, i, args.exposure, args.blur_samples),
-                                      args.image, i);
+      const cv::Mat img = RenderFrame(
+          plan.Exposure(scene.traj, i, args.exposure, args.blur_samples), args.image, i);
       if (cine) {
-        std::lock_guard<std::mutex> lock(pending_mutex);
-        pending[i] = img;
-        ++done;
-        continue;
-      }
-      const std::string path = out.temp_path() + "/" + FrameName(i, args.format);
-      bool ok = false;
-      try {
-        ok = codecs::Write(path, img);
-      } catch (const cv::Exception&) {
-      }
-      if (!ok) {
-        std::lock_guard<std::mutex> lock(error_mutex);
-        error = path + ": cannot write frame";
-        next = n;
+        cine->Hand(i, img);
+      } else {
+        const std::string path = folder + "/" + FrameName(i, args.format);
+        bool ok = false;
+        try {
+          ok = codecs::Write(path, img);
+        } catch (const cv::Exception&) {
+        }
+        if (!ok) fail(path + ": cannot write frame");
       }
       ++done;
     }
@@ -283,11 +321,9 @@ void RunRender(const RenderArgs& args) {
     progress.Update(double(done));
     if (cine) {
       try {  // a failed write (disk full) must not unwind past running workers
-        write_ready();
+        cine->WriteReady();
       } catch (const std::exception& e) {
-        std::lock_guard<std::mutex> lock(error_mutex);
-        error = e.what();
-        next = n;
+        fail(e.what());
       }
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(cine ? 5 : 50));
@@ -295,20 +331,28 @@ void RunRender(const RenderArgs& args) {
   for (auto& t : pool) t.join();
   if (!error.empty()) throw InputError(error);
   if (InterruptRequested()) throw Interrupted();  // the temporary folder is removed
-  if (cine) {
-    write_ready();
-    cine_writer->Close();
-  }
+  if (cine) cine->Close();
   progress.Finish(double(n));
-  WriteTruth(out.temp_path() + "/truth.csv", args, plan, traj, n);
-  std::ofstream(out.temp_path() + "/render.json") << RenderJson(args, plan, diameter, n, tilt_deg);
+}
+
+}  // namespace
+
+void RunRender(const RenderArgs& args) {
+  args.Check();
+  AtomicOutput out(args.output, args.force, AtomicOutput::Kind::kDirectory);
+  const Scene scene = ReadScene(args);
+  const RenderPlan plan = PlanOf(args, scene);
+  RenderFrames(args, plan, scene, out.temp_path());
+  WriteTruth(out.temp_path() + "/truth.csv", args, plan, scene.traj, scene.frames);
+  std::ofstream(out.temp_path() + "/render.json")
+      << RenderJson(args, plan, scene.diameter, scene.frames, scene.tilt_deg);
   out.Commit();
   // The one-line summary every subcommand ends with (stdout; -q silences progress only).
   if (args.on_summary) {
     args.on_summary(Format("%s: %zu frames %dx%d, %d-bit %s, %s lighting, %.3g m/px; truth.csv, "
                            "render.json",
-                           args.output.c_str(), n, args.image.width, args.image.height,
-                           args.image.bit_depth, args.format.c_str(),
+                           args.output.c_str(), scene.frames, args.image.width,
+                           args.image.height, args.image.bit_depth, args.format.c_str(),
                            ToString(args.image.lighting).c_str(), args.m_per_px));
   }
 }

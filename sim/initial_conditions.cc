@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "common/error.h"
-#include "sim/frames.h"
+#include "sim/reference_frames.h"
 
 namespace dimer::sim {
 

@@ -7,7 +7,7 @@
 // Frames: the simulator works in the plate frame (x' along the plate, z' along its normal,
 // origin on the moving plate surface), where the plate is still and gravity becomes
 // g_eff(t) = (-g sin(alpha), -g cos(alpha) - zddot_p(t)). Files and --init-state use the lab
-// frame (frames.h converts). Mass is 1 (nothing depends on it), forces are per unit mass.
+// frame (reference_frames.h converts). Mass is 1 (nothing depends on it), forces are per unit mass.
 #include <array>
 #include <cmath>
 #include <limits>

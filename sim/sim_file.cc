@@ -3,7 +3,7 @@
 #include "common/atomic_output.h"
 #include "common/h5_file.h"
 #include "common/trajectory_io.h"
-#include "sim/frames.h"
+#include "sim/reference_frames.h"
 #include "sim/initial_conditions.h"
 
 namespace dimer::sim {

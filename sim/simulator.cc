@@ -10,7 +10,7 @@
 #include "sim/constants.h"
 #include "sim/contact_integrator.h"
 #include "sim/flight.h"
-#include "sim/frames.h"
+#include "sim/reference_frames.h"
 #include "sim/impact_law.h"
 #include "sim/initial_conditions.h"
 #include "sim/persistent_contact.h"

@@ -5,7 +5,7 @@
 #include <cstring>
 
 #include "common/modes.h"
-#include "sim/frames.h"
+#include "sim/reference_frames.h"
 #include "sim/initial_conditions.h"
 #include "sim/simulator.h"
 

@@ -15,7 +15,7 @@
 #include <limits>
 #include <vector>
 
-#include "tracking/tracker.h"
+#include "tracking/frame_follower.h"
 
 namespace dimer::tracking {
 

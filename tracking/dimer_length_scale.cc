@@ -141,7 +141,7 @@ LengthScale TrackedDimerLengthScale(const LengthScaleFilm& args, const SequenceO
     o.plate_motion_scale = std::isnan(args.plate_m_per_px) || std::isnan(radius_px)
                                ? std::numeric_limits<double>::quiet_NaN()
                                : args.plate_m_per_px / (0.5 * args.diameter / radius_px);
-    auto source = SelectFrames(FrameSource::Open(args.input), first, args.input);
+    auto source = SelectFrames(OpenFrameSource(args.input), first, args.input);
     SequenceResult r;
     {
       StderrCapture drop([](const std::string&) {});

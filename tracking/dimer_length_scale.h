@@ -24,7 +24,7 @@
 
 #include "tracking/diagnostics.h"
 #include "tracking/track_sequence.h"
-#include "tracking/tracker.h"
+#include "tracking/frame_follower.h"
 
 namespace dimer::tracking {
 

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "tracking/sphere/refiner.h"
-#include "tracking/tracker.h"
+#include "tracking/sphere/measure_sphere.h"
+#include "tracking/frame_follower.h"
 
 namespace dimer::tracking {
 

@@ -7,7 +7,7 @@
 // measured on a few frames (PlateEdgeSlope on each, the spheres' columns left out), and taken
 // when it moves the edge by at least kMinSlopeEffectPx across the frame and stands out of its
 // uncertainty; the tracker then reads the plate's row under the dimer and at each sphere
-// (tracker.h, FrameTrack::PlateRowAt), and the track file's metres run along the plate.
+// (frame_follower.h, FrameTrack::PlateRowAt), and the track file's metres run along the plate.
 #include <opencv2/core.hpp>
 
 #include <limits>

@@ -8,6 +8,19 @@
 
 namespace dimer::tracking {
 
+std::string ToString(Polarity p) {
+  return p == Polarity::kBright ? "bright" : p == Polarity::kDark ? "dark" : "auto";
+}
+
+Polarity ParsePolarity(const std::string& name, const std::string& option) {
+  for (Polarity p : {Polarity::kAuto, Polarity::kBright, Polarity::kDark}) {
+    if (name == ToString(p)) return p;
+  }
+  throw UsageError(option + " '" + name + "': expected auto, bright or dark");
+}
+
+int Sign(Polarity p) { return p == Polarity::kBright ? 1 : p == Polarity::kDark ? -1 : 0; }
+
 void TrackArgs::Check() const {
   std::string bad;
   auto need = [&](bool ok, const std::string& what) {
@@ -32,13 +45,6 @@ void TrackArgs::Check() const {
   need(diameter > 0 && std::isfinite(diameter), "--diameter must be > 0 m");
   need(std::isnan(ar) || (ar >= kMinAspectRatio && std::isfinite(ar)),
        "--ar must be >= 2 (the dimer's length over a sphere's diameter; 2: spheres touching)");
-  need(polarity == "auto" || polarity == "bright" || polarity == "dark",
-       "--polarity '" + polarity + "': expected auto, bright or dark");
-  try {
-    ParseMethod(method);
-  } catch (const InputError& e) {
-    need(false, e.what());
-  }
   if (!bad.empty()) throw UsageError(bad);
   sequence.Check();
 }

@@ -1,6 +1,6 @@
 #pragma once
 // What `dimerlab track FRAMES -o track.h5` is asked to do: the command line, typed, with the
-// tracker's options (track_sequence.h) inside it. RunTrack (track.h) runs it.
+// tracker's options (track_sequence.h) inside it. RunTrack (run_track.h) runs it.
 #include <functional>
 #include <limits>
 #include <string>
@@ -9,6 +9,15 @@
 #include "tracking/track_sequence.h"
 
 namespace dimer::tracking {
+
+// What the spheres look like against their surroundings (--polarity): found by the tracker
+// (auto), or given: brighter (front-lit steel, a disc) or darker (backlit) than the backdrop.
+enum class Polarity { kAuto, kBright, kDark };
+std::string ToString(Polarity p);  // "auto", "bright", "dark"
+// The name as --polarity takes it; UsageError naming `option` otherwise.
+Polarity ParsePolarity(const std::string& name, const std::string& option = "--polarity");
+// The tracker's sign of the spheres' contrast (FollowerOptions::polarity): +1, -1, 0 for auto.
+int Sign(Polarity p);
 
 // The frame rates a film may have, frames/s (docs/FORMATS.md, ranges): a camera's 1 .. 10^7.
 inline constexpr double kMinTrackFps = 1.0;
@@ -35,8 +44,8 @@ struct TrackArgs {
   double plate_m_per_px = std::numeric_limits<double>::quiet_NaN();
   // --lens: an OpenCV camera calibration file (lens_undistortion.h); empty: frames as recorded.
   std::string lens;
-  std::string method = "auto";  // auto | centroid | discfit | template
-  std::string polarity = "auto";  // auto | bright | dark
+  Method method = Method::kAuto;        // --method
+  Polarity polarity = Polarity::kAuto;  // --polarity
   SequenceOptions sequence;
   bool quiet = false;           // no progress on stderr
   // Called from the calling thread with the frames done so far, after each joined chunk

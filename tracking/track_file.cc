@@ -215,7 +215,7 @@ AttrList CalibrationAttributes(const TrackArgs& args, const SequenceResult& r,
       {"m_per_px", cal.m_per_px}, {"row0", cal.row0}, {"col0", cal.col0},
       {"diameter", args.diameter},
       {"polarity", std::string(r.polarity > 0 ? "bright" : "dark")},
-      {"polarity_requested", args.polarity},
+      {"polarity_requested", ToString(args.polarity)},
       {"m_per_px_given",
        int64_t(!std::isnan(args.m_per_px) ? 1 : !std::isnan(args.ar) ? 2 : 0)},
       {"ar", std::isnan(args.ar) ? 0.0 : args.ar},
@@ -244,7 +244,7 @@ RootAttrs RootAttributes(const TrackArgs& args, const SequenceResult& r, const C
                          const Recording& rec) {
   const bool clip_found = r.plate_clip.level.found();
   AttrList attrs = {{"source", args.input}, {"frames", args.frames.empty() ? "all" : args.frames},
-                    {"method", ToString(r.method)}, {"method_requested", args.method},
+                    {"method", ToString(r.method)}, {"method_requested", ToString(args.method)},
                     {"method_reason", r.method_reason}, {"fps", args.fps},
                     {"fps_source", rec.fps_from},
                     {"plate_shift", r.plate_shift.applied ? r.plate_shift.value : 0.0},
@@ -264,7 +264,7 @@ RootAttrs RootAttributes(const TrackArgs& args, const SequenceResult& r, const C
                     {"plate_clip_level_err", clip_found ? r.plate_clip.level.err : 0.0},
                     {"plate_clip_refitted", int64_t(r.plate_clip.refitted)},
                     {"plate_psf_sigma", clip_found ? r.plate_clip.level.psf_sigma
-                                                   : args.sequence.tracker.psf_sigma_px},
+                                                   : args.sequence.follower.psf_sigma_px},
                     {"plate_psf_sigma_source", PsfSource(args, r.plate_clip)},
                     {"plate_slope", r.plate_slope.value},
                     {"plate_slope_measured", r.plate_slope.measured},
@@ -372,7 +372,7 @@ void WriteColumns(H5Writer& w, const TrackColumns& columns, const SequenceResult
 
 std::string PsfSource(const TrackArgs& args, const PlateClip& clip) {
   if (clip.level.psf_fitted) return "fitted";
-  return args.sequence.tracker.fit_psf_sigma ? "default" : "--psf-sigma";
+  return args.sequence.follower.fit_psf_sigma ? "default" : "--psf-sigma";
 }
 
 void WriteTrackFile(const std::string& path, const TrackArgs& args, const SequenceResult& r,

@@ -22,7 +22,7 @@ struct Recording {
 std::string PsfSource(const TrackArgs& args, const PlateClip& clip);
 
 // Writes the file at `path` (the caller's temporary name: common/atomic_output.h). `args.fps`
-// is the frame rate resolved (track.h).
+// is the frame rate resolved (run_track.h).
 void WriteTrackFile(const std::string& path, const TrackArgs& args, const SequenceResult& r,
                     const Calibration& cal, const Recording& rec);
 

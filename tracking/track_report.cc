@@ -262,7 +262,7 @@ void ReportFilm(const TrackArgs& args, const Recording& rec, const SequenceResul
   ReportInput(args, rec, r, diag);
   // The choice and its evidence (also in the file); -q keeps stderr empty on success.
   if (!r.method_reason.empty()) {
-    diag->Note("method", Format("method %s -> %s (reason: %s)", args.method.c_str(),
+    diag->Note("method", Format("method %s -> %s (reason: %s)", ToString(args.method).c_str(),
                                 ToString(r.method).c_str(), r.method_reason.c_str()));
   }
   ReportClippedPlate(args, r.plate_clip, diag);

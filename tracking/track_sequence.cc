@@ -39,14 +39,14 @@ cv::Mat CleanFrame(const cv::Mat& image, const DefectPixels& defects,
 }
 
 ChunkResult TrackChunk(const FrameSource& source, size_t start, size_t count,
-                       std::vector<Frame> prefetched, const TrackerOptions& opts,
+                       std::vector<Frame> prefetched, const FollowerOptions& opts,
                        const Reference& ref, const DefectPixels& defects,
                        const LensUndistortion* lens) {
   ChunkResult out;
-  TrackerOptions o = opts;
+  FollowerOptions o = opts;
   o.polarity = ref.polarity;
   o.radius_px = ref.radius_px;
-  SequenceTracker tracker(o);
+  FrameFollower tracker(o);
   const size_t n = prefetched.empty() ? count : prefetched.size();
   for (size_t j = 0; j < n; ++j) {
     if (InterruptRequested()) {
@@ -68,11 +68,11 @@ ChunkResult TrackChunk(const FrameSource& source, size_t start, size_t count,
   return out;
 }
 
-Reference MakeReference(const cv::Mat& image, const TrackerOptions& opts) {
+Reference MakeReference(const cv::Mat& image, const FollowerOptions& opts) {
   Reference ref;
   ref.width = image.cols;
   ref.height = image.rows;
-  SequenceTracker probe(opts);
+  FrameFollower probe(opts);
   probe.Process(image, 0);
   ref.polarity = probe.polarity();
   ref.radius_px = probe.radius_px();
@@ -109,7 +109,7 @@ using FrameAt = std::function<Frame(size_t)>;
 // while they run (kept in place until the last one is joined).
 struct Film {
   Reference ref;
-  TrackerOptions chunk_opts;             // the tracker's options for every chunk
+  FollowerOptions chunk_opts;             // the tracker's options for every chunk
   SequenceMethod prepared;               // the method chosen (and learnt) for the film
   cv::Mat first_frame;                   // the first readable frame, stuck pixels replaced
   std::optional<LensUndistortion> lens;  // made for the first readable frame's size
@@ -143,7 +143,7 @@ bool OpenFilm(const FrameAt& frame_at, size_t count, const SequenceOptions& opti
   }
   for (cv::Mat& p : probe) p = CleanFrame(p, result->defects, film->undistort);
   film->first_frame = CleanFrame(first, result->defects, film->undistort);
-  film->ref = MakeReference(film->first_frame, options.tracker);
+  film->ref = MakeReference(film->first_frame, options.follower);
   result->plate_slope = EstimatePlateSlope(probe, film->ref.polarity);
   film->chunk_opts.plate_slope = result->plate_slope.value;
   return true;
@@ -162,14 +162,14 @@ void LearnFilm(const FrameAt& learning_at, size_t available, const SequenceOptio
       learning.push_back(std::move(f));
     }
   }
-  TrackerOptions reference = options.tracker;
+  FollowerOptions reference = options.follower;
   reference.polarity = film->ref.polarity;
   reference.plate_slope = film->chunk_opts.plate_slope;
   // The template is sized by the true radius when the scale is known (the silhouette
   // radius of a front-lit steel sphere can be pixels short).
   reference.radius_px = std::isfinite(options.contact_radius_px) ? options.contact_radius_px
                                                                  : film->ref.radius_px;
-  film->prepared = PrepareSequenceMethod(learning, reference, options.tracker.method,
+  film->prepared = PrepareSequenceMethod(learning, reference, options.follower.method,
                                          std::isfinite(options.contact_radius_px),
                                          LearnOptions{options.learn_passes, threads,
                                                       film->chunk_opts.plate_slope,
@@ -228,14 +228,14 @@ void PlaceOffsets(const Film& film, const SequenceOptions& options, SequenceResu
 void FinishFilm(const Film& film, const SequenceOptions& options, bool sequence_level,
                 SequenceResult* result) {
   if (InterruptRequested()) result->complete = false;
-  result->method = sequence_level ? film.prepared.choice.method : options.tracker.method;
+  result->method = sequence_level ? film.prepared.choice.method : options.follower.method;
   result->method_reason = film.prepared.choice.reason;
   // Before anything reads the found spheres (the plate's motion scale, the offsets): the chunks'
   // names made the film's, then the matches that are not a sphere dropped.
   result->dimer_names = NameSpheresByTheDimer(&result->frames);
   result->scores = DropOutlyingMatches(&result->frames);
-  result->plate_clip = RefitClippedPlate(options.tracker.psf_sigma_px,
-                                         options.tracker.fit_psf_sigma, &result->frames);
+  result->plate_clip = RefitClippedPlate(options.follower.psf_sigma_px,
+                                         options.follower.fit_psf_sigma, &result->frames);
   PlaceContactLine(film.prepared, options, result);
   PlaceOffsets(film, options, result);
   result->precision = MeasurePrecision(result->frames, result->precision_bound);
@@ -253,12 +253,12 @@ SequenceResult TrackFramesAsGiven(FrameSource& source, const SequenceOptions& op
                                           : int(std::max(1u, std::thread::hardware_concurrency()));
   SequenceResult result;
   Film film;
-  film.chunk_opts = options.tracker;
+  film.chunk_opts = options.follower;
   bool have_ref = false;
   size_t next = 0;
   bool exhausted = false;
-  const bool sequence_level = options.tracker.method == Method::kTemplate ||
-                              options.tracker.method == Method::kAuto;
+  const bool sequence_level = options.follower.method == Method::kTemplate ||
+                              options.follower.method == Method::kAuto;
   std::deque<std::future<ChunkResult>> inflight;
   auto launch = [&]() {
     std::vector<Frame> buffer;
@@ -317,7 +317,7 @@ SequenceResult TrackFramesAsGiven(FrameSource& source, const SequenceOptions& op
 }  // namespace
 
 void SequenceOptions::Check() const {
-  tracker.Check();
+  follower.Check();
   if (threads < 0 || threads > 256) throw UsageError("--threads must be 0 (all cores) .. 256");
   if (chunk_frames < 1) throw UsageError("--chunk-frames must be >= 1");
   if (learn_passes < 0 || learn_passes > 20) throw UsageError("learning passes must be 0 .. 20");

@@ -5,10 +5,10 @@
 // edge's slope); the method chosen and, for the template, the appearances learnt; the frames
 // followed in chunks and joined; the spheres named by the rigid dimer; then matches that were not the sphere dropped, an
 // over-exposed plate's rows refitted, the contact line, the template's offsets and the
-// precision. `dimerlab track` (track.h) calibrates and writes what this returns.
+// precision. `dimerlab track` (run_track.h) calibrates and writes what this returns.
 //
 // Parallelism with deterministic results: the sequence is cut into chunks of a fixed number of
-// frames; each chunk is decoded and tracked by its own worker with its own SequenceTracker
+// frames; each chunk is decoded and tracked by its own worker with its own FrameFollower
 // (which acquires at the chunk start), and chunks are joined in order; the spheres' names are
 // then the film's, given by the rigid dimer over the whole film (dimer_identity.h). Results depend on the chunk size, never on the number
 // of threads or on scheduling. Memory: at most `threads` chunks of results in flight, and
@@ -29,13 +29,13 @@
 #include "tracking/dimer_identity.h"
 #include "tracking/match_scores.h"
 #include "tracking/plate_slope.h"
-#include "tracking/template_sequence.h"
+#include "tracking/learn_method.h"
 #include "tracking/track_precision.h"
-#include "tracking/tracker.h"
+#include "tracking/frame_follower.h"
 
 namespace dimer::tracking {
 struct SequenceOptions {
-  TrackerOptions tracker;
+  FollowerOptions follower;
   int threads = 0;            // worker threads; 0: all cores
   size_t chunk_frames = 512;  // frames per chunk (changing it may change the last digits)
   // Template method: the sphere radius for the plate-contact offset, px; NaN: the measured one.

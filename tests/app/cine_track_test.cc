@@ -13,9 +13,10 @@
 #include "tests/common/test_tmpdir.h"
 #include "tests/common/warm_bayer.h"
 #include "tests/tracking/synthetic.h"
+#include "tracking/io/frame_source.h"
 #include "tracking/io/cine_writer.h"
 #include "render/render.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 namespace dimer::tracking {
 namespace {
@@ -33,7 +34,7 @@ void MakeInputs(const TempDir& dir) {
   a.quiet = true;
   a.image.lighting = Lighting::kReflect;
   RunRender(a);
-  auto folder = FrameSource::Open(dir / "frames");
+  auto folder = OpenFrameSource(dir / "frames");
   ASSERT_EQ(folder->size(), kFrames);
   std::vector<cv::Mat> frames;
   for (size_t i = 0; i < kFrames; ++i) frames.push_back(folder->Read(i).image);
@@ -106,7 +107,7 @@ TEST(TrackCine, GivenFpsWinsWithAWarning) {
   std::string err;  // the lines `dimerlab track` prints
   t.on_diagnostic = [&](const Diagnostic& d) { err += FormatDiagnostic(d) + "\n"; };
   RunTrack(t);
-  EXPECT_NE(err.find("dimerlab: warning: " + t.input +
+  EXPECT_NE(err.find("dimerlab track: warning: " + t.input +
                      ": --fps 1000 differs from the .cine header's 2000 frames/s; using --fps 1000"),
             std::string::npos)
       << err;
@@ -147,8 +148,8 @@ TEST(TrackCine, RenderWritesTheSameFramesAsACine) {
   a.output = dir / "cine";
   a.format = "cine";
   RunRender(a);
-  auto png = FrameSource::Open(dir / "png");
-  auto cine = FrameSource::Open(dir / "cine/frames.cine");
+  auto png = OpenFrameSource(dir / "png");
+  auto cine = OpenFrameSource(dir / "cine/frames.cine");
   ASSERT_EQ(cine->size(), kFrames);
   for (size_t i = 0; i < kFrames; ++i) {
     const cv::Mat p = png->Read(i).image, c = cine->Read(i).image;
@@ -167,7 +168,7 @@ TEST(TrackCine, RenderWritesTheSameFramesAsACine) {
 TEST(TrackCine, TenBitPackedAndRawColourFilesTrackAsTheGreyFolder) {
   TempDir dir;
   MakeInputs(dir);
-  auto folder = FrameSource::Open(dir / "frames");
+  auto folder = OpenFrameSource(dir / "frames");
   std::vector<cv::Mat> ten, mosaic;
   for (size_t i = 0; i < kFrames; ++i) {
     const cv::Mat f = folder->Read(i).image;

@@ -12,7 +12,7 @@
 #endif
 #ifdef DIMERLAB_HAVE_TRACKING
 #include "render/render.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 #endif
 
 namespace dimer::testing {

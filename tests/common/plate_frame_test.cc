@@ -22,7 +22,7 @@ Trajectory OnTiltedPlate(double deg, double zp, const std::vector<double>& along
   for (size_t i = 0; i < along.size(); ++i) {
     const Eigen::Vector2d cm = along[i] * t + (zp + kR) * n;
     const Eigen::Vector2d left = cm - kHalf * t, right = cm + kHalf * t;
-    const double plate_z = (zp + cm.x() * s) / c;  // sim/frames.cc PlateSurfaceZ under the CM
+    const double plate_z = (zp + cm.x() * s) / c;  // sim/reference_frames.cc PlateSurfaceZ under the CM
     lab.Append(1e-3 * double(i), left, right, plate_z, a);
   }
   return lab;

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "compare/analysis.h"
-#include "sim/frames.h"
+#include "sim/reference_frames.h"
 #include "sim/simulator.h"
 #include "sim/state.h"
 

@@ -13,12 +13,12 @@
 #include "../common/test_tmpdir.h"
 #include "compare/comparison.h"
 #include "compare/fit.h"
-#include "sim/frames.h"
+#include "sim/reference_frames.h"
 #include "sim/sim_file.h"
 #include "sim/simulator.h"
 #include "sim/state.h"
 #include "render/render.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 #include "tests/compare/exact_slip.h"
 
 namespace dimer::compare {

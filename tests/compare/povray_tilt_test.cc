@@ -13,10 +13,10 @@
 #include "../common/test_tmpdir.h"
 #include "compare/comparison.h"
 #include "compare/simulate.h"
-#include "sim/frames.h"
+#include "sim/reference_frames.h"
 #include "tests/footage/povray_footage.h"
 #include "tests/footage/track_accuracy.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 #ifndef DIMERLAB_POVRAY_CACHE
 #define DIMERLAB_POVRAY_CACHE "povray_footage_cache"

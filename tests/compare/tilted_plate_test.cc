@@ -14,7 +14,7 @@
 #include "compare/comparison.h"
 #include "compare/simulate.h"
 #include "compare/tilt_notes.h"
-#include "sim/frames.h"
+#include "sim/reference_frames.h"
 #include "sim/sim_file.h"
 #include "sim/state.h"
 #include "tests/compare/exact_slip.h"

@@ -7,7 +7,7 @@
 
 #include "common/h5_file.h"
 #include "tests/footage/track_accuracy.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 namespace dimer::footage {
 

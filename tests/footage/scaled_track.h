@@ -1,5 +1,5 @@
 #pragma once
-// A footage folder tracked the way a user runs `dimerlab track` (tracking/track.h RunTrack, the
+// A footage folder tracked the way a user runs `dimerlab track` (tracking/run_track.h RunTrack, the
 // command's whole path: the track file written and read back), with the scale given
 // (--m-per-px), from the dimer's length (--ar) or from the spheres' size (neither), and each
 // sphere's mean error against the folder's truth.csv: what the scale's origin does to the

@@ -10,7 +10,7 @@
 
 #include "common/error.h"
 #include "tracking/io/frame_source.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 namespace dimer::footage {
 namespace {
@@ -133,9 +133,9 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
   for (const auto& r : truth) by_file[r.file] = &r;
 
   tracking::SequenceOptions opt;
-  opt.tracker.method = tracking::ParseMethod(method);
+  opt.follower.method = tracking::ParseMethod(method);
   opt.threads = threads;
-  if (knobs.ecc) opt.tracker.ecc = *knobs.ecc;
+  if (knobs.ecc) opt.follower.ecc = *knobs.ecc;
   opt.learn_passes = knobs.learn_passes;
   opt.jackknife_groups = knobs.jackknife_groups;
   opt.seed_agreement_px = knobs.seed_agreement_px;
@@ -144,7 +144,7 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
     opt.lens = std::make_shared<const tracking::LensCalibration>(
         tracking::ReadLensCalibration(knobs.lens));
   }
-  auto source = tracking::FrameSource::Open(input.empty() ? folder : input);
+  auto source = tracking::OpenFrameSource(input.empty() ? folder : input);
   const auto start = std::chrono::steady_clock::now();
   const tracking::SequenceResult res = tracking::TrackSequence(*source, opt);
   TrackAccuracy a;
@@ -196,7 +196,7 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
   for (int k = 0; k < 2; ++k) a.sphere[k] = Summarise(errors[k], good[k]);
   a.template_run = res.method == tracking::Method::kTemplate;
   if (a.template_run) {
-    // The tracker's own bound (track.h, precision_bound): its first readable frame's noise in
+    // The tracker's own bound (run_track.h, precision_bound): its first readable frame's noise in
     // the levels of the appearance (16-bit levels of fewer bits scaled, level_scale.h).
     for (int k = 0; k < 2; ++k) {
       SphereAccuracy& s = a.sphere[k];

@@ -1,5 +1,5 @@
 #pragma once
-// How well the tracker (tracking/track.h, the library behind `dimerlab track`) recovers the
+// How well the tracker (tracking/run_track.h, the library behind `dimerlab track`) recovers the
 // truth of a footage folder (truth.csv in the layout of docs/FORMATS.md, "Render folders": from
 // POV-Ray footage or `dimerlab render`), with the numbers the targets are stated in:
 //  - found: fraction of the good frames (both spheres wholly inside the frame) where the
@@ -87,7 +87,7 @@ inline constexpr double kCoverageSigmas = 2.0;
 // renderer (docs/BENCHMARKS.md, bench_tracking). Not one of the targets, which stay as they are.
 inline constexpr double kScatterBoundFactor = 1.5;
 
-// Tracks `folder` (every image in it) with `method` (a `--method` name of tracking/sphere/refiner.h)
+// Tracks `folder` (every image in it) with `method` (a `--method` name of tracking/sphere/measure_sphere.h)
 // and compares with `folder`/truth.csv. `threads` 0: all cores. `scale_given`: the tracker is
 // told the scale, as `dimerlab track --m-per-px` is by a user with a calibrated camera (the
 // sphere radius in pixels, from truth.csv's header); without it the tracker measures the radius

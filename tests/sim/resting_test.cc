@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "sim/frames.h"
+#include "sim/reference_frames.h"
 #include "sim/simulator.h"
 
 namespace dimer::sim {

@@ -9,7 +9,7 @@
 #include "common/error.h"
 #include "common/h5_file.h"
 #include "common/trajectory_io.h"
-#include "sim/frames.h"
+#include "sim/reference_frames.h"
 #include "sim/run_sim.h"
 #include "tests/common/test_tmpdir.h"
 

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "common/error.h"
-#include "sim/frames.h"
+#include "sim/reference_frames.h"
 #include "sim/initial_conditions.h"
 #include "tests/sim/test_models.h"
 

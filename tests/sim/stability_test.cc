@@ -7,7 +7,7 @@
 #include <ostream>
 #include <sstream>
 
-#include "sim/frames.h"
+#include "sim/reference_frames.h"
 #include "sim/simulator.h"
 #include "tests/sim/test_models.h"
 

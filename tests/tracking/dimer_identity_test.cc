@@ -185,7 +185,7 @@ TEST_P(DimerIdentity, NeverSwappedOverRandomWalksOutOfEitherEdge) {
     const Walk w = RandomWalk(1000 + s, 400, lighting);
     MemorySource source(w.frames);
     SequenceOptions o;
-    o.tracker.method = method;
+    o.follower.method = method;
     o.contact_radius_px = kRadiusPx;
     o.threads = 2;
     o.chunk_frames = 16;

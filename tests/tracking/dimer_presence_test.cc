@@ -15,7 +15,7 @@
 #include "render/scene_renderer.h"
 #include "tests/common/test_tmpdir.h"
 #include "tests/tracking/synthetic.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 namespace dimer::tracking {
 namespace {
@@ -46,7 +46,7 @@ std::string TrackError(const std::filesystem::path& dir) {
   t.output = dir / "track.h5";
   t.quiet = true;
   t.m_per_px = 2e-4;
-  t.method = "centroid";
+  t.method = Method::kCentroid;
   try {
     RunTrack(t);
   } catch (const InputError& e) {

@@ -42,7 +42,7 @@
 #include "tracking/dimer_length_scale.h"
 #include "tracking/io/frame_source.h"
 #include "tracking/io/mosaic_grey.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 #ifndef DIMERLAB_POVRAY_TEST_METHOD
 #define DIMERLAB_POVRAY_TEST_METHOD "centroid"
@@ -208,13 +208,13 @@ std::array<tracking::SequenceResult, 2> TrackWithOneAndTwoThreads(const Case& c)
     tracking::SequenceOptions o;
     o.threads = threads;
     o.chunk_frames = 6;
-    o.tracker.method = tracking::Method::kAuto;
+    o.follower.method = tracking::Method::kAuto;
     o.contact_radius_px = radius;
     if (const std::string lens = LensFileOf(c.camera, dir); !lens.empty()) {
       o.lens = std::make_shared<const tracking::LensCalibration>(
           tracking::ReadLensCalibration(lens));
     }
-    auto source = tracking::FrameSource::Open(dir);
+    auto source = tracking::OpenFrameSource(dir);
     r[threads - 1] = tracking::TrackSequence(*source, o);
   }
   return r;
@@ -370,7 +370,7 @@ TEST(PovrayStuckPixels, HotPixelsAreFoundAndReplacedAndTheTargetsStillMet) {
   }
   tracking::MemorySource source(frames);
   tracking::SequenceOptions o;
-  o.tracker.method = tracking::Method::kAuto;
+  o.follower.method = tracking::Method::kAuto;
   o.threads = 2;
   const tracking::SequenceResult r = tracking::TrackSequence(source, o);
   std::set<std::pair<int, int>> want, got;
@@ -404,7 +404,7 @@ TEST(PovrayCine, TenBitAndColourPhantomFilesMeetTheTargets) {
     // The colour camera's film made grey by its own software (a 3x3 filter) and exported as 16-bit
     // frames of 8-bit levels (x 257): a dark backdrop whose noise the filter and the 8-bit step
     // hide. A highlight floor of half a 16-bit level makes every noisy pixel a highlight and puts
-    // the spheres 30 px off; the floor is the frame's own level step (template_sequence.cc).
+    // the spheres 30 px off; the floor is the frame's own level step (learn_method.cc).
     cv::Mat g8, g16;
     tracking::MosaicFilterToGrey(bayer.back()).convertTo(g8, CV_8U);
     g8.convertTo(g16, CV_16U, 257);
@@ -531,7 +531,7 @@ TEST(PovrayPrecision, TheScatterIsMeasuredAndPoorFootageIsFlagged) {
     }
     tracking::MemorySource source(frames);
     tracking::SequenceOptions o;
-    o.tracker.method = tracking::Method::kAuto;
+    o.follower.method = tracking::Method::kAuto;
     o.contact_radius_px = radius / 2;
     o.threads = 2;
     const tracking::SequenceResult r = tracking::TrackSequence(source, o);
@@ -580,7 +580,7 @@ TEST(PovrayLeavingTheFrame, ASphereCutByTheFramesEdgeIsNotFoundBesideItself) {
   }
   tracking::MemorySource source(frames);
   tracking::SequenceOptions o;
-  o.tracker.method = tracking::Method::kAuto;
+  o.follower.method = tracking::Method::kAuto;
   o.contact_radius_px = radius;
   o.threads = 2;
   const tracking::SequenceResult r = tracking::TrackSequence(source, o);

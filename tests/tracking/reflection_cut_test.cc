@@ -13,7 +13,7 @@
 #include "tracking/sphere/appearance_model.h"
 #include "common/disc_coverage.h"
 #include "tracking/io/frame_source.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 namespace dimer::tracking {
 namespace {
@@ -71,7 +71,7 @@ TEST(ReflectionCut, ARisingMirrorSphereDoesNotFollowItsReflection) {
   }
   MemorySource source(frames);
   SequenceOptions o;
-  o.tracker.method = Method::kAuto;
+  o.follower.method = Method::kAuto;
   o.contact_radius_px = kR;  // the scale is given
   o.threads = 2;
   const SequenceResult r = TrackSequence(source, o);

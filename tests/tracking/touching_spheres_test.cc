@@ -17,7 +17,7 @@
 #include "tracking/sphere/detector.h"
 #include "tracking/io/frame_source.h"
 #include "render/render.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 namespace dimer::tracking {
 namespace {
@@ -92,7 +92,7 @@ TEST_P(TouchingSpheres, TrackedWithTheTrackersTargets) {
   }
   MemorySource source(frames);
   SequenceOptions opts;
-  opts.tracker.method = c.method;
+  opts.follower.method = c.method;
   opts.chunk_frames = 32;  // several acquisitions per sequence
   opts.threads = 1;
   const SequenceResult one = TrackSequence(source, opts);

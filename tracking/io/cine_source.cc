@@ -131,6 +131,29 @@ class CineSource : public FrameSource {
     bottom_up_ = hgt > 0;
     const uint16_t bits = Le<uint16_t>(b + kBBitCount);
     const uint32_t bi_compression = Le<uint32_t>(b + kBCompression);
+    CheckCompression(compression);
+    // A colour camera's raw mosaic (Compression 2) is single-channel: its pixels are read as
+    // grey ones are and turned grey by mosaic_grey.h; interpolated colour (Compression 0, 24 or
+    // 48 bits a pixel) is BGR, turned grey as colour image files are (frame_source.cc).
+    mosaic_ = compression == kCompressionRawColour;
+    cfa_ = Le<uint32_t>(s.data() + kSCfa);
+    ChoosePixelLayout(bits, bi_compression);
+    CheckRedundantFields(b, s.data(), bits);
+    if (image_count == 0) throw InputError(path_ + ": the .cine file holds no images");
+    // Every image needs at least its 8-byte table entry: a larger count is not a cine's.
+    if (image_count > uint64_t(size_) / 8) {
+      NotCine("absurd image count " + std::to_string(image_count) + " for a file of " +
+              std::to_string(size_) + " bytes");
+    }
+    count_ = image_count;
+
+    ReadOffsetTable(off_offsets);
+    ReadRecordingInfo(h, s, off_setup, off_offsets, bits);
+    if (mosaic_) FindMosaicBalance();
+  }
+
+  void CheckCompression(uint16_t compression) const {
+    using namespace cine;
     if (compression == kCompressionJpeg) {
       throw InputError(path_ + ": JPEG-compressed .cine (Compression 1) is not supported; "
                        "export it uncompressed");
@@ -139,11 +162,11 @@ class CineSource : public FrameSource {
       throw InputError(path_ + ": .cine with Compression " + std::to_string(compression) +
                        " is not supported; export it uncompressed");
     }
-    // A colour camera's raw mosaic (Compression 2) is single-channel: its pixels are read as
-    // grey ones are and turned grey by mosaic_grey.h; interpolated colour (Compression 0, 24 or
-    // 48 bits a pixel) is BGR, turned grey as colour image files are (frame_source.cc).
-    mosaic_ = compression == kCompressionRawColour;
-    cfa_ = Le<uint32_t>(s.data() + kSCfa);
+  }
+
+  // How an image's pixels are stored (depth, channels, packing) and its size in bytes.
+  void ChoosePixelLayout(uint16_t bits, uint32_t bi_compression) {
+    using namespace cine;
     const size_t pixels = size_t(width_) * size_t(height_);
     if (bi_compression == kBiRgb && (bits == 8 || bits == 16)) {
       pixels_ = bits == 8 ? Pixels::k8 : Pixels::k16;
@@ -167,15 +190,9 @@ class CineSource : public FrameSource {
                        ") is not supported: only 8-bit, 16-bit and 10-bit packed grey or raw "
                        "colour, and 24- or 48-bit colour");
     }
-    CheckRedundantFields(b, s.data(), bits);
-    if (image_count == 0) throw InputError(path_ + ": the .cine file holds no images");
-    // Every image needs at least its 8-byte table entry: a larger count is not a cine's.
-    if (image_count > uint64_t(size_) / 8) {
-      NotCine("absurd image count " + std::to_string(image_count) + " for a file of " +
-              std::to_string(size_) + " bytes");
-    }
-    count_ = image_count;
+  }
 
+  void ReadOffsetTable(uint32_t off_offsets) {
     // The offset table: the entries inside the file (a truncated file loses the rest; those
     // frames are reported unreadable, not the whole file).
     const int64_t room = off_offsets <= size_ ? (size_ - off_offsets) / 8 : 0;
@@ -183,7 +200,12 @@ class CineSource : public FrameSource {
     if (!table.empty() && !ReadAt(off_offsets, table.data(), table.size())) table.clear();
     offsets_.resize(table.size() / 8);
     for (size_t i = 0; i < offsets_.size(); ++i) offsets_[i] = Le<int64_t>(table.data() + 8 * i);
+  }
 
+  // The recording's rate, frame times, exposure, trigger and levels (RecordingInfo).
+  void ReadRecordingInfo(const uint8_t* h, const std::vector<uint8_t>& s, uint32_t off_setup,
+                         uint32_t off_offsets, uint16_t bits) {
+    using namespace cine;
     info_.known = true;
     const uint32_t rate = Le<uint32_t>(s.data() + kSFrameRate);
     info_.fps = rate > 0 ? rate : Le<uint16_t>(s.data() + kSFrameRate16);
@@ -212,7 +234,6 @@ class CineSource : public FrameSource {
                                                      : bits / channels_;
     info_.colour = mosaic_ ? "mosaic" : channels_ == 3 ? "bgr" : "grey";
     info_.cfa = int64_t(cfa_);
-    if (mosaic_) FindMosaicBalance();
   }
 
   // Cross-checks the bitmap header against itself and the setup (whole-file errors): biSizeImage

@@ -30,7 +30,7 @@
 #include <memory>
 #include <string>
 
-#include "tracking/io/frame_source.h"
+#include "tracking/io/frame.h"
 
 namespace dimer::tracking {
 

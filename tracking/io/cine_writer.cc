@@ -43,10 +43,9 @@ void Unpack10(const uint8_t* in, size_t count, uint16_t* pixels) {
   }
 }
 
-CineWriter::CineWriter(const std::string& path, int width, int height, size_t frames,
-                       const CineWriteOptions& options)
-    : path_(path), width_(width), height_(height), options_(options), frames_(frames) {
-  using namespace cine;
+namespace {
+
+void CheckWriterOptions(int width, int height, const CineWriteOptions& options) {
   if (width < 1 || height < 1) throw std::invalid_argument("cine writer: empty frame size");
   if (options.pixels == CinePixels::k10BitPacked && (size_t(width) * height) % 4 != 0) {
     throw std::invalid_argument("cine writer: 10-bit packed needs width*height a multiple of 4");
@@ -58,70 +57,115 @@ CineWriter::CineWriter(const std::string& path, int width, int height, size_t fr
   if (options.annotation_size < 8 || options.annotation_size % 4 != 0) {
     throw std::invalid_argument("cine writer: AnnotationSize must be >= 8 and a multiple of 4");
   }
-  file_ = std::fopen(path.c_str(), "wb");
-  if (!file_) throw InputError(path + ": cannot create the .cine file");
-  const uint32_t tagged = options.time_stamp_rate > 0 ? uint32_t(kTagHeaderSize + 8 * frames) : 0;
-  const uint32_t off_bitmap = kFileHeaderSize, off_setup = off_bitmap + kBitmapHeaderSize,
-                 off_offsets = off_setup + kSetupLengthWritten + tagged;
-  table_at_ = off_offsets;
-  const size_t image_bytes = BytesPerImage(options.pixels, options.channels, width, height);
-  std::vector<uint8_t> h(off_offsets, 0);
-  Set<uint16_t>(&h, kHType, kTypeCI);
-  Set<uint16_t>(&h, kHHeaderSize, kFileHeaderSize);
+}
+
+// Where the headers put each part of a file of `frames` images.
+struct CineParts {
+  uint32_t tagged = 0;  // the time-stamp block's size, 0 without one
+  uint32_t bitmap = 0, setup = 0, offsets = 0;
+};
+
+CineParts PartsOf(size_t frames, const CineWriteOptions& options) {
+  using namespace cine;
+  CineParts p;
+  p.tagged = options.time_stamp_rate > 0 ? uint32_t(kTagHeaderSize + 8 * frames) : 0;
+  p.bitmap = kFileHeaderSize;
+  p.setup = p.bitmap + kBitmapHeaderSize;
+  p.offsets = p.setup + kSetupLengthWritten + p.tagged;
+  return p;
+}
+
+void SetFileHeader(const CineParts& at, size_t frames, const CineWriteOptions& options,
+                   std::vector<uint8_t>* h) {
+  using namespace cine;
+  Set<uint16_t>(h, kHType, kTypeCI);
+  Set<uint16_t>(h, kHHeaderSize, kFileHeaderSize);
   const bool mosaic = options.cfa != 0 && options.channels == 1;
-  Set<uint16_t>(&h, kHCompression, mosaic ? kCompressionRawColour : kCompressionGray);
-  Set<uint16_t>(&h, kHVersion, 1);
-  Set<int32_t>(&h, kHFirstMovieImage, options.first_image_no);
-  Set<uint32_t>(&h, kHTotalImageCount, uint32_t(frames));
-  Set<int32_t>(&h, kHFirstImageNo, options.first_image_no);
-  Set<uint32_t>(&h, kHImageCount, uint32_t(frames));
-  Set<uint32_t>(&h, kHOffImageHeader, off_bitmap);
-  Set<uint32_t>(&h, kHOffSetup, off_setup);
-  Set<uint32_t>(&h, kHOffImageOffsets, off_offsets);
-  Set<uint32_t>(&h, kHTriggerFractions, options.trigger_fraction);
-  Set<uint32_t>(&h, kHTriggerSeconds, options.trigger_seconds);
+  Set<uint16_t>(h, kHCompression, mosaic ? kCompressionRawColour : kCompressionGray);
+  Set<uint16_t>(h, kHVersion, 1);
+  Set<int32_t>(h, kHFirstMovieImage, options.first_image_no);
+  Set<uint32_t>(h, kHTotalImageCount, uint32_t(frames));
+  Set<int32_t>(h, kHFirstImageNo, options.first_image_no);
+  Set<uint32_t>(h, kHImageCount, uint32_t(frames));
+  Set<uint32_t>(h, kHOffImageHeader, at.bitmap);
+  Set<uint32_t>(h, kHOffSetup, at.setup);
+  Set<uint32_t>(h, kHOffImageOffsets, at.offsets);
+  Set<uint32_t>(h, kHTriggerFractions, options.trigger_fraction);
+  Set<uint32_t>(h, kHTriggerSeconds, options.trigger_seconds);
+}
 
+void SetBitmapHeader(uint32_t at, int width, int height, const CineWriteOptions& options,
+                     std::vector<uint8_t>* h) {
+  using namespace cine;
   const bool packed = options.pixels == CinePixels::k10BitPacked;
-  Set<uint32_t>(&h, off_bitmap + kBSize, kBitmapHeaderSize);
-  Set<int32_t>(&h, off_bitmap + kBWidth, width);
-  Set<int32_t>(&h, off_bitmap + kBHeight, options.top_down && !packed ? -height : height);
-  Set<uint16_t>(&h, off_bitmap + kBPlanes, 1);
-  Set<uint16_t>(&h, off_bitmap + kBBitCount,
+  const size_t image_bytes = BytesPerImage(options.pixels, options.channels, width, height);
+  Set<uint32_t>(h, at + kBSize, kBitmapHeaderSize);
+  Set<int32_t>(h, at + kBWidth, width);
+  Set<int32_t>(h, at + kBHeight, options.top_down && !packed ? -height : height);
+  Set<uint16_t>(h, at + kBPlanes, 1);
+  Set<uint16_t>(h, at + kBBitCount,
                 uint16_t((options.pixels == CinePixels::k8Bit ? 8 : 16) * options.channels));
-  Set<uint32_t>(&h, off_bitmap + kBCompression, packed ? kBiPacked10 : kBiRgb);
-  Set<uint32_t>(&h, off_bitmap + kBSizeImage, uint32_t(image_bytes));
+  Set<uint32_t>(h, at + kBCompression, packed ? kBiPacked10 : kBiRgb);
+  Set<uint32_t>(h, at + kBSizeImage, uint32_t(image_bytes));
+}
 
+void SetSetup(uint32_t at, int width, int height, const CineWriteOptions& options,
+              std::vector<uint8_t>* h) {
+  using namespace cine;
   const uint32_t bpp = options.real_bpp ? options.real_bpp
                        : options.pixels == CinePixels::k8Bit  ? 8
                        : options.pixels == CinePixels::k16Bit ? 16
                                                                : 10;
   const uint32_t us = options.exposure_ns / 1000;
-  Set<uint16_t>(&h, off_setup + kSFrameRate16, uint16_t(std::min<uint32_t>(options.frame_rate, 65535)));
-  Set<uint16_t>(&h, off_setup + kSShutter16, uint16_t(std::min<uint32_t>(us, 65535)));
-  Set<uint16_t>(&h, off_setup + kSMark, kSetupMarkST);
-  Set<uint16_t>(&h, off_setup + kSLength, kSetupLengthWritten);
-  Set<uint16_t>(&h, off_setup + kSImWidth, uint16_t(width));
-  Set<uint16_t>(&h, off_setup + kSImHeight, uint16_t(height));
-  Set<uint32_t>(&h, off_setup + kSFrameRate, options.frame_rate);
-  Set<uint32_t>(&h, off_setup + kSShutterUs, us);
-  Set<uint32_t>(&h, off_setup + kSRealBpp, bpp);
-  Set<uint32_t>(&h, off_setup + kSCfa, options.cfa);
-  Set<uint32_t>(&h, off_setup + kSShutterNs, options.exposure_ns);
+  Set<uint16_t>(h, at + kSFrameRate16, uint16_t(std::min<uint32_t>(options.frame_rate, 65535)));
+  Set<uint16_t>(h, at + kSShutter16, uint16_t(std::min<uint32_t>(us, 65535)));
+  Set<uint16_t>(h, at + kSMark, kSetupMarkST);
+  Set<uint16_t>(h, at + kSLength, kSetupLengthWritten);
+  Set<uint16_t>(h, at + kSImWidth, uint16_t(width));
+  Set<uint16_t>(h, at + kSImHeight, uint16_t(height));
+  Set<uint32_t>(h, at + kSFrameRate, options.frame_rate);
+  Set<uint32_t>(h, at + kSShutterUs, us);
+  Set<uint32_t>(h, at + kSRealBpp, bpp);
+  Set<uint32_t>(h, at + kSCfa, options.cfa);
+  Set<uint32_t>(h, at + kSShutterNs, options.exposure_ns);
   // Part of every .cine written, so kept byte for byte as first written (the file it names has
   // moved to tracking/io/): renders stay bit-identical across versions.
   const char kDescription[] = "written by dimerlab (tracking/cine_writer.cc)";
-  std::memcpy(h.data() + off_setup + kSDescription, kDescription, sizeof kDescription);
-  if (tagged > 0) {
-    const uint32_t block = off_setup + kSetupLengthWritten;
-    Set<uint32_t>(&h, block, tagged);
-    Set<uint16_t>(&h, block + 4, kTagTimeOnly);
-    const uint64_t trigger = uint64_t(options.trigger_seconds) << 32 | options.trigger_fraction;
-    for (size_t i = 0; i < frames; ++i) {
-      const uint64_t t = trigger + uint64_t(std::llround(double(i) / options.time_stamp_rate *
-                                                         4294967296.0));
-      Set<uint32_t>(&h, block + kTagHeaderSize + 8 * i, uint32_t(t));
-      Set<uint32_t>(&h, block + kTagHeaderSize + 8 * i + 4, uint32_t(t >> 32));
-    }
+  std::memcpy(h->data() + at + kSDescription, kDescription, sizeof kDescription);
+}
+
+// The tagged block of frame times after the setup: frame i at i / time_stamp_rate after the
+// trigger, in 32.32 fixed-point seconds.
+void SetTimeStamps(uint32_t block, uint32_t tagged, size_t frames, const CineWriteOptions& options,
+                   std::vector<uint8_t>* h) {
+  using namespace cine;
+  Set<uint32_t>(h, block, tagged);
+  Set<uint16_t>(h, block + 4, kTagTimeOnly);
+  const uint64_t trigger = uint64_t(options.trigger_seconds) << 32 | options.trigger_fraction;
+  for (size_t i = 0; i < frames; ++i) {
+    const uint64_t t = trigger + uint64_t(std::llround(double(i) / options.time_stamp_rate *
+                                                       4294967296.0));
+    Set<uint32_t>(h, block + kTagHeaderSize + 8 * i, uint32_t(t));
+    Set<uint32_t>(h, block + kTagHeaderSize + 8 * i + 4, uint32_t(t >> 32));
+  }
+}
+
+}  // namespace
+
+CineWriter::CineWriter(const std::string& path, int width, int height, size_t frames,
+                       const CineWriteOptions& options)
+    : path_(path), width_(width), height_(height), options_(options), frames_(frames) {
+  CheckWriterOptions(width, height, options);
+  file_ = std::fopen(path.c_str(), "wb");
+  if (!file_) throw InputError(path + ": cannot create the .cine file");
+  const CineParts at = PartsOf(frames, options);
+  table_at_ = at.offsets;
+  std::vector<uint8_t> h(at.offsets, 0);
+  SetFileHeader(at, frames, options, &h);
+  SetBitmapHeader(at.bitmap, width, height, options, &h);
+  SetSetup(at.setup, width, height, options, &h);
+  if (at.tagged > 0) {
+    SetTimeStamps(at.setup + cine::kSetupLengthWritten, at.tagged, frames, options, &h);
   }
   Put(h.data(), h.size());
   // The offset table is written last (Close), its place reserved here, before the images, where

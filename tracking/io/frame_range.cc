@@ -49,6 +49,7 @@ class RangeSource : public FrameSource {
     return true;
   }
   RecordingInfo recording() const override { return inner_->recording(); }
+  std::vector<std::string> warnings() const override { return inner_->warnings(); }
 
  private:
   std::unique_ptr<FrameSource> inner_;

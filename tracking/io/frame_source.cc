@@ -67,7 +67,9 @@ struct Entry {
 
 class ListSource : public FrameSource {
  public:
-  explicit ListSource(std::vector<Entry> entries) : entries_(std::move(entries)) {}
+  ListSource(std::vector<Entry> entries, std::vector<std::string> warnings)
+      : entries_(std::move(entries)), warnings_(std::move(warnings)) {}
+  std::vector<std::string> warnings() const override { return warnings_; }
   size_t size() const override { return entries_.size(); }
   bool random_access() const override { return true; }
   Frame Read(size_t index) const override {
@@ -100,6 +102,7 @@ class ListSource : public FrameSource {
 
  private:
   std::vector<Entry> entries_;
+  std::vector<std::string> warnings_;
   size_t next_ = 0;
 };
 
@@ -157,7 +160,7 @@ class VideoSource : public FrameSource {
 // Pages of a TIFF (1 for single-page or unreadable files: those are then reported on read).
 // OpenCV's complaint while counting (a truncated stack) becomes one warning naming the file: its
 // pages past the damage are not read.
-int TiffPages(const std::string& path) {
+int TiffPages(const std::string& path, std::vector<std::string>* warnings) {
   if (TiffHasOnePage(path)) return 1;  // the common case, without opening libtiff
   std::string said;
   size_t n = 1;
@@ -168,15 +171,17 @@ int TiffPages(const std::string& path) {
     said += e.what();
   }
   if (!said.empty()) {
-    std::fprintf(stderr, "dimerlab: warning: %s: cannot count its pages (%s); read as one image\n",
-                 path.c_str(), OneLineLibraryMessage(said).c_str());
+    warnings->push_back(path + ": cannot count its pages (" + OneLineLibraryMessage(said) +
+                        "); read as one image");
   }
   return n > 1 ? int(n) : 1;
 }
 
-void AddEntries(const fs::path& file, std::vector<Entry>* out) {
+void AddEntries(const fs::path& file, std::vector<Entry>* out,
+                std::vector<std::string>* warnings) {
   const std::string name = file.filename().string();
-  const int pages = IsTiffExt(Lower(file.extension().string())) ? TiffPages(file.string()) : 1;
+  const int pages =
+      IsTiffExt(Lower(file.extension().string())) ? TiffPages(file.string(), warnings) : 1;
   if (pages == 1) {
     out->push_back({file.string(), name, -1});
     return;
@@ -197,11 +202,12 @@ std::unique_ptr<FrameSource> OpenFolder(const std::string& path) {
     return NaturalLess(a.filename().string(), b.filename().string());
   });
   std::vector<Entry> entries;
-  for (const auto& f : files) AddEntries(f, &entries);
+  std::vector<std::string> warnings;
+  for (const auto& f : files) AddEntries(f, &entries, &warnings);
   if (entries.empty()) {
     throw InputError(path + ": no image files (.png .tif .tiff .bmp .jpg .jpeg) in this folder");
   }
-  return std::make_unique<ListSource>(std::move(entries));
+  return std::make_unique<ListSource>(std::move(entries), std::move(warnings));
 }
 
 }  // namespace
@@ -297,7 +303,7 @@ bool MemorySource::Next(Frame* frame) {
   return true;
 }
 
-std::unique_ptr<FrameSource> FrameSource::Open(const std::string& path) {
+std::unique_ptr<FrameSource> OpenFrameSource(const std::string& path) {
   QuietOpenCv();
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(path + ": no such file or folder");
@@ -307,8 +313,9 @@ std::unique_ptr<FrameSource> FrameSource::Open(const std::string& path) {
   if (IsVideoExt(ext)) return std::make_unique<VideoSource>(path);
   if (IsImageExt(ext)) {
     std::vector<Entry> entries;
-    AddEntries(fs::path(path), &entries);
-    return std::make_unique<ListSource>(std::move(entries));
+    std::vector<std::string> warnings;
+    AddEntries(fs::path(path), &entries, &warnings);
+    return std::make_unique<ListSource>(std::move(entries), std::move(warnings));
   }
   throw InputError(path +
                    ": not a folder of frames, an image, a .cine or a video (.avi .mp4 .mov .mkv)");

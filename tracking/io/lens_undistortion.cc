@@ -108,6 +108,76 @@ std::string UnparsableTextProblem(const std::string& path) {
   return "";
 }
 
+// The camera matrix and distortion coefficients into `c`; what is wrong with them, or "".
+std::string ReadMatrices(const cv::FileStorage& fs, LensCalibration* c) {
+  std::string k_name, d_name;
+  const cv::FileNode k =
+      FirstOf(fs, {"camera_matrix", "Camera_Matrix", "cameraMatrix", "K"}, &k_name);
+  const cv::FileNode d = FirstOf(
+      fs, {"distortion_coefficients", "Distortion_Coefficients", "distCoeffs", "D"}, &d_name);
+  if (k.empty()) return "no camera matrix (camera_matrix)";
+  if (d.empty()) return "no distortion coefficients (distortion_coefficients)";
+  int count = 0;
+  std::string problem = MatrixProblem(
+      k, k_name, [](int rows, int cols) { return rows == 3 && cols == 3; }, "values", "3 x 3",
+      &count);
+  if (!problem.empty()) return problem;
+  problem = MatrixProblem(
+      d, d_name,
+      [](int rows, int cols) {
+        const int64_t n = int64_t(rows) * cols;
+        return (rows == 1 || cols == 1) && (n == 4 || n == 5 || n == 8 || n == 12 || n == 14);
+      },
+      "coefficients", "one row or column of 4, 5, 8, 12 or 14", &count);
+  if (!problem.empty()) return problem;
+  cv::Mat km, dm;
+  k >> km;
+  d >> dm;
+  if (km.rows != 3 || km.cols != 3) return "the camera matrix is not 3 x 3";
+  km.convertTo(km, CV_64F);
+  c->camera = cv::Matx33d(km);
+  dm.convertTo(dm, CV_64F);
+  const int n = int(dm.total());
+  if (!(n == 4 || n == 5 || n == 8 || n == 12 || n == 14)) {
+    return "the distortion has " + std::to_string(n) + " coefficients (4, 5, 8, 12 or 14)";
+  }
+  c->distortion.assign(dm.ptr<double>(), dm.ptr<double>() + n);
+  return "";
+}
+
+// A pinhole camera's matrix (fx 0 cx; 0 fy cy; 0 0 1) and finite coefficients, or what is not.
+std::string CameraProblem(const LensCalibration& c) {
+  for (int i = 0; i < 9; ++i) {
+    if (!std::isfinite(c.camera.val[i])) return "the camera matrix is not finite";
+  }
+  for (double v : c.distortion) {
+    if (!std::isfinite(v)) return "a distortion coefficient is not finite";
+  }
+  if (!(c.camera(0, 0) > 0 && c.camera(1, 1) > 0) || c.camera(1, 0) != 0 ||
+      c.camera(2, 0) != 0 || c.camera(2, 1) != 0 || c.camera(2, 2) != 1) {
+    return "the camera matrix is not fx 0 cx; 0 fy cy; 0 0 1 with fx, fy > 0";
+  }
+  return "";
+}
+
+// The calibrated image size, where the file gives it, into `c`; what is wrong with it, or "".
+std::string ReadImageSize(const cv::FileStorage& fs, LensCalibration* c) {
+  std::string w_name, h_name;
+  const cv::FileNode w = FirstOf(fs, {"image_width", "image_Width"}, &w_name);
+  const cv::FileNode h = FirstOf(fs, {"image_height", "image_Height"}, &h_name);
+  if (w.empty() != h.empty()) {
+    return std::string(w.empty() ? "image_height" : "image_width") + " without " +
+           (w.empty() ? "image_width" : "image_height");
+  }
+  if (w.empty()) return "";
+  for (const auto& [node, name] : {std::pair{w, w_name}, std::pair{h, h_name}}) {
+    const std::string problem = ImageSizeProblem(node, name);
+    if (!problem.empty()) return problem;
+  }
+  c->image_size = cv::Size(int(w), int(h));
+  return "";
+}
+
 }  // namespace
 
 LensCalibration ReadLensCalibration(const std::string& path) {
@@ -120,62 +190,9 @@ LensCalibration ReadLensCalibration(const std::string& path) {
   try {
     cv::FileStorage fs(path, cv::FileStorage::READ);
     if (!fs.isOpened()) fail("not an OpenCV calibration file (YAML, XML or JSON)");
-    std::string k_name, d_name;
-    const cv::FileNode k =
-        FirstOf(fs, {"camera_matrix", "Camera_Matrix", "cameraMatrix", "K"}, &k_name);
-    const cv::FileNode d = FirstOf(
-        fs, {"distortion_coefficients", "Distortion_Coefficients", "distCoeffs", "D"}, &d_name);
-    if (k.empty()) fail("no camera matrix (camera_matrix)");
-    if (d.empty()) fail("no distortion coefficients (distortion_coefficients)");
-    int count = 0;
-    std::string problem = MatrixProblem(
-        k, k_name, [](int rows, int cols) { return rows == 3 && cols == 3; }, "values", "3 x 3",
-        &count);
-    if (!problem.empty()) fail(problem);
-    problem = MatrixProblem(
-        d, d_name,
-        [](int rows, int cols) {
-          const int64_t n = int64_t(rows) * cols;
-          return (rows == 1 || cols == 1) && (n == 4 || n == 5 || n == 8 || n == 12 || n == 14);
-        },
-        "coefficients", "one row or column of 4, 5, 8, 12 or 14", &count);
-    if (!problem.empty()) fail(problem);
-    cv::Mat km, dm;
-    k >> km;
-    d >> dm;
-    if (km.rows != 3 || km.cols != 3) fail("the camera matrix is not 3 x 3");
-    km.convertTo(km, CV_64F);
-    c.camera = cv::Matx33d(km);
-    dm.convertTo(dm, CV_64F);
-    const int n = int(dm.total());
-    if (!(n == 4 || n == 5 || n == 8 || n == 12 || n == 14)) {
-      fail("the distortion has " + std::to_string(n) + " coefficients (4, 5, 8, 12 or 14)");
-    }
-    c.distortion.assign(dm.ptr<double>(), dm.ptr<double>() + n);
-    for (int i = 0; i < 9; ++i) {
-      if (!std::isfinite(c.camera.val[i])) fail("the camera matrix is not finite");
-    }
-    for (double v : c.distortion) {
-      if (!std::isfinite(v)) fail("a distortion coefficient is not finite");
-    }
-    if (!(c.camera(0, 0) > 0 && c.camera(1, 1) > 0) || c.camera(1, 0) != 0 ||
-        c.camera(2, 0) != 0 || c.camera(2, 1) != 0 || c.camera(2, 2) != 1) {
-      fail("the camera matrix is not fx 0 cx; 0 fy cy; 0 0 1 with fx, fy > 0");
-    }
-    std::string w_name, h_name;
-    const cv::FileNode w = FirstOf(fs, {"image_width", "image_Width"}, &w_name);
-    const cv::FileNode h = FirstOf(fs, {"image_height", "image_Height"}, &h_name);
-    if (w.empty() != h.empty()) {
-      fail(std::string(w.empty() ? "image_height" : "image_width") + " without " +
-           (w.empty() ? "image_width" : "image_height"));
-    }
-    if (!w.empty()) {
-      for (const auto& [node, name] : {std::pair{w, w_name}, std::pair{h, h_name}}) {
-        problem = ImageSizeProblem(node, name);
-        if (!problem.empty()) fail(problem);
-      }
-      c.image_size = cv::Size(int(w), int(h));
-    }
+    if (std::string problem = ReadMatrices(fs, &c); !problem.empty()) fail(problem);
+    if (std::string problem = CameraProblem(c); !problem.empty()) fail(problem);
+    if (std::string problem = ReadImageSize(fs, &c); !problem.empty()) fail(problem);
     const cv::FileNode e = FirstOf(fs, {"avg_reprojection_error", "Avg_Reprojection_Error"});
     if (!e.empty() && e.isReal()) c.reprojection_error = double(e);
   } catch (const InputError&) {

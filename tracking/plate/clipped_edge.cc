@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "tracking/plate/plate_edge.h"
+#include "tracking/plate/plate_step.h"
 #include "tracking/tolerances.h"
 
 namespace dimer::tracking {

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "tracking/io/full_scale.h"
+#include "tracking/plate/plate_step.h"
 #include "tracking/tolerances.h"
 
 namespace dimer::tracking {
@@ -81,52 +82,7 @@ double MinStep(double sigma, int n, const cv::Mat& frame) {
                   kPlateMinStepGreyLevels * FullScale(frame) / 255.0);
 }
 
-// A plate whose top is in view shows two edges of one sign, a few pixels apart: the backdrop to
-// the top (far edge) and the top to the front face (near edge), often of about the same size,
-// so the strongest flips between them from frame to frame with the noise (POV-Ray mirror_plate:
-// 7.7 and 6.3 grey levels, 7 px apart). The upper one is taken: the plate's edge as seen is its
-// top boundary, every frame the same (plate_contact.h then finds the contact line below it).
-// A step counts as a separate edge at least kSeparateEdgeRows above the strongest (closer, it
-// is the same blurred edge) and no further than kPlateBandHalfPx, of the same sign and at least
-// kUpperEdgeFraction of its size.
-constexpr int kSeparateEdgeRows = 5;
-constexpr double kUpperEdgeFraction = 0.5;
-
-// The uppermost separate edge above step `k` (the strongest, of signed size `step_k`), or k.
-int UpperComparableStep(const std::vector<double>& profile, int k, double step_k, double* size) {
-  for (int i = std::max(0, k - kPlateBandHalfPx); i <= k - kSeparateEdgeRows; ++i) {
-    const double step = profile[i + 1] - profile[i];
-    const bool peak = (i == 0 || std::abs(step) >= std::abs(profile[i] - profile[i - 1])) &&
-                      std::abs(step) >= std::abs(profile[i + 2] - profile[i + 1]);
-    if (step * step_k > 0 && std::abs(step) >= kUpperEdgeFraction * std::abs(step_k) && peak) {
-      *size = std::abs(step);
-      return i;
-    }
-  }
-  return k;
-}
-
-// Index i of the plate's step, between profile[i] and profile[i + 1] (-1 if flat), and its size:
-// the strongest, or the upper of two comparable edges (UpperComparableStep).
-int StrongestStep(const std::vector<double>& profile, double* size) {
-  int k = -1;
-  double best = 0;
-  for (int i = 0; i + 1 < int(profile.size()); ++i) {
-    const double step = std::abs(profile[i + 1] - profile[i]);
-    if (step > best) {
-      best = step;
-      k = i;
-    }
-  }
-  *size = best;
-  return k < 0 ? k : UpperComparableStep(profile, k, profile[k + 1] - profile[k], size);
-}
-
 }  // namespace
-
-int PlateStepIndex(const std::vector<double>& profile, double* size) {
-  return StrongestStep(profile, size);
-}
 
 // Rows kBracketRows off the step a sharp edge has levelled off, a defocused one not: through a
 // lens blurring by 2 px (Gaussian sigma), 4 % of the step is still to come there, the coverage
@@ -158,7 +114,7 @@ int BracketRows(const std::vector<double>& p, int k, double min_step) {
 double EdgeRowInProfile(const std::vector<double>& profile, int first_row, double min_step) {
   const int n = int(profile.size());
   double best = 0;
-  const int k = StrongestStep(profile, &best);
+  const int k = PlateStepIndex(profile, &best);
   if (k < 0 || best < min_step || k - kBracketRows < 0 || k + kBracketRows >= n) return kNaN;
   const int b = BracketRows(profile, k, min_step);
   const double above = profile[k - b], below = profile[k + b];
@@ -218,35 +174,42 @@ std::vector<int> StandOutPerRow(const std::vector<double>& samples,
   return out;
 }
 
-}  // namespace
+// The frame's brightness down its rows: each row's median over every kCoarseColumnStride-th
+// column, read along the plate's slope; the samples are kept for StandOutPerRow.
+struct RowProfile {
+  std::vector<double> profile, samples;
+  std::vector<size_t> start;  // row r's samples: [start[r], start[r + 1])
+  double lo = std::numeric_limits<double>::max(), hi = -std::numeric_limits<double>::max();
+};
 
-double FindPlateRowCoarse(const cv::Mat& frame, double slope) {
-  std::vector<double> profile(frame.rows), samples, column;
-  std::vector<size_t> start(frame.rows + 1, 0);  // row r's samples: [start[r], start[r + 1])
-  samples.reserve(size_t(frame.rows) * (frame.cols / kCoarseColumnStride + 1));
-  double lo = std::numeric_limits<double>::max(), hi = -lo;
+RowProfile RowProfileOf(const cv::Mat& frame, double slope) {
+  RowProfile p;
+  p.profile.resize(frame.rows);
+  p.start.assign(frame.rows + 1, 0);
+  std::vector<double> column;
+  p.samples.reserve(size_t(frame.rows) * (frame.cols / kCoarseColumnStride + 1));
   const double centre = 0.5 * (frame.cols - 1);
   for (int row = 0; row < frame.rows; ++row) {
     for (int col = 0; col < frame.cols; col += kCoarseColumnStride) {
       const int r = slope == 0 ? row : row + int(std::lround(slope * (col - centre)));
-      if (r >= 0 && r < frame.rows) samples.push_back(PixelAt(frame, r, col));
+      if (r >= 0 && r < frame.rows) p.samples.push_back(PixelAt(frame, r, col));
     }
-    if (samples.size() == start[row]) samples.push_back(PixelAt(frame, row, int(centre)));
-    start[row + 1] = samples.size();
-    column.assign(samples.begin() + std::ptrdiff_t(start[row]), samples.end());
+    if (p.samples.size() == p.start[row]) p.samples.push_back(PixelAt(frame, row, int(centre)));
+    p.start[row + 1] = p.samples.size();
+    column.assign(p.samples.begin() + std::ptrdiff_t(p.start[row]), p.samples.end());
     std::nth_element(column.begin(), column.begin() + column.size() / 2, column.end());
-    profile[row] = column[column.size() / 2];
-    lo = std::min(lo, profile[row]);
-    hi = std::max(hi, profile[row]);
+    p.profile[row] = column[column.size() / 2];
+    p.lo = std::min(p.lo, p.profile[row]);
+    p.hi = std::max(p.hi, p.profile[row]);
   }
-  const double min_step = kPlateMinStepFraction * std::max(hi - lo, 0.05 * FullScale(frame));
-  double best = 0;
-  const int k = StrongestStep(profile, &best);
-  if (k < 0 || best < min_step) return kNaN;
-  // The candidates: the strongest step and every other local peak step of either sign (a
-  // front-lit plate is brighter than the backdrop, a backlit one darker), at least min_step,
-  // kCandidateSeparationRows from a stronger one (each read as StrongestStep reads its own
-  // neighbourhood: the upper of a top face's two edges).
+  return p;
+}
+
+// The candidates: the strongest step `k` and every other local peak step of either sign (a
+// front-lit plate is brighter than the backdrop, a backlit one darker), at least min_step,
+// kCandidateSeparationRows from a stronger one (each read as PlateStepIndex reads its own
+// neighbourhood: the upper of a top face's two edges).
+std::vector<int> CandidateSteps(const std::vector<double>& profile, int k, double min_step) {
   std::vector<std::pair<double, int>> peaks;  // (size, index)
   const int n = int(profile.size());
   for (int i = 0; i + 1 < n; ++i) {
@@ -268,23 +231,39 @@ double FindPlateRowCoarse(const cv::Mat& frame, double slope) {
     double unused = 0;
     candidates.push_back(UpperComparableStep(profile, i, profile[i + 1] - profile[i], &unused));
   }
-  if (candidates.size() == 1) return k + 0.5;
-  // The dimer's evidence between each candidate and the next one above it (or the frame's top).
-  const std::vector<int> stand_out = StandOutPerRow(samples, start, profile, hi - lo);
-  std::vector<int> sorted = candidates;
-  std::sort(sorted.begin(), sorted.end());
+  return candidates;
+}
+
+// The candidate with the most of the dimer's evidence between it and the next one above it (or
+// the frame's top); the strongest step `k` where no candidate has enough.
+int CandidateUnderTheDimer(const RowProfile& p, std::vector<int> candidates, int k) {
+  const std::vector<int> stand_out = StandOutPerRow(p.samples, p.start, p.profile, p.hi - p.lo);
+  std::sort(candidates.begin(), candidates.end());
   int chosen = k, most = 0;
-  for (size_t j = 0; j < sorted.size(); ++j) {
-    const int top = j == 0 ? 0 : sorted[j - 1] + kPlateBandHalfPx;
+  for (size_t j = 0; j < candidates.size(); ++j) {
+    const int top = j == 0 ? 0 : candidates[j - 1] + kPlateBandHalfPx;
     int evidence = 0;
-    for (int r = top; r <= sorted[j] - kPlateBandHalfPx / 2; ++r) evidence += stand_out[r];
-    // Ties go to the strongest (as before); a frame without a dimer in view keeps it too.
-    if (evidence > most || (evidence == most && sorted[j] == k)) {
+    for (int r = top; r <= candidates[j] - kPlateBandHalfPx / 2; ++r) evidence += stand_out[r];
+    // Ties go to the strongest step; a frame without a dimer in view keeps it too.
+    if (evidence > most || (evidence == most && candidates[j] == k)) {
       most = evidence;
-      chosen = sorted[j];
+      chosen = candidates[j];
     }
   }
-  return most >= kMinStandOutPixels ? chosen + 0.5 : k + 0.5;
+  return most >= kMinStandOutPixels ? chosen : k;
+}
+
+}  // namespace
+
+double FindPlateRowCoarse(const cv::Mat& frame, double slope) {
+  const RowProfile p = RowProfileOf(frame, slope);
+  const double min_step = kPlateMinStepFraction * std::max(p.hi - p.lo, 0.05 * FullScale(frame));
+  double best = 0;
+  const int k = PlateStepIndex(p.profile, &best);
+  if (k < 0 || best < min_step) return kNaN;
+  const std::vector<int> candidates = CandidateSteps(p.profile, k, min_step);
+  if (candidates.size() == 1) return k + 0.5;
+  return CandidateUnderTheDimer(p, candidates, k) + 0.5;
 }
 
 namespace {
@@ -388,6 +367,72 @@ int MajoritySign(const std::vector<BlockEdge>& edges) {
   return 2 * positive >= int(edges.size()) ? 1 : -1;
 }
 
+// The inlier blocks' mean profile: one edge at one row, whatever each block's gain. Each
+// column's whole-row shift (`shift_of`) follows its block; what is left of the slope is
+// averaged over the columns (`rest`).
+struct InlierProfile {
+  std::vector<double> profile;
+  int n_cols = 0, inliers = 0;
+  double rest = 0;
+  std::vector<uint8_t> inlier_cols;
+  std::vector<int> shift_of;
+};
+
+// Blocks of the other sign (a reflection's edge, a highlight) and blocks far from the median
+// row are left out; false when too few are left.
+bool InlierProfileOf(const PlateBlocks& pb, int cols, double slope, InlierProfile* ip) {
+  const int rows = pb.rows;
+  const auto& blocks = pb.blocks;
+  const int sign = MajoritySign(pb.edges);
+  std::vector<double> rows_found;
+  for (const auto& e : pb.edges) {
+    if (e.sign == sign) rows_found.push_back(e.row);
+  }
+  if (rows_found.size() < size_t(kPlateMinBlocks)) return false;
+  std::nth_element(rows_found.begin(), rows_found.begin() + rows_found.size() / 2,
+                   rows_found.end());
+  const double median = rows_found[rows_found.size() / 2];
+  ip->profile.assign(rows, 0.0);
+  ip->inlier_cols.assign(cols, 0);
+  ip->shift_of.assign(cols, 0);
+  for (const auto& e : pb.edges) {
+    if (e.sign != sign || std::abs(e.row - median) > kPlateInlierPx) continue;
+    const int n = blocks[e.block].second - blocks[e.block].first + 1;
+    for (int i = 0; i < rows; ++i) ip->profile[i] += pb.sums[e.block * rows + i];
+    ip->n_cols += n;
+    ip->rest += n * pb.rest[e.block];
+    std::fill(ip->inlier_cols.begin() + blocks[e.block].first,
+              ip->inlier_cols.begin() + blocks[e.block].second + 1, 1);
+    std::fill(ip->shift_of.begin() + blocks[e.block].first,
+              ip->shift_of.begin() + blocks[e.block].second + 1, pb.shift[e.block]);
+    ++ip->inliers;
+  }
+  if (ip->inliers < kPlateMinBlocks) return false;
+  for (double& p : ip->profile) p /= ip->n_cols;
+  ip->rest = slope == 0 ? 0.0 : ip->rest / ip->n_cols;
+  return true;
+}
+
+// Where the camera saturates: the container's top, or the bright row's brightest level when
+// that is within kClipBelowFullScale of it. A camera of fewer bits saturates below the top
+// (its levels shifted up: 4095 x 16 = 65520; or scaled, level_scale.h: 8-bit data x 64 taken
+// as 14-bit, 65283), and a plate clipped there was taken for an edge's true level (POV-Ray
+// over-exposed: the plate row 0.41 px off). Sets *at_clip to the inlier columns there.
+double ClipLevel(const cv::Mat& frame, const InlierProfile& ip, int bright_row, int* at_clip) {
+  double clip = FullScale(frame), brightest = 0;
+  for (int col = 0; col < frame.cols; ++col) {
+    if (ip.inlier_cols[col]) {
+      brightest = std::max(brightest, PixelAt(frame, bright_row + ip.shift_of[col], col));
+    }
+  }
+  if (brightest >= (1 - kClipBelowFullScale) * clip) clip = brightest;
+  *at_clip = 0;
+  for (int col = 0; col < frame.cols; ++col) {
+    *at_clip += ip.inlier_cols[col] && PixelAt(frame, bright_row + ip.shift_of[col], col) >= clip;
+  }
+  return clip;
+}
+
 }  // namespace
 
 double RefinePlateRow(const cv::Mat& frame, double row_guess,
@@ -398,72 +443,28 @@ double RefinePlateRow(const cv::Mat& frame, double row_guess,
   thread_local PlateBlocks pb;
   MeasureBlocks(frame, row_guess, excluded, slope, ref_col, &pb);
   if (!pb.ok) return kNaN;
-  const int r0 = pb.r0, rows = pb.rows;
-  const auto& blocks = pb.blocks;
-  const auto& sums = pb.sums;
-  // Blocks of the other sign (a reflection's edge, a highlight) and blocks far from the median
-  // row are left out.
-  const int sign = MajoritySign(pb.edges);
-  std::vector<double> rows_found;
-  for (const auto& e : pb.edges) {
-    if (e.sign == sign) rows_found.push_back(e.row);
-  }
-  if (rows_found.size() < size_t(kPlateMinBlocks)) return kNaN;
-  std::nth_element(rows_found.begin(), rows_found.begin() + rows_found.size() / 2,
-                   rows_found.end());
-  const double median = rows_found[rows_found.size() / 2];
-  // The inlier blocks' mean profile: one edge at one row, whatever each block's gain. Each
-  // column's whole-row shift (`shift_of`) follows its block; what is left of the slope is
-  // averaged over the columns (`rest`) and taken off the row.
-  std::vector<double> profile(rows, 0.0);
-  int n_cols = 0, inliers = 0;
-  double rest = 0;
-  std::vector<uint8_t> inlier_cols(frame.cols, 0);
-  std::vector<int> shift_of(frame.cols, 0);
-  for (const auto& e : pb.edges) {
-    if (e.sign != sign || std::abs(e.row - median) > kPlateInlierPx) continue;
-    const int n = blocks[e.block].second - blocks[e.block].first + 1;
-    for (int i = 0; i < rows; ++i) profile[i] += sums[e.block * rows + i];
-    n_cols += n;
-    rest += n * pb.rest[e.block];
-    std::fill(inlier_cols.begin() + blocks[e.block].first,
-              inlier_cols.begin() + blocks[e.block].second + 1, 1);
-    std::fill(shift_of.begin() + blocks[e.block].first,
-              shift_of.begin() + blocks[e.block].second + 1, pb.shift[e.block]);
-    ++inliers;
-  }
-  if (inliers < kPlateMinBlocks) return kNaN;
-  for (double& p : profile) p /= n_cols;
-  rest = slope == 0 ? 0.0 : rest / n_cols;
+  const int r0 = pb.r0;
+  InlierProfile ip;
+  if (!InlierProfileOf(pb, frame.cols, slope, &ip)) return kNaN;
+  const std::vector<double>& profile = ip.profile;
+  const int n_cols = ip.n_cols;
+  const double rest = ip.rest;
   const double row = EdgeRowInProfile(profile, r0, MinStep(pb.sigma, n_cols, frame));
   if (!std::isfinite(row)) return row;
   // One side at the clip (most of its pixels at full scale): its level is unknown, and the
   // coverage sum (which reads it three rows off) would take the clip for it; the blurred edge
   // is fitted to the rows instead.
   double size = 0;
-  const int k = StrongestStep(profile, &size);
+  const int k = PlateStepIndex(profile, &size);
   const bool below = profile[k + kBracketRows] > profile[k - kBracketRows];
   const int bright_row = r0 + k + (below ? kBracketRows : -kBracketRows);
-  // Where the camera saturates: the container's top, or the bright row's brightest level when
-  // that is within kClipBelowFullScale of it. A camera of fewer bits saturates below the top
-  // (its levels shifted up: 4095 x 16 = 65520; or scaled, level_scale.h: 8-bit data x 64 taken
-  // as 14-bit, 65283), and a plate clipped there was taken for an edge's true level (POV-Ray
-  // over-exposed: the plate row 0.41 px off).
-  double clip = FullScale(frame), brightest = 0;
-  for (int col = 0; col < frame.cols; ++col) {
-    if (inlier_cols[col]) {
-      brightest = std::max(brightest, PixelAt(frame, bright_row + shift_of[col], col));
-    }
-  }
-  if (brightest >= (1 - kClipBelowFullScale) * clip) clip = brightest;
   int at_clip = 0;
-  for (int col = 0; col < frame.cols; ++col) {
-    at_clip += inlier_cols[col] && PixelAt(frame, bright_row + shift_of[col], col) >= clip;
-  }
+  const double clip = ClipLevel(frame, ip, bright_row, &at_clip);
   if (2 * at_clip < n_cols) return row - rest;
   // No row clear of the clip and of black: the band's noise, which the clip has cut (a frame's
   // own fit is then too sure of itself; the sequence uses the others' noise, clipped_edge.h).
-  const double lit_sigma = LitRowNoise(frame, r0, profile, k, inlier_cols, shift_of, clip);
+  const double lit_sigma =
+      LitRowNoise(frame, r0, profile, k, ip.inlier_cols, ip.shift_of, clip);
   const double pixel_sigma = std::isfinite(lit_sigma) ? lit_sigma : pb.sigma;
   const double fitted = ClippedEdgeRowInProfile(
       profile, r0, clip, pixel_sigma, pixel_sigma / std::sqrt(double(n_cols)), psf_sigma_px);
@@ -521,7 +522,7 @@ void CoarseBlockSteps(const cv::Mat& frame, const std::vector<std::pair<double, 
                                 : RangeSum<uint16_t>(frame, row, c, c + kPlateBlockColumns - 1));
     }
     double size = 0;
-    const int k = StrongestStep(profile, &size);
+    const int k = PlateStepIndex(profile, &size);
     if (k < 0) continue;
     xs.push_back(c + 0.5 * (kPlateBlockColumns - 1));
     ys.push_back(k + 0.5);

@@ -11,6 +11,7 @@
 #include <opencv2/core.hpp>
 
 #include "tracking/plate/clipped_edge.h"
+#include "tracking/plate/plate_step.h"
 #include "tracking/tolerances.h"
 
 #include <utility>
@@ -18,19 +19,11 @@
 
 namespace dimer::tracking {
 
-// Rows read on each side of the plate's step: the coverage sum reads the levels this far off.
-inline constexpr int kPlateBracketRows = 3;
-
 // The row at column `col` of a plate edge that is at row `row` at column `ref_col` and slopes by
 // `slope` rows per column (`row` itself when level). Frames and learning samples carry the three.
 inline double SlopedRowAt(double row, double ref_col, double slope, double col) {
   return slope == 0 ? row : row + slope * (col - ref_col);
 }
-
-// Index i of the plate's step in `profile`, between profile[i] and profile[i + 1] (-1 if flat),
-// and its size: the strongest step, or the upper of two comparable ones (a plate whose top is in
-// view shows its far and near edges).
-int PlateStepIndex(const std::vector<double>& profile, double* size);
 
 // Sub-pixel row of the strongest step of `profile` (profile[i] is the mean of row
 // first_row + i), or NaN when there is no step of at least `min_step` or it is too close to the

@@ -21,7 +21,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "tracking/sphere/appearance_model.h"
+#include "tracking/sphere/learnt_sphere.h"
 
 namespace dimer::tracking {
 

@@ -324,19 +324,136 @@ int LearnSearchPx(double radius_px) {
   return int(std::lround(Reach(kLearnSearchPx, kLearnSearchR, radius_px)));
 }
 
+namespace {
+
+// The learning frames where both spheres were found, as float images (indices into samples).
+struct LearningSet {
+  const std::vector<LearningSample>& samples;
+  const LearnOptions& learn;
+  std::vector<cv::Mat> images;
+  std::vector<size_t> used;
+};
+
+// Each sphere's column shift from the wide template's outline (limb_fit.h) and, when asked and
+// the two spheres agree, the radius from the outline.
+std::array<double, 2> OutlineColumnShifts(const std::array<LearntSphere, 2>& out, bool fit_radius,
+                                          double search, double* radius_px,
+                                          bool* radius_from_outline) {
+  std::array<double, 2> col_shift{0, 0};
+  std::vector<double> radii;
+  for (int k = 0; k < 2; ++k) {
+    LimbFitOptions lo;
+    lo.radius_px = *radius_px;
+    lo.fit_radius = fit_radius;
+    lo.max_shift_px = search;
+    const LimbFit limb = FitLimb(out[k].appearance, lo);
+    if (!limb.ok) continue;
+    col_shift[k] = limb.centre.x();
+    radii.push_back(limb.radius_px);
+  }
+  if (fit_radius && radii.size() == 2 &&
+      std::abs(radii[0] - radii[1]) <= kOutlineRadiusAgreement * 0.5 * (radii[0] + radii[1])) {
+    *radius_px = 0.5 * (radii[0] + radii[1]);
+    if (radius_from_outline) *radius_from_outline = true;
+  }
+  return col_shift;
+}
+
+// Each sphere's lowest (plate - R - row) that enough of its samples support (kRestShift*):
+// a registration that failed in one learning frame (17 px below the resting cluster on a
+// 200-frame under-exposed film, and the template then framed 17 px off) is no sphere sinking
+// into the plate. The smallest over both spheres; the plain minimum if neither has such a
+// cluster (no sphere rests long); 0 without any.
+double RestingRowShift(const LearningSet& set, const std::array<LearntSphere, 2>& out,
+                       double radius_px) {
+  double shift = std::numeric_limits<double>::infinity();
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 2; ++k) {
+    std::vector<double> g;
+    for (size_t i = 0; i < set.used.size(); ++i) {
+      const LearningSample& sample = set.samples[set.used[i]];
+      g.push_back(sample.PlateRowAt(out[k].registered[i].x()) -
+                  radius_px * std::hypot(1.0, sample.plate_slope) - out[k].registered[i].y());
+      if (std::isfinite(g.back())) lowest = std::min(lowest, g.back());
+    }
+    const size_t support = std::max(kRestShiftMinSupport,
+                                    size_t(std::ceil(kRestShiftSupportFraction * double(g.size()))));
+    const double v = LowestSupported(g, kRestShiftSupportPx, support);
+    if (std::isfinite(v)) shift = std::min(shift, v);
+  }
+  if (!std::isfinite(shift)) shift = lowest;
+  if (!std::isfinite(shift)) shift = 0;
+  return shift;
+}
+
+// The whole outline's column offset of each final appearance (an offset source).
+void MeasureWholeOutlines(double radius_px, std::array<LearntSphere, 2>* out) {
+  for (int k = 0; k < 2; ++k) {
+    LimbFitOptions lo;
+    lo.radius_px = radius_px;
+    lo.max_shift_px = Reach(kLimbOffsetMaxPx, kLimbOffsetMaxR, radius_px);
+    const LimbFit whole = FitLimb((*out)[k].appearance, lo);
+    if (whole.ok) {
+      (*out)[k].whole_outline_col = OffsetEstimate{whole.centre.x(), whole.centre_err.x(),
+                                                   size_t(whole.rays), "whole_outline"};
+    }
+  }
+}
+
+// The plate's reflection is left out of both appearances when the horizon of either moves
+// with its height (HorizonMoves): the same scene and lights make both spheres' reflections
+// alike, and the one that rests shows no motion to measure. Returns the appearances to keep
+// (`out`, or both cut above the horizon); empty ones when a cut appearance cannot be learnt.
+std::array<LearntSphere, 2> CutAtMovingHorizon(const LearningSet& set,
+                                               const std::array<LearntSphere, 2>& out,
+                                               const std::array<std::vector<Eigen::Vector2d>, 2>& start,
+                                               int half, double radius_px) {
+  const auto& [samples, learn, images, used] = set;
+  std::array<int, 2> horizon{-1, -1};
+  bool moves = false;
+  for (int k = 0; k < 2; ++k) {
+    const Appearance& a = out[k].appearance;
+    horizon[k] = ReflectionHorizon(a.image, a.mask, a.half, radius_px, learn.plate_slope);
+    moves = moves || (horizon[k] >= 0 && HorizonMoves(images, samples, used, out[k].registered,
+                                                      a.half, horizon[k], radius_px,
+                                                      learn.plate_slope));
+  }
+  std::array<LearntSphere, 2> cut = out;
+  for (int k = 0; k < 2; ++k) {
+    if (horizon[k] < 0) continue;
+    LearnOne(images, samples, used, k, half, radius_px,
+             std::max(0, horizon[k] - HorizonGuard(radius_px)), start[k], learn, &cut[k]);
+    if (!cut[k].appearance.valid()) return {};
+  }
+  // Registered with the whole appearance, a sphere follows its own reflection as much as its
+  // outline and highlights where the reflection is most of what it shows (a lens blurring by
+  // 2 px: the outline and the highlights are faint), and the horizon barely moves against such
+  // positions. Measured against the positions the cut appearance registers, which nothing of
+  // the reflection pulls, it does (POV-Ray defocus_2px).
+  for (int k = 0; k < 2 && !moves; ++k) {
+    moves = horizon[k] >= 0 && HorizonMoves(images, samples, used, cut[k].registered,
+                                            cut[k].appearance.half, horizon[k], radius_px,
+                                            learn.plate_slope);
+  }
+  return moves ? cut : out;
+}
+
+}  // namespace
+
 std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& samples,
                                              double radius_px, bool recentre, bool fit_radius,
                                              bool* radius_from_outline,
                                              const LearnOptions& learn) {
   if (radius_from_outline) *radius_from_outline = false;
   std::array<LearntSphere, 2> out;
-  std::vector<cv::Mat> images(samples.size());
-  std::vector<size_t> used;
+  LearningSet set{samples, learn, std::vector<cv::Mat>(samples.size()), {}};
   for (size_t j = 0; j < samples.size(); ++j) {
     if (!samples[j].found[0] || !samples[j].found[1]) continue;
-    samples[j].image.convertTo(images[j], CV_32F);
-    used.push_back(j);
+    samples[j].image.convertTo(set.images[j], CV_32F);
+    set.used.push_back(j);
   }
+  const std::vector<cv::Mat>& images = set.images;
+  const std::vector<size_t>& used = set.used;
   if (used.size() < kMinSamples || !(radius_px > 0)) return out;
   // Footage of silhouettes: the rough centres are right, the template is framed around them.
   // Otherwise they can be pixels off (the visible part of a front-lit steel sphere is its lower
@@ -359,45 +476,9 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
     if (!out[k].appearance.valid()) return {};
   }
   if (!recentre) return out;
-  std::array<double, 2> col_shift{0, 0};
-  std::vector<double> radii;
-  for (int k = 0; k < 2; ++k) {
-    LimbFitOptions lo;
-    lo.radius_px = radius_px;
-    lo.fit_radius = fit_radius;
-    lo.max_shift_px = recentre_search;
-    const LimbFit limb = FitLimb(out[k].appearance, lo);
-    if (!limb.ok) continue;
-    col_shift[k] = limb.centre.x();
-    radii.push_back(limb.radius_px);
-  }
-  if (fit_radius && radii.size() == 2 &&
-      std::abs(radii[0] - radii[1]) <= kOutlineRadiusAgreement * 0.5 * (radii[0] + radii[1])) {
-    radius_px = 0.5 * (radii[0] + radii[1]);
-    if (radius_from_outline) *radius_from_outline = true;
-  }
-  // Each sphere's lowest (plate - R - row) that enough of its samples support (kRestShift*):
-  // a registration that failed in one learning frame (17 px below the resting cluster on a
-  // 200-frame under-exposed film, and the template then framed 17 px off) is no sphere sinking
-  // into the plate. The smallest over both spheres; the plain minimum if neither has such a
-  // cluster (no sphere rests long).
-  double shift = std::numeric_limits<double>::infinity();
-  double lowest = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 2; ++k) {
-    std::vector<double> g;
-    for (size_t i = 0; i < used.size(); ++i) {
-      const LearningSample& sample = samples[used[i]];
-      g.push_back(sample.PlateRowAt(out[k].registered[i].x()) -
-                  radius_px * std::hypot(1.0, sample.plate_slope) - out[k].registered[i].y());
-      if (std::isfinite(g.back())) lowest = std::min(lowest, g.back());
-    }
-    const size_t support = std::max(kRestShiftMinSupport,
-                                    size_t(std::ceil(kRestShiftSupportFraction * double(g.size()))));
-    const double v = LowestSupported(g, kRestShiftSupportPx, support);
-    if (std::isfinite(v)) shift = std::min(shift, v);
-  }
-  if (!std::isfinite(shift)) shift = lowest;
-  if (!std::isfinite(shift)) shift = 0;
+  const std::array<double, 2> col_shift = OutlineColumnShifts(
+      out, fit_radius, recentre_search, &radius_px, radius_from_outline);
+  const double shift = RestingRowShift(set, out, radius_px);
   const int final_half = int(std::ceil(radius_px + kTemplateMarginPx));
   std::array<std::vector<Eigen::Vector2d>, 2> start;
   for (int k = 0; k < 2; ++k) {
@@ -406,46 +487,9 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
     LearnOne(images, samples, used, k, final_half, radius_px, -1, start[k], learn, &out[k]);
     if (!out[k].appearance.valid()) return {};
   }
-  for (int k = 0; k < 2; ++k) {
-    LimbFitOptions lo;
-    lo.radius_px = radius_px;
-    lo.max_shift_px = Reach(kLimbOffsetMaxPx, kLimbOffsetMaxR, radius_px);
-    const LimbFit whole = FitLimb(out[k].appearance, lo);
-    if (whole.ok) {
-      out[k].whole_outline_col = OffsetEstimate{whole.centre.x(), whole.centre_err.x(),
-                                                size_t(whole.rays), "whole_outline"};
-    }
-  }
-  // The plate's reflection is left out of both appearances when the horizon of either moves
-  // with its height (HorizonMoves): the same scene and lights make both spheres' reflections
-  // alike, and the one that rests shows no motion to measure.
-  std::array<int, 2> horizon{-1, -1};
-  bool moves = false;
-  for (int k = 0; k < 2; ++k) {
-    const Appearance& a = out[k].appearance;
-    horizon[k] = ReflectionHorizon(a.image, a.mask, a.half, radius_px, learn.plate_slope);
-    moves = moves || (horizon[k] >= 0 && HorizonMoves(images, samples, used, out[k].registered,
-                                                      a.half, horizon[k], radius_px,
-                                                      learn.plate_slope));
-  }
-  std::array<LearntSphere, 2> cut = out;
-  for (int k = 0; k < 2; ++k) {
-    if (horizon[k] < 0) continue;
-    LearnOne(images, samples, used, k, final_half, radius_px,
-             std::max(0, horizon[k] - HorizonGuard(radius_px)), start[k], learn, &cut[k]);
-    if (!cut[k].appearance.valid()) return {};
-  }
-  // Registered with the whole appearance, a sphere follows its own reflection as much as its
-  // outline and highlights where the reflection is most of what it shows (a lens blurring by
-  // 2 px: the outline and the highlights are faint), and the horizon barely moves against such
-  // positions. Measured against the positions the cut appearance registers, which nothing of
-  // the reflection pulls, it does (POV-Ray defocus_2px).
-  for (int k = 0; k < 2 && !moves; ++k) {
-    moves = horizon[k] >= 0 && HorizonMoves(images, samples, used, cut[k].registered,
-                                            cut[k].appearance.half, horizon[k], radius_px,
-                                            learn.plate_slope);
-  }
-  std::array<LearntSphere, 2>& learnt = moves ? cut : out;
+  MeasureWholeOutlines(radius_px, &out);
+  std::array<LearntSphere, 2> learnt = CutAtMovingHorizon(set, out, start, final_half, radius_px);
+  if (!learnt[0].appearance.valid()) return {};
   for (int k = 0; k < 2; ++k) {
     LeaveGroupsOut(images, samples, used, k, learn.jackknife_groups, &learnt[k]);
   }

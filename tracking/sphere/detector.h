@@ -1,7 +1,7 @@
 #pragma once
 // Acquisition: finding the plate and the two spheres in a whole frame, with no prior. Used on
 // the first frame of each chunk and whenever tracking loses a sphere; in between, the tracker
-// only looks at windows around its predictions (tracker.h).
+// only looks at windows around its predictions (frame_follower.h).
 //
 // Spheres are separated from the rod without knowing the geometry: above the plate, the frame
 // is thresholded a few noise sigmas above its background into a silhouette, holes are filled (a mirror sphere's dark reflections),

@@ -2,7 +2,7 @@
 // Rough sphere centres from the highlights alone, for footage where the silhouette methods find
 // nothing (dark steel on a dark background, under-exposed, a ring light): the bright blobs above
 // the plate, split into the two spheres' groups by one of two rules, the one whose seeds keep a
-// dimer's length apart over the film (SeedFilm). template_sequence.cc seeds the appearance
+// dimer's length apart over the film (SeedFilm). learn_method.cc seeds the appearance
 // learning with them; learning re-centres on the plate contact (appearance_model.h), so a
 // highlight's height above the centre does not matter, its column does.
 #include <opencv2/core.hpp>

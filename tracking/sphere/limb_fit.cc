@@ -286,6 +286,44 @@ bool PairedColumn(const std::vector<Edge>& edges, const Eigen::Vector2d& from, d
   return true;
 }
 
+// The column from mirrored pairs of envelope rays (PairedColumn), cast again from the centre
+// moved to it: two passes from `c`. Updates *col and *col_err where the pairs decide; returns
+// the last pass's pair count (0 when none did).
+int PairedColumnPasses(const Gradient& g, const Eigen::Vector2d& c, double r, double* col,
+                       double* col_err) {
+  int pairs = 0;
+  for (int pass = 0; pass < 2; ++pass) {
+    const Eigen::Vector2d from(*col, c.y());
+    double x = 0, xe = 0;
+    int n = 0;
+    if (!PairedColumn(Inliers(RayEdges(g, from, r), from, r), from, &x, &xe, &n)) break;
+    *col = x;
+    *col_err = xe;
+    pairs = n;
+  }
+  return pairs;
+}
+
+// One side of the outline only (the far side dark under one-sided light): no pairs cancel
+// the edges' inward shift, and with the radius held the column moves toward the seen side
+// by that shift (POV-Ray one-sided light: 0.09-0.19 px, stated as 0.04). The same edges
+// fitted with the radius free take the shift as uniform around the rim and overshoot
+// where it is not (-0.21 px there). The two bracket the column: their midpoint, with half
+// their difference as a systematic uncertainty.
+void BracketOneSidedColumn(const std::vector<Edge>& edges, bool row_fixed, double r,
+                           Eigen::Vector2d* c, double* model_err, double* col_err) {
+  Eigen::Vector2d c_free = *c;
+  double r_free = r;
+  Eigen::Matrix3d cov_free;
+  if (FitCircle(edges, {true, !row_fixed, true}, &c_free, &r_free, &cov_free) &&
+      std::abs(r_free - r) <= kKnownRadiusSlackPx) {
+    const double half = 0.5 * (c_free.x() - c->x());
+    c->x() += half;
+    *model_err = std::abs(half);
+    *col_err = std::hypot(*col_err, half);
+  }
+}
+
 }  // namespace
 
 LimbFit FitLimb(const Appearance& a, const LimbFitOptions& o) {
@@ -326,18 +364,8 @@ LimbFit FitLimb(const Appearance& a, const LimbFitOptions& o) {
       (row_fixed ? std::abs(c.x() - ref.x()) : (c - ref).norm()) > o.max_shift_px) {
     return out;
   }
-  // The column from mirrored pairs of envelope rays, cast again from the centre moved to it.
   double col = c.x(), col_err = std::sqrt(cov(0, 0));
-  int pairs = 0;
-  for (int pass = 0; pass < 2; ++pass) {
-    const Eigen::Vector2d from(col, c.y());
-    double x = 0, xe = 0;
-    int n = 0;
-    if (!PairedColumn(Inliers(RayEdges(g, from, r), from, r), from, &x, &xe, &n)) break;
-    col = x;
-    col_err = xe;
-    pairs = n;
-  }
+  const int pairs = PairedColumnPasses(g, c, r, &col, &col_err);
   if (pairs >= kLimbMinPairs) {
     // The pairs and the circle fit answer the same question from different assumptions (equal
     // radial bias on mirrored rays, or every edge on the circle): half their difference is a
@@ -350,22 +378,7 @@ LimbFit FitLimb(const Appearance& a, const LimbFitOptions& o) {
     out.col_scatter_err = col_err;
   }
   if (pairs < kLimbMinPairs && !o.fit_radius) {
-    // One side of the outline only (the far side dark under one-sided light): no pairs cancel
-    // the edges' inward shift, and with the radius held the column moves toward the seen side
-    // by that shift (POV-Ray one-sided light: 0.09-0.19 px, stated as 0.04). The same edges
-    // fitted with the radius free take the shift as uniform around the rim and overshoot
-    // where it is not (-0.21 px there). The two bracket the column: their midpoint, with half
-    // their difference as a systematic uncertainty.
-    Eigen::Vector2d c_free = c;
-    double r_free = r;
-    Eigen::Matrix3d cov_free;
-    if (FitCircle(edges, {true, !row_fixed, true}, &c_free, &r_free, &cov_free) &&
-        std::abs(r_free - r) <= kKnownRadiusSlackPx) {
-      const double half = 0.5 * (c_free.x() - c.x());
-      c.x() += half;
-      out.col_model_err = std::abs(half);
-      col_err = std::hypot(col_err, half);
-    }
+    BracketOneSidedColumn(edges, row_fixed, r, &c, &out.col_model_err, &col_err);
   }
   out.ok = true;
   out.centre = c - ref;

@@ -25,7 +25,7 @@
 // an uncertain start (acquisition, coarse_start) it first fits a linear radial ramp of 3 px,
 // then 1.5 px, which has gradient over a wider band; from a tracker's prediction it goes
 // straight to the edge model. With the radius unknown, the caller tries several starting radii
-// and keeps the smallest residual (refiner.cc).
+// and keeps the smallest residual (measure_sphere.cc).
 //
 // Known radius. Where the plate is reflected within a pixel of the rim (most of the lower
 // half) the edge cannot be modelled, so only sectors whose ring is as dim as the dimmest one

@@ -23,6 +23,7 @@
 #include <string>
 
 #include "tests/common/test_tmpdir.h"
+#include "tracking/io/frame_source.h"
 #include "tracking/io/cine_source.h"
 #include "tracking/io/cine_writer.h"
 #include "tracking/io/mosaic_grey.h"
@@ -162,7 +163,7 @@ TEST_P(CineAgainstFfmpeg, HeaderAndPixelsReadAsWritten) {
   EXPECT_EQ(low_bits_wrong, 0);
 
   // And our reader agrees with the same file (it did in cine_test.cc; here on these frames).
-  auto src = FrameSource::Open(path);
+  auto src = OpenFrameSource(path);
   ASSERT_EQ(src->size(), size_t(n));
   for (int i = 0; i < n; ++i) {
     const Frame fr = src->Read(size_t(i));
@@ -230,7 +231,7 @@ TEST_P(CineColourAgainstFfmpeg, PixelsReadAsWrittenAndGreyOfThem) {
   const size_t frame_bytes = frames[0].total() * frames[0].elemSize();
   ASSERT_EQ(raw.size(), frame_bytes * n) << "ffmpeg decoded a different number of frames";
 
-  auto src = FrameSource::Open(path);
+  auto src = OpenFrameSource(path);
   ASSERT_EQ(src->size(), size_t(n));
   for (int i = 0; i < n; ++i) {
     const cv::Mat ffmpeg(h, w, frames[i].type(), const_cast<char*>(raw.data()) + i * frame_bytes);

@@ -2,6 +2,7 @@
 // back exactly) and against broken files: truncated, corrupt headers, random bytes. Every
 // failure must be a clean InputError or a per-frame reason, never a crash or a read outside the
 // file (run this test in the sanitizer build).
+#include "tracking/io/frame_source.h"
 #include "tracking/io/cine_source.h"
 
 #include <gtest/gtest.h>
@@ -54,7 +55,7 @@ CineWriteOptions Recording(CinePixels p) {
 void ExpectRoundTrip(const std::string& path, const std::vector<cv::Mat>& frames,
                      const CineWriteOptions& o, int real_bpp) {
   WriteCine(path, frames, o);
-  auto src = FrameSource::Open(path);
+  auto src = OpenFrameSource(path);
   ASSERT_EQ(src->size(), frames.size());
   EXPECT_TRUE(src->random_access());
   for (size_t i = 0; i < frames.size(); ++i) {
@@ -133,7 +134,7 @@ TEST(Cine, RawColourMosaicIsReadGrey) {
     const auto frames = RandomFrames(2, 40, 24, c.type, c.max_value, 21 + c.real_bpp);
     const std::string path = dir / ("raw" + std::to_string(c.real_bpp) + ".cine");
     WriteCine(path, frames, o);
-    auto src = FrameSource::Open(path);
+    auto src = OpenFrameSource(path);
     ASSERT_EQ(src->size(), frames.size());
     // The balance is the first frame's, for every frame.
     const MosaicBalance balance = EstimateMosaicBalance(frames[0], c.max_value);
@@ -165,7 +166,7 @@ TEST(Cine, InterpolatedColourIsReadGrey) {
       const std::string path = dir / ("bgr" + std::to_string(sixteen) +
                                       std::to_string(top_down) + ".cine");
       WriteCine(path, frames, o);
-      auto src = FrameSource::Open(path);
+      auto src = OpenFrameSource(path);
       ASSERT_EQ(src->size(), frames.size());
       for (size_t i = 0; i < frames.size(); ++i) {
         const Frame f = src->Read(i);
@@ -235,7 +236,7 @@ TEST(Cine, TruncatedImageIsReportedPerFrame) {
   const auto frames = RandomFrames(4, 16, 8, CV_8UC1, 255, 7);
   WriteCine(dir / "t.cine", frames, Recording(CinePixels::k8Bit));
   std::filesystem::resize_file(dir / "t.cine", std::filesystem::file_size(dir / "t.cine") - 60);
-  auto src = FrameSource::Open(dir / "t.cine");
+  auto src = OpenFrameSource(dir / "t.cine");
   ASSERT_EQ(src->size(), 4u);
   for (size_t i = 0; i < 3; ++i) EXPECT_TRUE(Same(src->Read(i).image, frames[i])) << i;
   const Frame last = src->Read(3);
@@ -251,7 +252,7 @@ TEST(Cine, TruncatedOffsetTableIsReportedPerFrame) {
   const auto b = Bytes(dir / "u.cine");
   const size_t table = Le(b, cine::kHOffImageOffsets, 4);
   std::filesystem::resize_file(dir / "u.cine", table + 2 * 8 + 3);  // 2 entries and a bit
-  auto src = FrameSource::Open(dir / "u.cine");
+  auto src = OpenFrameSource(dir / "u.cine");
   ASSERT_EQ(src->size(), 4u);
   for (size_t i = 0; i < 4; ++i) {
     const Frame f = src->Read(i);
@@ -270,14 +271,14 @@ TEST(Cine, CorruptAnnotationSizeIsReportedPerFrame) {
   SetLe(&b, Le(b, table, 8), 3, 4);               // AnnotationSize 3 < 8
   SetLe(&b, table + 8, uint64_t(1) << 62, 8);     // frame 1 offset far outside the file
   Put(dir / "v.cine", b);
-  auto src = FrameSource::Open(dir / "v.cine");
+  auto src = OpenFrameSource(dir / "v.cine");
   EXPECT_NE(src->Read(0).error.find("corrupt annotation block"), std::string::npos);
   EXPECT_NE(src->Read(1).error.find("past the end of the file"), std::string::npos);
 }
 
 void ExpectNotCine(const std::string& path, const std::string& why) {
   try {
-    FrameSource::Open(path);
+    OpenFrameSource(path);
     FAIL() << "opened " << path;
   } catch (const InputError& e) {
     const std::string msg = e.what();
@@ -324,7 +325,7 @@ TEST(Cine, UnsupportedPixelFormatsAreOneLineInputErrors) {
     SetLe(&b, at, v, n);
     Put(dir / name, b);
     try {
-      FrameSource::Open(dir / name);
+      OpenFrameSource(dir / name);
       FAIL() << name;
     } catch (const InputError& e) {
       const std::string msg = e.what();
@@ -360,7 +361,7 @@ TEST(Cine, RandomGarbageNeverCrashes) {
     }
     Put(dir / "g.cine", b);
     try {
-      auto src = FrameSource::Open(dir / "g.cine");
+      auto src = OpenFrameSource(dir / "g.cine");
       ++opened;
       for (size_t i = 0; i < std::min<size_t>(src->size(), 8); ++i) {
         const Frame f = src->Read(i);
@@ -379,7 +380,7 @@ TEST(Cine, ConcurrentReadsGiveTheSameFrames) {
   TempDir dir;
   const auto frames = RandomFrames(40, 64, 32, CV_16UC1, 1023, 13);
   WriteCine(dir / "p.cine", frames, Recording(CinePixels::k10BitPacked));
-  auto src = FrameSource::Open(dir / "p.cine");
+  auto src = OpenFrameSource(dir / "p.cine");
   std::vector<int> ok(2, 0);
   std::vector<std::thread> threads;
   for (int t = 0; t < 2; ++t) {

@@ -1,4 +1,5 @@
 // --frames A:B: parsing, and the one wrapper over a folder, a .cine and a sequential source.
+#include "tracking/io/frame_source.h"
 #include "tracking/io/frame_range.h"
 
 #include <gtest/gtest.h>
@@ -66,12 +67,12 @@ void ExpectFrames(FrameSource& s, const std::vector<size_t>& indices) {
 TEST(FrameRange, OnAFolder) {
   TempDir dir;
   for (int i = 0; i < 12; ++i) cv::imwrite(dir / ("f_" + std::to_string(i) + ".png"), Plain(10 + i));
-  auto s = SelectFrames(FrameSource::Open(dir.path().string()), ParseFrameRange("2:5"), "in");
+  auto s = SelectFrames(OpenFrameSource(dir.path().string()), ParseFrameRange("2:5"), "in");
   ExpectFrames(*s, {2, 3, 4});
   EXPECT_EQ(s->Read(0).name, "f_2.png");  // natural order: f_2 is the third file, not f_10
-  auto tail = SelectFrames(FrameSource::Open(dir.path().string()), ParseFrameRange("10:"), "in");
+  auto tail = SelectFrames(OpenFrameSource(dir.path().string()), ParseFrameRange("10:"), "in");
   ExpectFrames(*tail, {10, 11});
-  auto cut = SelectFrames(FrameSource::Open(dir.path().string()), ParseFrameRange("9:100"), "in");
+  auto cut = SelectFrames(OpenFrameSource(dir.path().string()), ParseFrameRange("9:100"), "in");
   ExpectFrames(*cut, {9, 10, 11});  // an end past the last frame is cut to it
 }
 
@@ -80,9 +81,9 @@ TEST(FrameRange, OnACine) {
   std::vector<cv::Mat> frames;
   for (int i = 0; i < 7; ++i) frames.push_back(Plain(10 + i));
   WriteCine(dir / "x.cine", frames, {});
-  auto s = SelectFrames(FrameSource::Open(dir / "x.cine"), ParseFrameRange(":3"), "x.cine");
+  auto s = SelectFrames(OpenFrameSource(dir / "x.cine"), ParseFrameRange(":3"), "x.cine");
   ExpectFrames(*s, {0, 1, 2});
-  auto t = SelectFrames(FrameSource::Open(dir / "x.cine"), ParseFrameRange("4:"), "x.cine");
+  auto t = SelectFrames(OpenFrameSource(dir / "x.cine"), ParseFrameRange("4:"), "x.cine");
   ExpectFrames(*t, {4, 5, 6});
   EXPECT_EQ(t->recording().fps, 2000.0);  // the header passes through
 }

@@ -51,7 +51,7 @@ TEST(ImageCodecs, PngAndJpegFolderReadsAsDirectOpenCv) {
   ASSERT_TRUE(cv::imwrite(f + "/a_2.png", Random(24, 40, CV_16UC1, 2)));
   ASSERT_TRUE(cv::imwrite(f + "/a_3.png", Random(24, 40, CV_8UC3, 3)));
   ASSERT_TRUE(cv::imwrite(f + "/a_4.jpg", Random(24, 40, CV_8UC3, 4)));
-  const auto source = FrameSource::Open(f);
+  const auto source = OpenFrameSource(f);
   ASSERT_EQ(source->size(), 4u);
   const char* names[] = {"a_1.png", "a_2.png", "a_3.png", "a_4.jpg"};
   for (size_t i = 0; i < 4; ++i) {
@@ -103,7 +103,7 @@ TEST(ImageCodecs, VideoReadsAsDirectOpenCv) {
   EXPECT_EQ(reader.FrameCount(), 5);
   EXPECT_EQ(reader.Fps(), direct.get(cv::CAP_PROP_FPS));
   // Through the frame source, as `track` reads it: colour decoded, then made grey.
-  const auto source = FrameSource::Open(video);
+  const auto source = OpenFrameSource(video);
   EXPECT_EQ(source->size(), 5u);
   Frame frame;
   int n = 0;

@@ -1,6 +1,7 @@
 // 16-bit frames of a camera with fewer bits scaled to the 16-bit range (tracking/io/level_scale.h):
 // from the .cine header's RealBPP, from --bits, or not at all (with a warning when the levels
 // would fit a 10- or 12-bit camera's); levels beyond the bits given are an error.
+#include "tracking/io/frame_source.h"
 #include "tracking/io/level_scale.h"
 
 #include <gtest/gtest.h>
@@ -31,7 +32,7 @@ TEST(LevelScale, ATenBitCinesLevelsAreScaledToSixteenBits) {
   CineWriteOptions o;
   o.pixels = CinePixels::k10BitPacked;
   WriteCine(dir / "ten.cine", Frames(CV_16UC1, 1023), o);
-  auto src = FrameSource::Open(dir / "ten.cine");
+  auto src = OpenFrameSource(dir / "ten.cine");
   const LevelScale s = ChooseLevelScale(*src);
   EXPECT_DOUBLE_EQ(s.factor, 65535.0 / 1023.0);
   EXPECT_EQ(s.bits, 10);
@@ -51,7 +52,7 @@ TEST(LevelScale, AHeaderBelowTheLevelsIsNotTrusted) {
   o.pixels = CinePixels::k16Bit;
   o.real_bpp = 12;
   WriteCine(dir / "scaled.cine", Frames(CV_16UC1, 60000), o);  // software already scaled them
-  auto src = FrameSource::Open(dir / "scaled.cine");
+  auto src = OpenFrameSource(dir / "scaled.cine");
   const LevelScale s = ChooseLevelScale(*src);
   EXPECT_EQ(s.factor, 1.0);
   EXPECT_NE(s.reason.find("above the 12-bit range"), std::string::npos) << s.reason;
@@ -63,7 +64,7 @@ TEST(LevelScale, AHeaderSayingSixteenBitsIsBelieved) {
   CineWriteOptions o;
   o.pixels = CinePixels::k16Bit;  // RealBPP 16
   WriteCine(dir / "dark.cine", Frames(CV_16UC1, 4000), o);
-  auto src = FrameSource::Open(dir / "dark.cine");
+  auto src = OpenFrameSource(dir / "dark.cine");
   const LevelScale s = ChooseLevelScale(*src);
   EXPECT_EQ(s.factor, 1.0);
   EXPECT_FALSE(s.warn);

@@ -14,6 +14,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "tracking/sphere/appearance_mismatch.h"
+#include "tracking/sphere/appearance_model.h"
 #include "common/disc_coverage.h"
 #include "render/seeded_noise.h"
 

@@ -3,7 +3,7 @@
 // A list of stages per frame:
 //   1. predict each sphere from its last two positions (constant velocity);
 //   2. refine the plate row in a band around the last one, using columns clear of the spheres;
-//   3. measure each sphere in a window around its prediction (refiner.h), masking the rod toward
+//   3. measure each sphere in a window around its prediction (measure_sphere.h), masking the rod toward
 //      the other sphere, the plate, and the other sphere's disc where the two touch (A_r ~2);
 //   4. if a sphere is lost (missing, clipped) or nothing is locked yet, acquire on the whole
 //      frame (detector.h) and give each detection the identity of the nearest last position;
@@ -19,13 +19,13 @@
 
 #include "tracking/plate/clipped_edge.h"
 #include "tracking/plate/plate_edge.h"
-#include "tracking/sphere/refiner.h"
+#include "tracking/sphere/measure_sphere.h"
 #include "tracking/sphere/template_locator.h"
 #include "tracking/tolerances.h"
 
 namespace dimer::tracking {
 
-struct TrackerOptions {
+struct FollowerOptions {
   Method method = Method::kCentroid;  // sub-pixel method
   int polarity = 0;                   // +1 bright spheres, -1 dark (backlit), 0 automatic
   double radius_px = std::numeric_limits<double>::quiet_NaN();  // sphere radius, px; NaN: measured
@@ -77,9 +77,9 @@ struct FrameTrack {
   std::array<int, 2> appearance{0, 1};
 };
 
-class SequenceTracker {
+class FrameFollower {
  public:
-  explicit SequenceTracker(const TrackerOptions& options);
+  explicit FrameFollower(const FollowerOptions& options);
   FrameTrack Process(const cv::Mat& frame, size_t index);
   int polarity() const { return polarity_; }
   double radius_px() const { return radius_px_; }
@@ -100,7 +100,7 @@ class SequenceTracker {
                   std::shared_ptr<const ClippedEdgeProfile>* clipped, double* col) const;
   void Commit(const FrameTrack& t);
 
-  TrackerOptions options_;
+  FollowerOptions options_;
   int polarity_ = 0;
   double radius_px_;
   double plate_row_ = std::numeric_limits<double>::quiet_NaN();

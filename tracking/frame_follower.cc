@@ -1,4 +1,4 @@
-#include "tracking/tracker.h"
+#include "tracking/frame_follower.h"
 
 #include <algorithm>
 #include <cmath>
@@ -41,13 +41,70 @@ RefineContext Context(int polarity, double plate_row, const Eigen::Vector2d& sel
   ctx.polarity = polarity;
   ctx.plate_row = plate_row;
   if (other && (*other - self).norm() > 0) ctx.rod_dir = (*other - self).normalized();
-  if (other) ctx.other = *other;  // left out where the spheres touch (refiner.h)
+  if (other) ctx.other = *other;  // left out where the spheres touch (measure_sphere.h)
   return ctx;
+}
+
+// The sphere's radius, measured on an acquisition with a provisional window: a mirror sphere's
+// rim fit measures the radius itself (the mean over both spheres when both are fitted: the
+// radius error becomes a bias of every centre, and it is halved); otherwise the larger of the
+// distance-transform radius and the first sphere's silhouette area.
+double AcquisitionRadius(const cv::Mat& frame, const Detection& det,
+                         const std::array<Eigen::Vector2d, 2>& coarse, int n, int polarity,
+                         double plate_slope) {
+  const double det_col = 0.5 * (frame.cols - 1);
+  const double dt_r = *std::max_element(det.radii_px.begin(), det.radii_px.end());
+  double rim_sum = 0, area_r = 0;
+  int rims = 0;
+  for (int k = 0; k < n; ++k) {
+    RefineContext ctx = Context(polarity, det.plate_row + plate_slope * (coarse[k].x() - det_col),
+                                coarse[k], n > 1 ? &coarse[1 - k] : nullptr);
+    ctx.fit_radius = true;
+    ctx.radius_start_px = dt_r;  // a filled silhouette's inscribed radius: close for a mirror
+    const SphereMeasurement m = MeasureSphere(frame, coarse[k], kProvisionalRadiusScale * dt_r,
+                                              ctx, Method::kCentroid);
+    if (m.found() && m.rim_fit) {
+      rim_sum += m.radius_px;
+      ++rims;
+    } else if (k == 0 && m.found()) {
+      area_r = m.radius_px;
+    }
+    if (k == 0 && !(m.found() && m.rim_fit)) break;  // uniform: the first sphere's area
+  }
+  return rims > 0 ? rim_sum / rims : std::max(dt_r, area_r);
+}
+
+// Identities of an acquisition's spheres (slot_of[i]: 0 left, 1 right): the nearest last
+// position if any is known, else left = the smaller column. The film's names are settled later
+// by the rigid dimer (dimer_identity.h).
+std::array<int, 2> SlotsOf(const std::vector<SphereMeasurement>& found,
+                           const std::array<bool, 2>& known,
+                           const std::array<Eigen::Vector2d, 2>& last, int cols) {
+  std::array<int, 2> slot_of{0, 1};
+  if (found.size() == 2) {
+    bool swap = found[1].centre.x() < found[0].centre.x();
+    if (known[0] && known[1]) {
+      const double keep = (found[0].centre - last[0]).norm() + (found[1].centre - last[1]).norm();
+      const double cross = (found[0].centre - last[1]).norm() + (found[1].centre - last[0]).norm();
+      swap = cross < keep;
+    }
+    if (swap) slot_of = {1, 0};
+  } else if (found.size() == 1) {
+    const Eigen::Vector2d c = found[0].centre;
+    if (known[0] || known[1]) {
+      const double d0 = known[0] ? (c - last[0]).norm() : INFINITY;
+      const double d1 = known[1] ? (c - last[1]).norm() : INFINITY;
+      slot_of[0] = d1 < d0 ? 1 : 0;
+    } else {
+      slot_of[0] = c.x() < 0.5 * cols ? 0 : 1;
+    }
+  }
+  return slot_of;
 }
 
 }  // namespace
 
-void TrackerOptions::Check() const {
+void FollowerOptions::Check() const {
   std::string bad;
   if (polarity < -1 || polarity > 1) bad += "polarity must be -1, 0 or +1; ";
   if (!std::isnan(radius_px) && !(radius_px >= 3)) bad += "sphere radius must be >= 3 px; ";
@@ -56,18 +113,18 @@ void TrackerOptions::Check() const {
   if (!bad.empty()) throw UsageError(bad.substr(0, bad.size() - 2));
 }
 
-SequenceTracker::SequenceTracker(const TrackerOptions& options)
+FrameFollower::FrameFollower(const FollowerOptions& options)
     : options_(options), polarity_(options.polarity), radius_px_(options.radius_px) {
   options_.Check();
 }
 
-bool SequenceTracker::uses_template() const {
+bool FrameFollower::uses_template() const {
   return options_.method == Method::kTemplate && options_.appearance;
 }
 
 // The template method's measurement: the reference point of sphere `sphere`'s appearance
 // (the track's offset turns it into the centre afterwards, track_sequence.cc), radius as known.
-SphereMeasurement SequenceTracker::Locate(const cv::Mat& frame, int sphere,
+SphereMeasurement FrameFollower::Locate(const cv::Mat& frame, int sphere,
                                           const Eigen::Vector2d& guess,
                                           const Eigen::Vector2d* other, double plate_row,
                                           int search_px) const {
@@ -93,7 +150,7 @@ SphereMeasurement SequenceTracker::Locate(const cv::Mat& frame, int sphere,
 // Following with the template: ECC straight from the prediction (no correlation search: the
 // search costs more than the refinement), the whole-pixel search only when that fails (a
 // prediction more than a pixel off, e.g. at an impact).
-SphereMeasurement SequenceTracker::FollowTemplate(const cv::Mat& frame, int k,
+SphereMeasurement FrameFollower::FollowTemplate(const cv::Mat& frame, int k,
                                                   const std::array<Eigen::Vector2d, 2>& predicted,
                                                   double plate_row) const {
   const SphereMeasurement m = Locate(frame, k, predicted[k], &predicted[1 - k], plate_row, 0);
@@ -101,7 +158,7 @@ SphereMeasurement SequenceTracker::FollowTemplate(const cv::Mat& frame, int k,
   return Locate(frame, k, predicted[k], &predicted[1 - k], plate_row, kFollowSearchPx);
 }
 
-double SequenceTracker::PlateRow(const cv::Mat& frame, double guess, double guess_col,
+double FrameFollower::PlateRow(const cv::Mat& frame, double guess, double guess_col,
                                  const std::array<Eigen::Vector2d, 2>& centres, int n,
                                  std::shared_ptr<const ClippedEdgeProfile>* clipped,
                                  double* col) const {
@@ -119,7 +176,7 @@ double SequenceTracker::PlateRow(const cv::Mat& frame, double guess, double gues
   return row;
 }
 
-bool SequenceTracker::Follow(const cv::Mat& frame, FrameTrack* out) {
+bool FrameFollower::Follow(const cv::Mat& frame, FrameTrack* out) {
   if (!locked_[0] || !locked_[1] || !std::isfinite(plate_row_)) return false;
   const std::array<Eigen::Vector2d, 2> predicted{last_[0] + velocity_[0],
                                                  last_[1] + velocity_[1]};
@@ -144,7 +201,7 @@ bool SequenceTracker::Follow(const cv::Mat& frame, FrameTrack* out) {
   return true;
 }
 
-void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
+void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
   const size_t index = out->index;
   *out = FrameTrack{};
   out->index = index;
@@ -169,30 +226,7 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
   std::array<Eigen::Vector2d, 2> coarse{};
   for (int k = 0; k < n; ++k) coarse[k] = det.centres[k];
   if (std::isnan(radius_px_) && n > 0) {
-    // Measure with a provisional window, then keep the larger of the two radius estimates.
-    const double dt_r = *std::max_element(det.radii_px.begin(), det.radii_px.end());
-    // A mirror sphere's rim fit measures the radius itself (the mean over both spheres when
-    // both are fitted: the radius error becomes a bias of every centre, and it is halved);
-    // otherwise the silhouette area.
-    double rim_sum = 0, area_r = 0;
-    int rims = 0;
-    for (int k = 0; k < n; ++k) {
-      RefineContext ctx =
-          Context(polarity_, det.plate_row + options_.plate_slope * (coarse[k].x() - det_col),
-                  coarse[k], n > 1 ? &coarse[1 - k] : nullptr);
-      ctx.fit_radius = true;
-      ctx.radius_start_px = dt_r;  // a filled silhouette's inscribed radius: close for a mirror
-      const SphereMeasurement m = MeasureSphere(frame, coarse[k], kProvisionalRadiusScale * dt_r,
-                                                ctx, Method::kCentroid);
-      if (m.found() && m.rim_fit) {
-        rim_sum += m.radius_px;
-        ++rims;
-      } else if (k == 0 && m.found()) {
-        area_r = m.radius_px;
-      }
-      if (k == 0 && !(m.found() && m.rim_fit)) break;  // uniform: the first sphere's area
-    }
-    radius_px_ = rims > 0 ? rim_sum / rims : std::max(dt_r, area_r);
+    radius_px_ = AcquisitionRadius(frame, det, coarse, n, polarity_, options_.plate_slope);
   }
   out->plate_slope = options_.plate_slope;
   out->plate_row = PlateRow(frame, det.plate_row, det_col, coarse, n, &out->clipped_plate,
@@ -211,26 +245,7 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
     }
     if (m.found()) found.push_back(m);
   }
-  // Identities: nearest last position if any is known, else left = smaller column.
-  std::array<int, 2> slot_of{0, 1};
-  if (found.size() == 2) {
-    bool swap = found[1].centre.x() < found[0].centre.x();
-    if (known_[0] && known_[1]) {
-      const double keep = (found[0].centre - last_[0]).norm() + (found[1].centre - last_[1]).norm();
-      const double cross = (found[0].centre - last_[1]).norm() + (found[1].centre - last_[0]).norm();
-      swap = cross < keep;
-    }
-    if (swap) slot_of = {1, 0};
-  } else if (found.size() == 1) {
-    const Eigen::Vector2d c = found[0].centre;
-    if (known_[0] || known_[1]) {
-      const double d0 = known_[0] ? (c - last_[0]).norm() : INFINITY;
-      const double d1 = known_[1] ? (c - last_[1]).norm() : INFINITY;
-      slot_of[0] = d1 < d0 ? 1 : 0;
-    } else {
-      slot_of[0] = c.x() < 0.5 * frame.cols ? 0 : 1;
-    }
-  }
+  const std::array<int, 2> slot_of = SlotsOf(found, known_, last_, frame.cols);
   if (uses_template()) {
     for (size_t i = 0; i < found.size(); ++i) {
       const Eigen::Vector2d* other = found.size() == 2 ? &found[1 - i].centre : nullptr;
@@ -249,7 +264,7 @@ void SequenceTracker::Acquire(const cv::Mat& frame, FrameTrack* out) {
   }
 }
 
-void SequenceTracker::Commit(const FrameTrack& t) {
+void FrameFollower::Commit(const FrameTrack& t) {
   if (std::isfinite(t.plate_row)) {
     plate_row_ = t.plate_row;
     plate_col_ = t.plate_col;
@@ -265,7 +280,7 @@ void SequenceTracker::Commit(const FrameTrack& t) {
   }
 }
 
-FrameTrack SequenceTracker::Process(const cv::Mat& frame, size_t index) {
+FrameTrack FrameFollower::Process(const cv::Mat& frame, size_t index) {
   DIMER_CHECK(!frame.empty() && frame.channels() == 1,
               "the tracker measures grey frames (frame sources make them grey)");
   if (polarity_ == 0) polarity_ = DetectPolarity(frame);

@@ -1,4 +1,4 @@
-#include "tracking/tracker.h"
+#include "tracking/frame_follower.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@ namespace dimer::tracking {
 namespace {
 
 TEST(Tracker, ThePsfSigmaMustBeABlurWidth) {
-  TrackerOptions o;
+  FollowerOptions o;
   EXPECT_NO_THROW(o.Check());
   for (double bad : {-0.1, 5.5, std::numeric_limits<double>::quiet_NaN()}) {
     o.psf_sigma_px = bad;
@@ -45,7 +45,7 @@ TEST(Tracker, AcquiresMirrorSpheresAndTheirRadius) {
         SceneGeometry s = testing::TiltedDimer(150.3, 200, 23.75, tilt, 3.75);
         s.left.y() -= lift;
         s.right.y() -= lift;
-        SequenceTracker t(TrackerOptions{});
+        FrameFollower t(FollowerOptions{});
         const FrameTrack f = t.Process(RenderFrame({s}, o, 1), 0);
         SCOPED_TRACE(::testing::Message()
                      << "noise " << noise << " lift " << lift << " tilt " << tilt);
@@ -72,7 +72,7 @@ TEST(Tracker, IdentityNeverSwapsOnALongDriftSequence) {
   o.height = 96;
   o.lighting = Lighting::kBacklit;
   o.noise = 2.0;
-  SequenceTracker tracker(TrackerOptions{});
+  FrameFollower tracker(FollowerOptions{});
   size_t swaps = 0, lost = 0, acquisitions = 0;
   double worst = 0;
   for (size_t i = 0; i < n; ++i) {
@@ -96,7 +96,7 @@ TEST(Tracker, IdentityNeverSwapsOnALongDriftSequence) {
 TEST(Tracker, SphereOutOfViewIsNotFoundAndTheOtherIs) {
   RenderOptions o;
   o.lighting = Lighting::kDisc;
-  SequenceTracker tracker(TrackerOptions{});
+  FrameFollower tracker(FollowerOptions{});
   SceneGeometry s = testing::TiltedDimer(150, 200, 23.75, 0.0, 3.75);
   const FrameTrack first = tracker.Process(RenderFrame({s}, o, 0), 0);
   ASSERT_TRUE(first.found[0] && first.found[1]);
@@ -125,7 +125,7 @@ TEST(Tracker, ASphereAtTheFramesEdgeIsMeasured) {
     const double start = o.width - 23.75 - 6.0 - s.right.x();  // the right disc 6 px inside
     s.left.x() += start;
     s.right.x() += start;
-    SequenceTracker tracker(TrackerOptions{});
+    FrameFollower tracker(FollowerOptions{});
     for (int i = 0; i < 5; ++i) {  // 0.5 px per frame toward the edge: 4 px inside at the end
       SCOPED_TRACE(::testing::Message() << ToString(l) << ", frame " << i);
       const FrameTrack t = tracker.Process(RenderFrame({s}, o, uint64_t(i)), size_t(i));

@@ -1,4 +1,4 @@
-#include "sim/frames.h"
+#include "sim/reference_frames.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "tracking/sphere/refiner.h"
+#include "tracking/sphere/measure_sphere.h"
 
 #include <Eigen/Cholesky>
 #include <algorithm>

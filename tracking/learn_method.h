@@ -11,7 +11,7 @@
 #include "tracking/plate_contact.h"
 #include "tracking/io/frame_source.h"
 #include "tracking/method_choice.h"
-#include "tracking/tracker.h"
+#include "tracking/frame_follower.h"
 
 namespace dimer::tracking {
 
@@ -37,7 +37,7 @@ struct SequenceMethod {
 // outline (limb_fit.h) and held in the appearances' radius_px. The learning frames are measured
 // on `learn.threads` threads too (the result does not depend on it).
 SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
-                                     const TrackerOptions& reference, Method requested,
+                                     const FollowerOptions& reference, Method requested,
                                      bool radius_known, const LearnOptions& learn = {});
 
 struct TemplateOffsets {

@@ -1,4 +1,4 @@
-#include "tracking/sphere/refiner.h"
+#include "tracking/sphere/measure_sphere.h"
 
 #include <gtest/gtest.h>
 
@@ -161,7 +161,7 @@ TEST_P(PixelLocking, FreeSphereMeetsTheTarget) {
 TEST_P(PixelLocking, SphereRestingOnThePlate) {
   // The project's target (docs/BENCHMARKS.md, bench_tracking), 0.01 px peak to peak, for a sphere in contact and just above the plate
   // (the plate cut active at every lift here). The centroid's plate cut is a double wedge whose
-  // ramps run along the disc's edge, not across it (refiner.cc, CentroidMask): measured
+  // ramps run along the disc's edge, not across it (measure_sphere.cc, CentroidMask): measured
   // 0.0028-0.0038 px (it was 0.014 with a horizontal 8 px ramp); discfit 0.0006-0.001 px.
   for (double lift_px : {0.0, 0.5, 1.0, 2.0, 3.0}) {
     EXPECT_LE(LockingPeakToPeak(GetParam(), lift_px), 0.01) << "lift " << lift_px << " px";

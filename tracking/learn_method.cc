@@ -1,4 +1,4 @@
-#include "tracking/template_sequence.h"
+#include "tracking/learn_method.h"
 
 #include <opencv2/imgproc.hpp>
 
@@ -17,6 +17,110 @@ namespace {
 // Fewer learning frames than this with both spheres (seeded), and nothing is learnt.
 constexpr size_t kMinSeededFrames = 3;
 
+// The learning frames tracked by the centroid, each acquired afresh (the learning frames are
+// far apart): the probes for the choice of method, the samples to learn from, and which
+// spheres show a clean silhouette.
+struct Probes {
+  std::vector<FrameTrack> tracks;
+  std::vector<LearningSample> samples;
+  std::vector<std::array<bool, 2>> clean;
+};
+
+Probes ProbeLearningFrames(const std::vector<Frame>& learning, const FollowerOptions& reference,
+                           int threads) {
+  Probes p;
+  p.tracks.resize(learning.size());
+  p.samples.resize(learning.size());
+  p.clean.resize(learning.size());
+  FollowerOptions o = reference;
+  o.method = Method::kCentroid;
+  o.appearance.reset();
+  ParallelFor(learning.size(), threads, [&](size_t i) {
+    const Frame& f = learning[i];
+    FrameFollower t(o);
+    const FrameTrack& probe = p.tracks[i] = t.Process(f.image, f.index);
+    LearningSample& s = p.samples[i];
+    s.image = f.image;
+    s.plate_row = probe.plate_row;
+    s.plate_col = probe.plate_col;
+    s.plate_slope = probe.plate_slope;
+    s.found = probe.found;
+    s.centre = probe.centre;
+    std::array<bool, 2>& c = p.clean[i];
+    for (int k = 0; k < 2; ++k) {
+      const double plate = s.PlateRowAt(s.centre[k].x());
+      if (s.found[0] && s.found[1]) {
+        c[k] = CleanSilhouette(f.image, s.centre[k], reference.radius_px, s.centre[1 - k], plate);
+      } else if (s.found[k]) {
+        c[k] = CleanSilhouette(f.image, s.centre[k], reference.radius_px, s.centre[k], plate);
+      }
+    }
+  });
+  return p;
+}
+
+// Rough centres from the highlights where the silhouette methods give both spheres in fewer
+// than half the learning frames: at a lower gain front-lit steel shows parts of its outline
+// in some frames, and a mean of those few (6 of 20 at 0.7 of front_point's levels) put the
+// columns 0.18 px off; the highlights seed every frame there (see
+// povray.lower_levels). The film's seeds are of one kind: a highlight
+// stands off the centre by as much as 12 px (the one-sided light), farther than the learning's
+// search, so silhouette and highlight seeds are not mixed. The highlights are taken where they
+// agree in more frames than the silhouettes give pairs. Returns what is added to the method's
+// reason ("" when the silhouettes are kept).
+std::string SeedFromHighlights(double radius_px, const LearnOptions& learn,
+                               std::vector<LearningSample>* samples) {
+  size_t seeded = 0, from_highlights = 0;
+  for (const LearningSample& s : *samples) seeded += s.found[0] && s.found[1];
+  if (!(2 * seeded < samples->size() || seeded < kMinSeededFrames)) return "";
+  std::vector<LearningSample> lines;
+  std::vector<std::vector<HighlightBlob>> blobs;
+  for (const LearningSample& s : *samples) {
+    // Where the probe found no plate, the coarse row at the frame's centre column.
+    LearningSample line = s;
+    if (!std::isfinite(s.plate_row)) {
+      line.plate_row = FindPlateRowCoarse(s.image, s.plate_slope);
+      line.plate_col = 0.5 * (s.image.cols - 1);
+    }
+    // Above the plate everywhere: its highest point where it slopes.
+    const double highest = std::min(line.PlateRowAt(0), line.PlateRowAt(s.image.cols - 1));
+    lines.push_back(line);
+    blobs.push_back(FindHighlightBlobs(s.image, highest, radius_px));
+  }
+  // A seed farther off than the learning's search is averaged in where it is; a frame whose
+  // two seeds are not a dimer's length apart has one of them off (see
+  // SeedFilm.FramesWhoseSeedsAreNotADimersLengthApartAreMarked), and is left out.
+  const double agreement =
+      learn.seed_agreement_px > 0 ? learn.seed_agreement_px : 2.0 * LearnSearchPx(radius_px);
+  const HighlightSeeds seeds = SeedFilm(blobs, radius_px, agreement, kMinSeededFrames);
+  if (seeds.agreeing <= seeded) return "";
+  size_t left_out = 0;
+  for (size_t i = 0; i < samples->size(); ++i) {
+    LearningSample& s = (*samples)[i];
+    if (!seeds.seeded[i] || !seeds.agrees[i]) {
+      left_out += seeds.seeded[i];
+      // Not learnt from: no silhouette pair among the highlight seeds. A single sphere
+      // found stays for the plate's contact line (EstimatePlateShift).
+      if (s.found[0] && s.found[1]) s.found = {false, false};
+      continue;
+    }
+    s.centre = seeds.seeds[i];
+    s.found = {true, true};
+    s.plate_row = lines[i].plate_row;
+    s.plate_col = lines[i].plate_col;
+    ++from_highlights;
+  }
+  char spread[320];
+  std::snprintf(spread, sizeof spread,
+                " (%s: %zu a dimer's length apart within %.0f px, %zu by the %s; %zu left "
+                "out; the silhouettes gave both spheres in %zu)",
+                seeds.by_mass ? "weighed" : "split at the widest gap", seeds.agreeing,
+                agreement, seeds.other_agreeing, seeds.by_mass ? "widest gap" : "weighed",
+                left_out, seeded);
+  return "; rough centres of " + std::to_string(from_highlights) +
+         " learning frames from the highlights" + spread;
+}
+
 }  // namespace
 
 std::vector<size_t> LearningIndices(size_t frames) {
@@ -28,102 +132,17 @@ std::vector<size_t> LearningIndices(size_t frames) {
 }
 
 SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
-                                     const TrackerOptions& reference, Method requested,
+                                     const FollowerOptions& reference, Method requested,
                                      bool radius_known, const LearnOptions& learn) {
   SequenceMethod m;
-  std::vector<FrameTrack> probes(learning.size());
-  std::vector<LearningSample> samples(learning.size());
-  std::vector<std::array<bool, 2>> clean(learning.size());
-  TrackerOptions o = reference;
-  o.method = Method::kCentroid;
-  o.appearance.reset();
-  ParallelFor(learning.size(), learn.threads, [&](size_t i) {
-    const Frame& f = learning[i];
-    SequenceTracker t(o);  // a fresh acquisition per frame: the learning frames are far apart
-    probes[i] = t.Process(f.image, f.index);
-    LearningSample& s = samples[i];
-    s.image = f.image;
-    s.plate_row = probes[i].plate_row;
-    s.plate_col = probes[i].plate_col;
-    s.plate_slope = probes[i].plate_slope;
-    s.found = probes[i].found;
-    s.centre = probes[i].centre;
-    std::array<bool, 2>& c = clean[i];
-    for (int k = 0; k < 2; ++k) {
-      const double plate = s.PlateRowAt(s.centre[k].x());
-      if (s.found[0] && s.found[1]) {
-        c[k] = CleanSilhouette(f.image, s.centre[k], reference.radius_px, s.centre[1 - k], plate);
-      } else if (s.found[k]) {
-        c[k] = CleanSilhouette(f.image, s.centre[k], reference.radius_px, s.centre[k], plate);
-      }
-    }
-  });
-  m.choice = ChooseMethod(probes, clean, requested);
+  Probes probes = ProbeLearningFrames(learning, reference, learn.threads);
+  std::vector<LearningSample>& samples = probes.samples;
+  m.choice = ChooseMethod(probes.tracks, probes.clean, requested);
   if (m.choice.method != Method::kTemplate) {
     m.plate_shift = EstimatePlateShift(samples, reference.radius_px);
     return m;
   }
-  size_t seeded = 0, from_highlights = 0;
-  for (const LearningSample& s : samples) seeded += s.found[0] && s.found[1];
-  // Rough centres from the highlights where the silhouette methods give both spheres in fewer
-  // than half the learning frames: at a lower gain front-lit steel shows parts of its outline
-  // in some frames, and a mean of those few (6 of 20 at 0.7 of front_point's levels) put the
-  // columns 0.18 px off; the highlights seed every frame there (see
-  // povray.lower_levels). The film's seeds are of one kind: a highlight
-  // stands off the centre by as much as 12 px (the one-sided light), farther than the learning's
-  // search, so silhouette and highlight seeds are not mixed. The highlights are taken where they
-  // agree in more frames than the silhouettes give pairs.
-  if (2 * seeded < samples.size() || seeded < kMinSeededFrames) {
-    std::vector<LearningSample> lines;
-    std::vector<std::vector<HighlightBlob>> blobs;
-    for (const LearningSample& s : samples) {
-      // Where the probe found no plate, the coarse row at the frame's centre column.
-      LearningSample line = s;
-      if (!std::isfinite(s.plate_row)) {
-        line.plate_row = FindPlateRowCoarse(s.image, s.plate_slope);
-        line.plate_col = 0.5 * (s.image.cols - 1);
-      }
-      // Above the plate everywhere: its highest point where it slopes.
-      const double highest = std::min(line.PlateRowAt(0), line.PlateRowAt(s.image.cols - 1));
-      lines.push_back(line);
-      blobs.push_back(FindHighlightBlobs(s.image, highest, reference.radius_px));
-    }
-    // A seed farther off than the learning's search is averaged in where it is; a frame whose
-    // two seeds are not a dimer's length apart has one of them off (see
-    // SeedFilm.FramesWhoseSeedsAreNotADimersLengthApartAreMarked), and is left out.
-    const double agreement = learn.seed_agreement_px > 0
-                                 ? learn.seed_agreement_px
-                                 : 2.0 * LearnSearchPx(reference.radius_px);
-    const HighlightSeeds seeds =
-        SeedFilm(blobs, reference.radius_px, agreement, kMinSeededFrames);
-    if (seeds.agreeing > seeded) {
-      size_t left_out = 0;
-      for (size_t i = 0; i < samples.size(); ++i) {
-        LearningSample& s = samples[i];
-        if (!seeds.seeded[i] || !seeds.agrees[i]) {
-          left_out += seeds.seeded[i];
-          // Not learnt from: no silhouette pair among the highlight seeds. A single sphere
-          // found stays for the plate's contact line (EstimatePlateShift).
-          if (s.found[0] && s.found[1]) s.found = {false, false};
-          continue;
-        }
-        s.centre = seeds.seeds[i];
-        s.found = {true, true};
-        s.plate_row = lines[i].plate_row;
-        s.plate_col = lines[i].plate_col;
-        ++from_highlights;
-      }
-      char spread[320];
-      std::snprintf(spread, sizeof spread,
-                    " (%s: %zu a dimer's length apart within %.0f px, %zu by the %s; %zu left "
-                    "out; the silhouettes gave both spheres in %zu)",
-                    seeds.by_mass ? "weighed" : "split at the widest gap", seeds.agreeing,
-                    agreement, seeds.other_agreeing, seeds.by_mass ? "widest gap" : "weighed",
-                    left_out, seeded);
-      m.choice.reason += "; rough centres of " + std::to_string(from_highlights) +
-                         " learning frames from the highlights" + spread;
-    }
-  }
+  m.choice.reason += SeedFromHighlights(reference.radius_px, learn, &samples);
   // Before learning, which frames the templates on the plate contact: the learning frames'
   // plate rows are moved to the contact line where the plate's top is in view (rough centres of
   // highlights-only footage are seeded by now).

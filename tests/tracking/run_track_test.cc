@@ -1,4 +1,5 @@
-#include "tracking/track.h"
+#include "tracking/io/frame_source.h"
+#include "tracking/run_track.h"
 
 #include <gtest/gtest.h>
 
@@ -259,15 +260,24 @@ TEST(RunTrack, UnusableInputsAreOneLineErrors) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("no image files"), std::string::npos);
   }
-  t.method = "magic";
   t.fps = -1;
+  t.m_per_px = -2e-4;
   try {
     RunTrack(t);
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--method 'magic'"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("--m-per-px"), std::string::npos);
     EXPECT_NE(std::string(e.what()).find("--fps"), std::string::npos);
   }
+  // Names the options take are typed where the command line is read; a wrong one names it.
+  try {
+    ParseMethod("magic", "--method");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "--method 'magic': expected auto, centroid, discfit or template");
+  }
+  EXPECT_THROW(ParsePolarity("grey"), InputError);
+  EXPECT_EQ(ParsePolarity("dark"), Polarity::kDark);
 }
 
 // --lens: the calibration is read before any work (a bad file is a one-line error naming it,
@@ -488,7 +498,7 @@ TEST(RunTrack, ACinesTimeStampsGiveTheFrameTimes) {
   RenderDrift(dir, 12, Lighting::kBacklit, "cine");
   std::vector<cv::Mat> frames;
   {
-    auto rendered = FrameSource::Open(dir / "frames/frames.cine");
+    auto rendered = OpenFrameSource(dir / "frames/frames.cine");
     for (size_t i = 0; i < rendered->size(); ++i) frames.push_back(rendered->Read(i).image);
   }
   ASSERT_EQ(frames.size(), 12u);
@@ -607,14 +617,16 @@ TEST(RunTrack, LibraryMessagesBecomeDimerlabWarnings) {
     std::ofstream(path, std::ios::binary | std::ios::trunc) << png;
   }
   TrackArgs t = Track(dir);
+  std::string err;  // the lines `dimerlab track` prints
+  t.on_diagnostic = [&](const Diagnostic& d) { err += FormatDiagnostic(d) + "\n"; };
   ::testing::internal::CaptureStderr();
   RunTrack(t);
-  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");  // nothing raw reaches stderr
   std::istringstream lines(err);
   int library_lines = 0;
   for (std::string line; std::getline(lines, line);) {
     if (line.empty()) continue;
-    EXPECT_EQ(line.rfind("dimerlab: warning: ", 0), 0u) << "not ours: " << line;
+    EXPECT_EQ(line.rfind("dimerlab track: ", 0), 0u) << "not ours: " << line;
     library_lines += line.find("decoder message: libpng") != std::string::npos;
   }
   EXPECT_GE(library_lines, 1) << "stderr was:\n" << err;  // libpng spoke, through us
@@ -636,7 +648,7 @@ TEST(RunTrack, APlateFoundInNoFrameIsSaid) {
     ASSERT_TRUE(cv::imwrite(dir / ("frames/" + std::string(name)), RenderFrame({s}, o, uint64_t(i))));
   }
   TrackArgs t = Track(dir);
-  t.method = "centroid";
+  t.method = Method::kCentroid;
   std::vector<Diagnostic> said;
   t.on_diagnostic = [&](const Diagnostic& d) { said.push_back(d); };
   RunTrack(t);

@@ -1,6 +1,6 @@
 // `--method template` and `--method auto` on whole sequences of our own renderer's footage:
 // the choice per lighting, the accuracy after the estimated offset, and determinism.
-#include "tracking/template_sequence.h"
+#include "tracking/learn_method.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include "tests/common/test_tmpdir.h"
 #include "tests/tracking/synthetic.h"
 #include "render/render.h"
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 namespace dimer::tracking {
 namespace {
@@ -43,7 +43,7 @@ Film Render(Lighting lighting, size_t n) {
 SequenceResult Track(const Film& f, Method m, int threads) {
   MemorySource src(f.frames);
   SequenceOptions o;
-  o.tracker.method = m;
+  o.follower.method = m;
   o.threads = threads;
   o.chunk_frames = 16;
   o.contact_radius_px = 23.75;  // the scale is known (--m-per-px)

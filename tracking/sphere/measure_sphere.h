@@ -27,7 +27,7 @@
 
 namespace dimer::tracking {
 
-// kTemplate and kAuto are sequence-level methods (track.h): the learnt appearance is located
+// kTemplate and kAuto are sequence-level methods (run_track.h): the learnt appearance is located
 // per frame by template_locator.h, and auto chooses per footage (method_choice.h). Given to
 // MeasureSphere they measure as kCentroid.
 enum class Method { kCentroid, kDiscFit, kTemplate, kAuto };

@@ -1,4 +1,4 @@
-#include "tracking/track.h"
+#include "tracking/run_track.h"
 
 #include <cmath>
 #include <cstdio>
@@ -24,17 +24,17 @@
 namespace dimer::tracking {
 namespace {
 
-// Stage "options": the command line's strings typed for the tracker. The plate-contact offset
+// Stage "options": the command's options as the tracker takes them. The plate-contact offset
 // of the template method needs the radius in pixels: from the scale when it is given, else the
 // measured one (which then also sets the scale). The lens's calibration is read before any
 // work: a bad file is said at once.
 SequenceOptions SequenceOptionsOf(const TrackArgs& args) {
   SequenceOptions seq = args.sequence;
-  seq.tracker.method = ParseMethod(args.method);
+  seq.follower.method = args.method;
   if (!std::isnan(args.m_per_px) && std::isnan(seq.contact_radius_px)) {
     seq.contact_radius_px = 0.5 * args.diameter / args.m_per_px;
   }
-  seq.tracker.polarity = args.polarity == "bright" ? 1 : args.polarity == "dark" ? -1 : 0;
+  seq.follower.polarity = Sign(args.polarity);
   if (!std::isnan(args.plate_m_per_px)) {
     seq.plate_motion_scale = args.plate_m_per_px / args.m_per_px;
   }
@@ -105,6 +105,15 @@ void WarnLossyCodec(const TrackArgs& args, const Recording& rec, Diagnostics* di
                          args.input.c_str(), rec.info.video_codec.c_str()));
 }
 
+// What opening the input found that may be off: the source's own warnings, a lossy codec, a
+// flipped camera.
+void WarnOfTheInput(const TrackArgs& args, const FrameSource& source, const Recording& rec,
+                    Diagnostics* diag) {
+  for (const std::string& w : source.warnings()) diag->WarnInput("frame_source", w);
+  WarnLossyCodec(args, rec, diag);
+  WarnFlip(args, rec, diag);
+}
+
 // Stage "scale from the dimer's length" (--ar without --m-per-px): the radius the film is
 // tracked with comes from the dimer's length over its first frames (dimer_length_scale.h); the
 // film's own length then sets the scale. Empty otherwise.
@@ -128,29 +137,30 @@ LengthScale RadiusFromDimerLength(const TrackArgs& args, SequenceOptions* seq, D
 }
 
 // Decoders (libpng, libjpeg, libtiff, OpenCV's codecs) may print their own messages on stderr.
-// While frames are decoded they are captured and each distinct one becomes one dimerlab warning
-// (common/stderr_capture.h); our own progress and warnings go to the real stderr.
+// While frames are decoded they are captured and each distinct one becomes one input warning
+// (common/stderr_capture.h); the progress goes to the real stderr, and so must whatever prints
+// the diagnostics (app/track_messages.h).
 SequenceResult TrackWithLibraryMessagesCaptured(const TrackArgs& args, const SequenceOptions& seq,
                                                 FrameSource& source,
                                                 Diagnostics* diagnostics) {
   std::mutex seen_mutex;
   std::set<std::string> seen;
   size_t repeats = 0;
+  const bool live = StderrCapture::DiagnosticsIsTerminal();
   auto on_library_line = [&](const std::string& line) {
     std::lock_guard<std::mutex> lock(seen_mutex);
     if (!seen.insert(line).second) {
       ++repeats;
       return;
     }
-    std::fprintf(StderrCapture::Diagnostics(), "dimerlab: warning: %s: decoder message: %s\n",
-                 args.input.c_str(), line.c_str());
+    diagnostics->WarnInput("decoder_message", args.input + ": decoder message: " + line,
+                           !args.quiet && live);
   };
   SequenceResult r;
   {
     StderrCapture capture(on_library_line);
-    FILE* diag = StderrCapture::Diagnostics();
-    const bool live = StderrCapture::DiagnosticsIsTerminal();
-    ProgressMeter progress("track", "frames", double(source.size()), !args.quiet, diag, live);
+    ProgressMeter progress("track", "frames", double(source.size()), !args.quiet,
+                           StderrCapture::Diagnostics(), live);
     r = TrackSequence(
         source, seq,
         [&](size_t done) {
@@ -158,8 +168,8 @@ SequenceResult TrackWithLibraryMessagesCaptured(const TrackArgs& args, const Seq
           if (args.on_progress) args.on_progress(done);
         },
         [&](const SkippedFrame& s) {
-          std::fprintf(diag, "%sdimerlab: warning: %s: %s; skipped\n",
-                       args.quiet || !live ? "" : "\n", s.name.c_str(), s.reason.c_str());
+          diagnostics->WarnInput("frame_skipped", s.name + ": " + s.reason + "; skipped",
+                                 !args.quiet && live);
         });
     progress.Finish(double(r.frames.size() + r.skipped.size()));
   }
@@ -198,14 +208,13 @@ void RunTrack(const TrackArgs& args) {
   Diagnostics diag(args.on_diagnostic);
   SequenceOptions seq = SequenceOptionsOf(args);
   AtomicOutput out(args.output, args.force);  // refuses an existing output before any work
-  auto source = SelectFrames(FrameSource::Open(args.input), ParseFrameRange(args.frames),
+  auto source = SelectFrames(OpenFrameSource(args.input), ParseFrameRange(args.frames),
                              args.input);
   TrackArgs resolved = args;
   const Recording rec = ResolveFps(source->recording(), &resolved, &diag);
   // g in px per frame^2 is this times the radius in px (whichever the film is tracked with).
   seq.gravity_per_radius_px = 2.0 * kGravity / (args.diameter * resolved.fps * resolved.fps);
-  WarnLossyCodec(args, rec, &diag);
-  WarnFlip(args, rec, &diag);
+  WarnOfTheInput(args, *source, rec, &diag);
   const LengthScale length_scale = RadiusFromDimerLength(args, &seq, &diag);
   const SequenceResult r = TrackWithLibraryMessagesCaptured(resolved, seq, *source, &diag);
   if (r.frames.empty()) {
