@@ -35,7 +35,10 @@ void AddRenderOptions(CLI::App* sub, RenderCli* cli) {
   sub->add_option("--blur-samples", a.blur_samples, "instants averaged per exposure")
       ->capture_default_str();
   sub->add_option("--bit-depth", a.image.bit_depth, "8 or 16")->capture_default_str();
-  sub->add_option("--format", a.format, "png | tiff | cine (one frames.cine)")->capture_default_str();
+  sub->add_option_function<std::string>(
+         "--format", [&a](const std::string& s) { a.format = tracking::ParseFrameFormat(s); },
+         "png | tiff | cine (one frames.cine)")
+      ->default_str(tracking::ToString(a.format));
   sub->add_option("--supersample", a.image.supersample, "samples per pixel side (rod, mirror)")
       ->capture_default_str();
   sub->add_option("--seed", a.image.seed, "noise seed")->capture_default_str();

@@ -36,12 +36,12 @@ Eigen::Vector2d Lerp(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double 
 // The one .cine file of a `--format cine` folder; its frames are named FILE#i.
 constexpr char kCineFile[] = "frames.cine";
 
-std::string FrameName(size_t i, const std::string& format) {
+std::string FrameName(size_t i, FrameFormat format) {
   char buf[40];
-  if (format == "cine") {
+  if (format == FrameFormat::kCine) {
     std::snprintf(buf, sizeof buf, "%s#%zu", kCineFile, i);
   } else {
-    std::snprintf(buf, sizeof buf, "frame_%06zu.%s", i, format == "png" ? "png" : "tif");
+    std::snprintf(buf, sizeof buf, "frame_%06zu.%s", i, format == FrameFormat::kPng ? "png" : "tif");
   }
   return buf;
 }
@@ -101,7 +101,7 @@ std::string RenderJson(const RenderArgs& a, const RenderPlan& p, double diameter
   add("exposure", Num10(a.exposure));
   add("blur_samples", std::to_string(a.blur_samples));
   add("bit_depth", std::to_string(a.image.bit_depth));
-  add("format", "\"" + a.format + "\"");
+  add("format", "\"" + ToString(a.format) + "\"");
   add("seed", std::to_string(a.image.seed));
   add("units",
       "{\"m_per_px\": \"m/px\", \"row0\": \"px\", \"col_offset\": \"px\", "
@@ -164,6 +164,17 @@ std::vector<SceneGeometry> RenderPlan::Exposure(const Trajectory& traj, size_t i
   return out;
 }
 
+std::string ToString(FrameFormat f) {
+  return f == FrameFormat::kTiff ? "tiff" : f == FrameFormat::kCine ? "cine" : "png";
+}
+
+FrameFormat ParseFrameFormat(const std::string& name) {
+  for (FrameFormat f : {FrameFormat::kPng, FrameFormat::kTiff, FrameFormat::kCine}) {
+    if (name == ToString(f)) return f;
+  }
+  throw UsageError("--format '" + name + "': expected png, tiff or cine");
+}
+
 void RenderArgs::Check() const {
   std::string bad;
   auto need = [&](bool ok, const std::string& what) {
@@ -176,8 +187,6 @@ void RenderArgs::Check() const {
   need(rod_diameter >= 0 && std::isfinite(rod_diameter), "--rod-diameter must be >= 0 m");
   need(exposure >= 0 && exposure <= 1, "--exposure must be in [0, 1] frame intervals");
   need(blur_samples >= 1 && blur_samples <= 64, "--blur-samples must be 1..64");
-  need(format == "png" || format == "tiff" || format == "cine",
-       "--format '" + format + "': expected png, tiff or cine");
   need(threads >= 0 && threads <= 256, "--threads must be 0 (all cores) .. 256");
   if (!bad.empty()) throw UsageError(bad);
   image.Check();
@@ -287,7 +296,7 @@ void RenderFrames(const RenderArgs& args, const RenderPlan& plan, const Scene& s
     next = n;
   };
   std::unique_ptr<OrderedCineFrames> cine;
-  if (args.format == "cine") {
+  if (args.format == FrameFormat::kCine) {
     cine = std::make_unique<OrderedCineFrames>(std::make_unique<CineWriter>(
         folder + "/" + kCineFile, args.image.width, args.image.height, n,
         CineOptions(args, scene.traj, n)));
@@ -352,7 +361,7 @@ void RunRender(const RenderArgs& args) {
     args.on_summary(Format("%s: %zu frames %dx%d, %d-bit %s, %s lighting, %.3g m/px; truth.csv, "
                            "render.json",
                            args.output.c_str(), scene.frames, args.image.width,
-                           args.image.height, args.image.bit_depth, args.format.c_str(),
+                           args.image.height, args.image.bit_depth, ToString(args.format).c_str(),
                            ToString(args.image.lighting).c_str(), args.m_per_px));
   }
 }

@@ -22,6 +22,13 @@
 
 namespace dimer::tracking {
 
+// How the frames are written: one PNG or TIFF file each, or one Phantom .cine holding them all
+// (its frames named frames.cine#i).
+enum class FrameFormat { kPng, kTiff, kCine };
+std::string ToString(FrameFormat f);  // "png", "tiff", "cine"
+// The name as --format takes it; UsageError naming --format otherwise.
+FrameFormat ParseFrameFormat(const std::string& name);
+
 struct RenderArgs {
   std::string input;            // trajectory file (kind sim or track)
   std::string output;           // folder to create
@@ -33,7 +40,7 @@ struct RenderArgs {
   double rod_diameter = 1.5e-3; // m (0: no rod)
   double exposure = 0.25;       // shutter open time, fraction of the frame interval (0: sharp)
   int blur_samples = 5;         // instants averaged over the exposure
-  std::string format = "png";   // png | tiff | cine (one frames.cine, frames named frames.cine#i)
+  FrameFormat format = FrameFormat::kPng;  // --format
   int threads = 0;              // 0: all cores
   size_t max_frames = 0;        // render only the first N samples (0: all)
   bool quiet = false;

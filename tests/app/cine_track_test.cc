@@ -146,7 +146,7 @@ TEST(TrackCine, RenderWritesTheSameFramesAsACine) {
   a.output = dir / "png";
   RunRender(a);
   a.output = dir / "cine";
-  a.format = "cine";
+  a.format = FrameFormat::kCine;
   RunRender(a);
   auto png = OpenFrameSource(dir / "png");
   auto cine = OpenFrameSource(dir / "cine/frames.cine");

@@ -29,7 +29,7 @@ namespace {
 
 // Renders `n` drift frames into dir/frames (PNG unless `format` says tiff).
 RenderArgs RenderDrift(const dimer::testing::TempDir& dir, size_t n, Lighting l,
-                       const std::string& format = "png", int bit_depth = 8) {
+                       FrameFormat format = FrameFormat::kPng, int bit_depth = 8) {
   testing::WriteSimFile(dir / "sim.h5", testing::DriftTrajectory(n, 2000.0), 2000.0);
   RenderArgs a;
   a.input = dir / "sim.h5";
@@ -351,7 +351,7 @@ TEST(RunTrack, TheLensCalibrationIsCheckedFirstAndRecorded) {
 
 TEST(RunTrack, SixteenBitTiffFramesAndMultiPageTiff) {
   dimer::testing::TempDir dir;
-  const RenderArgs r = RenderDrift(dir, 6, Lighting::kBacklit, "tiff", 16);
+  const RenderArgs r = RenderDrift(dir, 6, Lighting::kBacklit, FrameFormat::kTiff, 16);
   TrackArgs t = Track(dir);
   RunTrack(t);
   H5Reader h(t.output);
@@ -495,7 +495,7 @@ TEST(RunTrack, VideoFileIsTrackedInOrder) {
 // 0 without time stamps is an error unless --fps is given.
 TEST(RunTrack, ACinesTimeStampsGiveTheFrameTimes) {
   dimer::testing::TempDir dir;
-  RenderDrift(dir, 12, Lighting::kBacklit, "cine");
+  RenderDrift(dir, 12, Lighting::kBacklit, FrameFormat::kCine);
   std::vector<cv::Mat> frames;
   {
     auto rendered = OpenFrameSource(dir / "frames/frames.cine");
