@@ -19,17 +19,17 @@ constexpr size_t kCalibrationSamples = 2000;
 
 Calibration Calibrate(const TrackArgs& args, const SequenceResult& r, const LengthScale& passes) {
   Calibration cal;
-  cal.m_per_px = args.m_per_px;
-  cal.row0 = args.row0;
+  cal.m_per_px = args.m_per_px.value_or(std::numeric_limits<double>::quiet_NaN());
+  cal.row0 = args.row0.value_or(std::numeric_limits<double>::quiet_NaN());
   cal.length_scale = passes;
-  if (!std::isnan(args.ar)) cal.length_px = MedianDimerLength(r.frames, &cal.length_frames);
-  if (std::isnan(cal.m_per_px) && !std::isnan(args.ar)) {
+  if (args.ar) cal.length_px = MedianDimerLength(r.frames, &cal.length_frames);
+  if (std::isnan(cal.m_per_px) && args.ar) {
     if (!std::isfinite(cal.length_px)) {
       throw InputError(args.input + ": cannot take the scale from the dimer's length (--ar): " +
                        std::to_string(cal.length_frames) + " frames show both spheres (" +
                        std::to_string(kLengthScaleMinFrames) + " needed); pass --m-per-px");
     }
-    cal.m_per_px = ScaleFromDimerLength(cal.length_px, args.ar, args.diameter);
+    cal.m_per_px = ScaleFromDimerLength(cal.length_px, *args.ar, args.diameter);
   } else if (std::isnan(cal.m_per_px)) {
     std::vector<double> radii;
     for (const auto& f : r.frames) {

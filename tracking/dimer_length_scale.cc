@@ -138,9 +138,9 @@ LengthScale TrackedDimerLengthScale(const LengthScaleFilm& args, const SequenceO
     SequenceOptions o = seq;
     o.contact_radius_px = radius_px;
     // The plate edge's own scale over the dimer plane's, that radius's (measured: fitted).
-    o.plate_motion_scale = std::isnan(args.plate_m_per_px) || std::isnan(radius_px)
+    o.plate_motion_scale = !args.plate_m_per_px || std::isnan(radius_px)
                                ? std::numeric_limits<double>::quiet_NaN()
-                               : args.plate_m_per_px / (0.5 * args.diameter / radius_px);
+                               : *args.plate_m_per_px / (0.5 * args.diameter / radius_px);
     auto source = SelectFrames(OpenFrameSource(args.input), first, args.input);
     SequenceResult r;
     {

@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -106,7 +107,7 @@ struct LengthScaleFilm {
   double ar = std::numeric_limits<double>::quiet_NaN();        // --ar
   double diameter = std::numeric_limits<double>::quiet_NaN();  // sphere diameter, m
   // --plate-m-per-px, m/px; NaN: the dimer plane's.
-  double plate_m_per_px = std::numeric_limits<double>::quiet_NaN();
+  std::optional<double> plate_m_per_px;
 };
 
 // The calibration passes of `track --ar` over the first kLengthScaleFrames frames of

@@ -31,12 +31,12 @@ namespace {
 SequenceOptions SequenceOptionsOf(const TrackArgs& args) {
   SequenceOptions seq = args.sequence;
   seq.follower.method = args.method;
-  if (!std::isnan(args.m_per_px) && std::isnan(seq.contact_radius_px)) {
-    seq.contact_radius_px = 0.5 * args.diameter / args.m_per_px;
+  if (args.m_per_px && std::isnan(seq.contact_radius_px)) {
+    seq.contact_radius_px = 0.5 * args.diameter / *args.m_per_px;
   }
   seq.follower.polarity = Sign(args.polarity);
-  if (!std::isnan(args.plate_m_per_px)) {
-    seq.plate_motion_scale = args.plate_m_per_px / args.m_per_px;
+  if (args.plate_m_per_px && args.m_per_px) {
+    seq.plate_motion_scale = *args.plate_m_per_px / *args.m_per_px;
   }
   if (!args.lens.empty()) {
     seq.lens = std::make_shared<const LensCalibration>(ReadLensCalibration(args.lens));
@@ -52,12 +52,12 @@ Recording ResolveFps(const RecordingInfo& info, TrackArgs* args, Diagnostics* di
   Recording rec{"option", info};
   const bool header = info.known && info.fps > 0;
   const double stamped = FrameRateOfTimes(info.frame_times);
-  if (!std::isnan(args->fps)) {
+  if (args->fps) {
     rec.info.frame_times.clear();  // --fps wins: t is frame_index / fps
-    if (header && args->fps != info.fps) {
+    if (header && *args->fps != info.fps) {
       diag->WarnInput("fps", Format("%s: --fps %.10g differs from the .cine header's %.10g "
                                     "frames/s; using --fps %.10g",
-                                    args->input.c_str(), args->fps, info.fps, args->fps));
+                                    args->input.c_str(), *args->fps, info.fps, *args->fps));
     }
   } else if (stamped > 0) {
     args->fps = stamped;
@@ -118,20 +118,20 @@ void WarnOfTheInput(const TrackArgs& args, const FrameSource& source, const Reco
 // tracked with comes from the dimer's length over its first frames (dimer_length_scale.h); the
 // film's own length then sets the scale. Empty otherwise.
 LengthScale RadiusFromDimerLength(const TrackArgs& args, SequenceOptions* seq, Diagnostics* diag) {
-  if (std::isnan(args.ar) || !std::isnan(args.m_per_px)) return {};
+  if (!args.ar || args.m_per_px) return {};
   diag->Note("length_scale_start",
              Format("scale from the dimer's length (--ar %g): tracking its first %zu frames "
                     "until the radius settles",
-                    args.ar, kLengthScaleFrames));
+                    *args.ar, kLengthScaleFrames));
   const LengthScale length_scale = TrackedDimerLengthScale(
-      {args.input, args.frames, args.ar, args.diameter, args.plate_m_per_px}, *seq, diag);
+      {args.input, args.frames, *args.ar, args.diameter, args.plate_m_per_px}, *seq, diag);
   if (!length_scale.ok) {
     throw InputError(args.input + ": cannot take the scale from the dimer's length (--ar): " +
                      length_scale.failure + "; pass --m-per-px");
   }
   seq->contact_radius_px = length_scale.radius_px;
-  if (!std::isnan(args.plate_m_per_px)) {
-    seq->plate_motion_scale = args.plate_m_per_px / (0.5 * args.diameter / length_scale.radius_px);
+  if (args.plate_m_per_px) {
+    seq->plate_motion_scale = *args.plate_m_per_px / (0.5 * args.diameter / length_scale.radius_px);
   }
   return length_scale;
 }
@@ -213,7 +213,7 @@ void RunTrack(const TrackArgs& args) {
   TrackArgs resolved = args;
   const Recording rec = ResolveFps(source->recording(), &resolved, &diag);
   // g in px per frame^2 is this times the radius in px (whichever the film is tracked with).
-  seq.gravity_per_radius_px = 2.0 * kGravity / (args.diameter * resolved.fps * resolved.fps);
+  seq.gravity_per_radius_px = 2.0 * kGravity / (args.diameter * *resolved.fps * *resolved.fps);
   WarnOfTheInput(args, *source, rec, &diag);
   const LengthScale length_scale = RadiusFromDimerLength(args, &seq, &diag);
   const SequenceResult r = TrackWithLibraryMessagesCaptured(resolved, seq, *source, &diag);
@@ -225,7 +225,7 @@ void RunTrack(const TrackArgs& args) {
   if (r.complete) RequireADimer(args.input, r);  // a partial film is kept whatever it shows
   ReportFilm(args, rec, r, &diag);
   const Calibration cal = Calibrate(args, r, length_scale);
-  if (!std::isnan(args.ar)) ReportLengthScale(args, cal, &diag);
+  if (args.ar) ReportLengthScale(args, cal, &diag);
   WriteTrackFile(out.temp_path(), resolved, r, cal, rec);
   out.Commit();
   Summarize(args, r, cal);

@@ -28,22 +28,22 @@ void TrackArgs::Check() const {
   };
   need(!input.empty(), "input: a folder of frames, a TIFF, a .cine or a video is required");
   need(!output.empty(), "-o: the output track file is required");
-  need(std::isnan(fps) || (fps >= kMinTrackFps && fps <= kMaxTrackFps),
+  need(!fps || (*fps >= kMinTrackFps && *fps <= kMaxTrackFps),
        "--fps must be 1 .. 1e7 frames/s");
   try {
     ParseFrameRange(frames);
   } catch (const InputError& e) {
     need(false, e.what());
   }
-  need(std::isnan(m_per_px) || m_per_px > 0, "--m-per-px must be > 0 m/px");
-  need(std::isnan(plate_m_per_px) || (plate_m_per_px > 0 && std::isfinite(plate_m_per_px)),
+  need(!m_per_px || (*m_per_px > 0 && std::isfinite(*m_per_px)), "--m-per-px must be > 0 m/px");
+  need(!plate_m_per_px || (*plate_m_per_px > 0 && std::isfinite(*plate_m_per_px)),
        "--plate-m-per-px must be > 0 m/px");
   // The ratio of the two scales is what moves the plate rows, and it is needed while tracking
   // (the template's plate-contact offsets read them), before a scale from --diameter exists.
-  need(std::isnan(plate_m_per_px) || !std::isnan(m_per_px) || !std::isnan(ar),
+  need(!plate_m_per_px || m_per_px || ar,
        "--plate-m-per-px needs --m-per-px or --ar (the dimer plane's scale)");
   need(diameter > 0 && std::isfinite(diameter), "--diameter must be > 0 m");
-  need(std::isnan(ar) || (ar >= kMinAspectRatio && std::isfinite(ar)),
+  need(!ar || (*ar >= kMinAspectRatio && std::isfinite(*ar)),
        "--ar must be >= 2 (the dimer's length over a sphere's diameter; 2: spheres touching)");
   if (!bad.empty()) throw UsageError(bad);
   sequence.Check();

@@ -3,6 +3,7 @@
 // tracker's options (track_sequence.h) inside it. RunTrack (run_track.h) runs it.
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "tracking/diagnostics.h"
@@ -29,19 +30,20 @@ struct TrackArgs {
   std::string output;           // track.h5
   std::string output_label;     // how messages name the output (empty: `output`)
   bool force = false;           // replace an existing output
-  // Frame rate, frames/s. NaN (not given): the .cine header's, else kDefaultFps. Given and
-  // different from a .cine header's: a warning, and this value is used.
-  double fps = std::numeric_limits<double>::quiet_NaN();
-  double m_per_px = std::numeric_limits<double>::quiet_NaN();  // m/px; NaN: from --diameter
+  // Values a user may leave out are empty when not given.
+  // Frame rate, frames/s. Not given: the frames' time stamps', the .cine header's, else
+  // kDefaultFps. Given and different from a .cine header's: a warning, and this value is used.
+  std::optional<double> fps;
+  std::optional<double> m_per_px;  // m/px; not given: from --diameter or --ar
   double diameter = 9.5e-3;     // sphere diameter, m (calibration when m_per_px is not given)
   // --ar: the dimer's aspect ratio, length / diameter (dimer_length_scale.h). With m_per_px not
   // given, the scale is (ar - 1) diameter over the tracked centre distance, and the template
-  // tracks with the radius that implies; with m_per_px given, a check. NaN: not given.
-  double ar = std::numeric_limits<double>::quiet_NaN();
-  double row0 = std::numeric_limits<double>::quiet_NaN();      // z = 0 row, px; NaN: plate median
+  // tracks with the radius that implies; with m_per_px given, a check.
+  std::optional<double> ar;
+  std::optional<double> row0;   // z = 0 row, px; not given: the plate's median row
   // The plate edge's own scale, m/px, where it is not in the dimer's plane (a plate's front
-  // edge is nearer the camera); needs m_per_px or ar. NaN: the dimer plane's.
-  double plate_m_per_px = std::numeric_limits<double>::quiet_NaN();
+  // edge is nearer the camera); needs m_per_px or ar. Not given: the dimer plane's.
+  std::optional<double> plate_m_per_px;
   // --lens: an OpenCV camera calibration file (lens_undistortion.h); empty: frames as recorded.
   std::string lens;
   Method method = Method::kAuto;        // --method

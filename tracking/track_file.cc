@@ -217,8 +217,8 @@ AttrList CalibrationAttributes(const TrackArgs& args, const SequenceResult& r,
       {"polarity", std::string(r.polarity > 0 ? "bright" : "dark")},
       {"polarity_requested", ToString(args.polarity)},
       {"m_per_px_given",
-       int64_t(!std::isnan(args.m_per_px) ? 1 : !std::isnan(args.ar) ? 2 : 0)},
-      {"ar", std::isnan(args.ar) ? 0.0 : args.ar},
+       int64_t(args.m_per_px ? 1 : args.ar ? 2 : 0)},
+      {"ar", args.ar.value_or(0.0)},
       {"ar_length_px", std::isfinite(cal.length_px) ? cal.length_px : 0.0},
       {"ar_length_frames", int64_t(cal.length_frames)},
       {"ar_radius_px", cal.length_scale.ok ? cal.length_scale.radius_px : 0.0},
@@ -245,7 +245,7 @@ RootAttrs RootAttributes(const TrackArgs& args, const SequenceResult& r, const C
   const bool clip_found = r.plate_clip.level.found();
   AttrList attrs = {{"source", args.input}, {"frames", args.frames.empty() ? "all" : args.frames},
                     {"method", ToString(r.method)}, {"method_requested", ToString(args.method)},
-                    {"method_reason", r.method_reason}, {"fps", args.fps},
+                    {"method_reason", r.method_reason}, {"fps", *args.fps},
                     {"fps_source", rec.fps_from},
                     {"plate_shift", r.plate_shift.applied ? r.plate_shift.value : 0.0},
                     {"plate_shift_err", r.plate_shift.applied ? r.plate_shift.err : 0.0},
@@ -258,7 +258,7 @@ RootAttrs RootAttributes(const TrackArgs& args, const SequenceResult& r, const C
                      std::string(r.plate_scale.given    ? "--plate-m-per-px"
                                  : r.plate_scale.fitted ? "fitted"
                                                         : "none")},
-                    {"plate_m_per_px", std::isnan(args.plate_m_per_px) ? 0.0 : args.plate_m_per_px},
+                    {"plate_m_per_px", args.plate_m_per_px.value_or(0.0)},
                     {"plate_clipped_frames", int64_t(r.plate_clip.frames)},
                     {"plate_clip_level", clip_found ? r.plate_clip.level.value : 0.0},
                     {"plate_clip_level_err", clip_found ? r.plate_clip.level.err : 0.0},
@@ -377,7 +377,7 @@ std::string PsfSource(const TrackArgs& args, const PlateClip& clip) {
 
 void WriteTrackFile(const std::string& path, const TrackArgs& args, const SequenceResult& r,
                     const Calibration& cal, const Recording& rec) {
-  const TrackColumns columns = ColumnsOf(r, cal, args.fps, rec.info.frame_times);
+  const TrackColumns columns = ColumnsOf(r, cal, *args.fps, rec.info.frame_times);
   const RootAttrs root = RootAttributes(args, r, cal, rec);
   H5Writer w(path);
   WriteProvenance(w, "track", root.attrs, root.units,

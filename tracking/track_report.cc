@@ -129,7 +129,7 @@ void ReportPlateGeometry(const TrackArgs& args, const SequenceResult& r, Diagnos
     diag->Note("plate_motion_scale",
                Format("the edge's motion scaled by %.6g to the dimer's plane (--plate-m-per-px "
                       "%.6g / --m-per-px %.6g), about edge row %.3f",
-                      r.plate_scale.scale, args.plate_m_per_px, args.m_per_px,
+                      r.plate_scale.scale, *args.plate_m_per_px, args.m_per_px.value_or(std::nan("")),
                       r.plate_scale.edge_ref),
                "plate");
   } else if (r.plate_shift.applied && r.plate_scale.fitted) {
@@ -274,13 +274,14 @@ void ReportFilm(const TrackArgs& args, const Recording& rec, const SequenceResul
 }
 
 void ReportLengthScale(const TrackArgs& args, const Calibration& cal, Diagnostics* diag) {
-  if (std::isnan(args.m_per_px)) {
+  const double ar = *args.ar;  // called with --ar given
+  if (!args.m_per_px) {
     const LengthScale& ls = cal.length_scale;
     diag->Note("length_scale",
                Format("scale %.6g m/px from the dimer's length %.3f px (median of %zu frames, "
                       "--ar %g, --diameter %g m); tracked with a sphere radius of %.3f px, "
                       "settled in %zu passes over the first frames",
-                      cal.m_per_px, cal.length_px, cal.length_frames, args.ar, args.diameter,
+                      cal.m_per_px, cal.length_px, cal.length_frames, ar, args.diameter,
                       ls.radius_px, ls.passes.size()));
     const double outline = ls.outline_radius_px;
     if (std::abs(ls.radius_px / outline - 1.0) > kOutlineRadiusCheck) {
@@ -288,7 +289,7 @@ void ReportLengthScale(const TrackArgs& args, const Calibration& cal, Diagnostic
                  Format("the spheres' outline gives a radius of %.2f px, the dimer's length with "
                         "--ar %g one of %.2f px (%+.0f %%): check --ar (the length over the "
                         "diameter, not the centre distance over it)",
-                        outline, args.ar, ls.radius_px, 100.0 * (ls.radius_px / outline - 1.0)));
+                        outline, ar, ls.radius_px, 100.0 * (ls.radius_px / outline - 1.0)));
     }
     if (!ls.converged) {
       diag->Warn("length_scale_unsettled",
@@ -301,13 +302,13 @@ void ReportLengthScale(const TrackArgs& args, const Calibration& cal, Diagnostic
   }
   if (!std::isfinite(cal.length_px)) return;
   // Both given: the tracked length says which A_r the scale and diameter imply.
-  const double measured = cal.length_px * args.m_per_px / args.diameter + 1.0;
-  if (std::abs(measured - args.ar) > kLengthCheckTolerance * (args.ar - 1.0)) {
+  const double measured = cal.length_px * *args.m_per_px / args.diameter + 1.0;
+  if (std::abs(measured - ar) > kLengthCheckTolerance * (ar - 1.0)) {
     diag->Warn("length_check",
                Format("with --m-per-px %g and --diameter %g m the tracked length (%.3f px) gives "
                       "A_r = %.4f, not --ar %g (A_r - 1 %+.1f %%): one of the three is off",
-                      args.m_per_px, args.diameter, cal.length_px, measured, args.ar,
-                      100.0 * (measured - args.ar) / (args.ar - 1.0)));
+                      *args.m_per_px, args.diameter, cal.length_px, measured, ar,
+                      100.0 * (measured - ar) / (ar - 1.0)));
   }
 }
 

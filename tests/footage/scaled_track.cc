@@ -17,8 +17,8 @@ ScaledTrack TrackScaled(const std::string& folder, const std::string& output, do
   t.input = folder;
   t.output = output;
   t.force = true;
-  t.m_per_px = m_per_px;
-  t.ar = ar;
+  if (!std::isnan(m_per_px)) t.m_per_px = m_per_px;
+  if (!std::isnan(ar)) t.ar = ar;
   t.quiet = true;
   const auto start = std::chrono::steady_clock::now();
   tracking::RunTrack(t);

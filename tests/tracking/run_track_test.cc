@@ -153,7 +153,7 @@ TEST(RunTrack, PlateScaleMovesOnlyThePlateRowsAboutTheirMedian) {
   RunTrack(t);
   TrackArgs scaled = t;
   scaled.output = dir / "scaled.h5";
-  scaled.plate_m_per_px = 0.5 * t.m_per_px;
+  scaled.plate_m_per_px = 0.5 * *t.m_per_px;
   RunTrack(scaled);
   H5Reader a(t.output), b(scaled.output);
   const auto plate = a.ReadDoubles("/pixels/plate_row");
@@ -177,7 +177,7 @@ TEST(RunTrack, PlateScaleMovesOnlyThePlateRowsAboutTheirMedian) {
   EXPECT_EQ(a.AttrString("/", "plate_motion_scale_source"), "none");
   EXPECT_EQ(*a.AttrDouble("/", "plate_motion_scale"), 1.0);
   // The ratio needs the dimer plane's scale before tracking: from --diameter it comes after.
-  scaled.m_per_px = std::nan("");
+  scaled.m_per_px.reset();
   scaled.force = true;
   try {
     RunTrack(scaled);
@@ -196,7 +196,7 @@ TEST(RunTrack, TheDimersLengthGivesTheScale) {
   dimer::testing::TempDir dir;
   RenderDrift(dir, 24, Lighting::kReflect);
   TrackArgs t = Track(dir);
-  t.m_per_px = std::nan("");
+  t.m_per_px.reset();
   t.ar = testing::kAspectRatio;
   RunTrack(t);
   H5Reader h(t.output);
