@@ -5,6 +5,7 @@
 #include "common/trajectory_io.h"
 #include "sim/frames.h"
 #include "sim/initial_conditions.h"
+#include "sim/sample_rows.h"
 
 namespace dimer::sim {
 
@@ -12,7 +13,7 @@ namespace {
 std::string RestitutionName(RestitutionLaw law);
 
 constexpr const char* kStateUnits = "m,m,rad,m/s,m/s,rad/s";
-constexpr const char* kStateColumns = "x,z,theta,u,v,omega";
+constexpr const char* kStateColumnNames = "x,z,theta,u,v,omega";
 constexpr const char* kEventKindCodes =
     "impact=one sphere hits the plate,"
     "double_impact=both spheres in one impact (or one hits while the other rests),"
@@ -96,9 +97,9 @@ void WriteEvents(H5Writer& w, const Model& m, const std::vector<EventRecord>& ev
   w.WriteInt8("/events/sphere", sphere, {n});
   w.SetAttr("/events/sphere", "description", "the sphere(s) of the event");
   w.SetAttr("/events/sphere", "codes", "0=left,1=right,2=both");
-  w.WriteDoubles("/events/before", StateRows(before), {n, 6}, kStateUnits, kStateColumns);
+  w.WriteDoubles("/events/before", StateRows(before), {n, 6}, kStateUnits, kStateColumnNames);
   w.SetAttr("/events/before", "description", "lab-frame state just before the event");
-  w.WriteDoubles("/events/after", StateRows(after), {n, 6}, kStateUnits, kStateColumns);
+  w.WriteDoubles("/events/after", StateRows(after), {n, 6}, kStateUnits, kStateColumnNames);
   w.SetAttr("/events/after", "description", "lab-frame state just after the event");
 }
 
@@ -133,15 +134,11 @@ void WriteSimFile(const std::string& path, bool force, const SimOptions& o, cons
   {
     H5Writer w(out.temp_path(), storage);
     const Model& m = r.model;
-    Trajectory traj;
-    traj.Reserve(r.t.size());
-    for (size_t i = 0; i < r.t.size(); ++i) {
-      const State& q = r.lab[i];
-      traj.Append(r.t[i], TipLab(m, q, kLeft), TipLab(m, q, kRight),
-                  PlateSurfaceZ(m, r.t[i], q.x), q.th);
-    }
-    WriteTrajectory(w, traj);
-    w.WriteDoubles("/state", StateRows(r.lab), {r.lab.size(), 6}, kStateUnits, kStateColumns);
+    const SampleArrays samples{r.t.data(), r.lab.data()};
+    const hsize_t n = r.t.size();
+    WriteTrajectory(w, n, SampleTrajectoryRows(m, &samples));
+    w.WriteDoubleRows("/state", {n, kStateColumns}, StateRowFill(&samples), kStateUnits,
+                      kStateColumnNames);
     w.SetAttr("/state", "description",
               "lab-frame state at each sample: centre of mass (x, z), axis angle theta, their "
               "rates (u, v, omega)");
