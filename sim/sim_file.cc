@@ -82,8 +82,9 @@ void WriteEvents(H5Writer& w, const Model& m, const std::vector<EventRecord>& ev
     kind.push_back(ToString(e.kind));
     detail.push_back(e.detail);
     sphere.push_back(e.sphere);
-    before.push_back(LabFromPlate(m, e.t_local, e.before));
-    after.push_back(LabFromPlate(m, e.t_local, e.after));
+    const Model::PlatePhase p = m.Phase(e.t_local);
+    before.push_back(LabFromPlate(m, p, e.before));
+    after.push_back(LabFromPlate(m, p, e.after));
   }
   w.WriteDoubles("/events/t", t, {n}, "s");
   w.SetAttr("/events/t", "description", "time of each event");

@@ -210,11 +210,12 @@ void Runner::FlightStage(double t_lim) {
       dt_max = is.dt;
     }
   }
+  const FlightPath path(m_, q_, t_);
   while (sampler_.Next() <= t_ + dt_max) {
     const double ts = sampler_.Next();
-    sampler_.Record(ts, FlightPropagate(m_, q_, t_, ts - t_));
+    sampler_.Record(ts, path.At(ts - t_));
   }
-  q_ = FlightPropagate(m_, q_, t_, dt_max);
+  q_ = path.At(dt_max);
   t_ = hitter >= 0 ? t_ + dt_max : t_lim;
   TrackPenetration(q_, cfg_);
   if (hitter < 0) return;
