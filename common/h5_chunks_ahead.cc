@@ -40,17 +40,21 @@ void ChunksAhead::AddDoubleRows(const std::string& name, size_t columns, RowFill
 }
 
 void ChunksAhead::RowsReady(size_t rows) {
+  bool queued = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     for (size_t i = 0; i < datasets_.size(); ++i) {
       Dataset& d = datasets_[i];
       const size_t whole = rows / d.chunk_rows;
+      if (d.queued >= whole) continue;
       for (; d.queued < whole; ++d.queued) tasks_.emplace_back(i, d.queued);
       d.done.resize(whole);
       d.ready.resize(whole, 0);
+      queued = true;
     }
   }
-  queued_.notify_all();
+  // Called every period: waking the idle workers for nothing would cost more than the period.
+  if (queued) queued_.notify_all();
 }
 
 const ChunksAhead::Dataset* ChunksAhead::Find(const std::string& name) const {
