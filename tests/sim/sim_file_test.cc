@@ -16,6 +16,11 @@
 namespace dimer::sim {
 namespace {
 
+std::string Slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(f)), {});
+}
+
 TEST(SimFile, FollowsTheSharedLayoutWithEveryParameter) {
   dimer::testing::TempDir dir;
   SimOptions o;
@@ -162,16 +167,12 @@ namespace {
 TEST(SimFile, RunSimGivesHdf5sBytes) {
   dimer::testing::TempDir dir;
   setenv("SOURCE_DATE_EPOCH", "0", 1);
-  auto slurp = [](const std::string& p) {
-    std::ifstream f(p, std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(f)), {});
-  };
   SimOptions o;
   o.cycles = 500;
   H5WriteOptions hdf5;
   hdf5.direct_chunks = false;
   WriteSimFile(dir / "hdf5.h5", true, o, RunSimulation(o), hdf5);
-  const std::string oracle = slurp(dir / "hdf5.h5");
+  const std::string oracle = Slurp(dir / "hdf5.h5");
   for (int threads : {1, 2}) {
     SimRunArgs a;
     a.options = o;
@@ -180,7 +181,7 @@ TEST(SimFile, RunSimGivesHdf5sBytes) {
     a.progress = false;
     a.threads = threads;
     ASSERT_EQ(RunSim(a), 0);
-    EXPECT_TRUE(slurp(a.output) == oracle) << threads << " threads";
+    EXPECT_TRUE(Slurp(a.output) == oracle) << threads << " threads";
   }
   unsetenv("SOURCE_DATE_EPOCH");
 }
