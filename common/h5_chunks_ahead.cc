@@ -1,6 +1,7 @@
 #include "common/h5_chunks_ahead.h"
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
 
 namespace dimer {
@@ -25,6 +26,14 @@ size_t ChunksAhead::ChunkRows(size_t row_bytes, size_t chunk_bytes) {
 }
 
 void ChunksAhead::AddDoubleRows(const std::string& name, size_t columns, RowFill fill) {
+  Add(name, columns, std::move(fill));
+}
+
+void ChunksAhead::AddAppendedRows(const std::string& name, size_t columns) {
+  Add(name, columns, RowFill());
+}
+
+void ChunksAhead::Add(const std::string& name, size_t columns, RowFill fill) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (Find(name)) throw std::logic_error("ChunksAhead: dataset added twice: " + name);
   for (const Dataset& d : datasets_) {  // a worker may hold a dataset's address
@@ -39,18 +48,47 @@ void ChunksAhead::AddDoubleRows(const std::string& name, size_t columns, RowFill
   datasets_.push_back(std::move(d));
 }
 
+// With the lock held.
+void ChunksAhead::Queue(size_t dataset, std::vector<double> rows) {
+  Dataset& d = datasets_[dataset];
+  tasks_.push_back({dataset, d.queued, std::move(rows)});
+  ++d.queued;
+  d.done.resize(d.queued);
+  d.ready.resize(d.queued, 0);
+}
+
+void ChunksAhead::AppendRows(const std::string& name, const double* rows, size_t count) {
+  bool queued = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    Dataset* d = const_cast<Dataset*>(Find(name));
+    if (!d || d->fill) throw std::logic_error("ChunksAhead: no appended dataset " + name);
+    const size_t columns = d->row_bytes / sizeof(double), whole = d->chunk_rows * columns;
+    for (const double* end = rows + count * columns; rows < end;) {
+      const size_t take = std::min<size_t>(whole - d->partial.size(), end - rows);
+      d->partial.insert(d->partial.end(), rows, rows + take);
+      rows += take;
+      if (d->partial.size() == whole) {
+        Queue(static_cast<size_t>(d - datasets_.data()), std::move(d->partial));
+        d->partial = {};
+        d->partial.reserve(whole);
+        queued = true;
+      }
+    }
+  }
+  if (queued) queued_.notify_all();
+}
+
 void ChunksAhead::RowsReady(size_t rows) {
   bool queued = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     for (size_t i = 0; i < datasets_.size(); ++i) {
-      Dataset& d = datasets_[i];
-      const size_t whole = rows / d.chunk_rows;
-      if (d.queued >= whole) continue;
-      for (; d.queued < whole; ++d.queued) tasks_.emplace_back(i, d.queued);
-      d.done.resize(whole);
-      d.ready.resize(whole, 0);
-      queued = true;
+      if (!datasets_[i].fill) continue;  // appended rows: AppendRows queues them
+      while (datasets_[i].queued < rows / datasets_[i].chunk_rows) {
+        Queue(i, {});
+        queued = true;
+      }
     }
   }
   // Called every period: waking the idle workers for nothing would cost more than the period.
@@ -83,23 +121,27 @@ std::vector<uint8_t> ChunksAhead::Take(const std::string& name, size_t k) {
 
 void ChunksAhead::Work() {
   for (;;) {
-    std::pair<size_t, size_t> task;
+    Task task;
     const Dataset* d;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       queued_.wait(lock, [&] { return stop_ || !tasks_.empty(); });
       if (stop_) return;
-      task = tasks_.front();
+      task = std::move(tasks_.front());
       tasks_.pop_front();
-      d = &datasets_[task.first];  // datasets_ no longer grows once rows are queued
+      d = &datasets_[task.dataset];  // datasets_ no longer grows once rows are queued
     }
     const size_t bytes = d->chunk_rows * d->row_bytes;
-    const ChunkFill fill = [d](size_t k, size_t, uint8_t* out) {
-      d->fill(k * d->chunk_rows, d->chunk_rows, reinterpret_cast<double*>(out));
+    const ChunkFill fill = [d, &task](size_t k, size_t, uint8_t* out) {
+      if (task.rows.empty()) {
+        d->fill(k * d->chunk_rows, d->chunk_rows, reinterpret_cast<double*>(out));
+      } else {
+        std::memcpy(out, task.rows.data(), task.rows.size() * sizeof(double));
+      }
     };
     std::vector<uint8_t> out;
     try {
-      out = FilterChunk(fill, task.second, bytes, bytes, d->elem_size, deflate_level_);
+      out = FilterChunk(fill, task.chunk, bytes, bytes, d->elem_size, deflate_level_);
     } catch (...) {
       std::lock_guard<std::mutex> lock(mutex_);
       if (!failure_) failure_ = std::current_exception();
@@ -108,9 +150,9 @@ void ChunksAhead::Work() {
     }
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      Dataset& w = datasets_[task.first];
-      w.done[task.second] = std::move(out);
-      w.ready[task.second] = 1;
+      Dataset& w = datasets_[task.dataset];
+      w.done[task.chunk] = std::move(out);
+      w.ready[task.chunk] = 1;
     }
     filtered_.notify_all();
   }

@@ -36,8 +36,15 @@ class ChunksAhead {
   // workers and may read only rows that RowsReady published. Every dataset is added before the
   // first RowsReady.
   void AddDoubleRows(const std::string& name, size_t columns, RowFill fill);
-  // Rows [0, rows) of every dataset are final: their whole chunks are queued for the workers.
+  // Rows [0, rows) of every dataset added with a fill are final: their whole chunks are queued
+  // for the workers.
   void RowsReady(size_t rows);
+
+  // A dataset of doubles whose rows the producer hands over as they come (a log that grows by
+  // reallocation, which the workers could not read in place): each whole chunk is copied out
+  // and queued.
+  void AddAppendedRows(const std::string& name, size_t columns);
+  void AppendRows(const std::string& name, const double* rows, size_t count);
 
   // For the writer of `name` in chunks of `chunk_rows` rows of `elem_size` elements: how many
   // leading chunks come from Take (0 for a dataset not added or of another shape).
@@ -53,11 +60,18 @@ class ChunksAhead {
   struct Dataset {
     std::string name;
     size_t elem_size, row_bytes, chunk_rows;
-    RowFill fill;
+    RowFill fill;                // empty for appended rows
+    std::vector<double> partial;  // appended rows of the chunk not yet whole
     size_t queued = 0;  // chunks 0 .. queued-1 are queued or done
     std::vector<std::vector<uint8_t>> done;
     std::vector<char> ready;
   };
+  struct Task {
+    size_t dataset, chunk;
+    std::vector<double> rows;  // an appended chunk's rows; empty: the dataset's fill makes them
+  };
+  void Add(const std::string& name, size_t columns, RowFill fill);
+  void Queue(size_t dataset, std::vector<double> rows);
   void Work();
   const Dataset* Find(const std::string& name) const;
 
@@ -66,7 +80,7 @@ class ChunksAhead {
   std::vector<Dataset> datasets_;
   mutable std::mutex mutex_;
   std::condition_variable queued_, filtered_;
-  std::deque<std::pair<size_t, size_t>> tasks_;  // (dataset, chunk)
+  std::deque<Task> tasks_;
   bool stop_ = false;
   std::exception_ptr failure_;
   std::vector<std::thread> workers_;

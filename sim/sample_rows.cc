@@ -29,11 +29,14 @@ TrajectoryRows SampleTrajectoryRows(const Model& m, const SampleArrays* s) {
   return r;
 }
 
+void LabStateRow(const State& q, double* out) {
+  out[0] = q.x, out[1] = q.z, out[2] = q.th, out[3] = q.u, out[4] = q.v, out[5] = q.w;
+}
+
 RowFill StateRowFill(const SampleArrays* s) {
   return [s](size_t first, size_t rows, double* out) {
-    for (size_t i = first; i < first + rows; ++i, out += kStateColumns) {
-      const State& q = s->lab[i];
-      out[0] = q.x, out[1] = q.z, out[2] = q.th, out[3] = q.u, out[4] = q.v, out[5] = q.w;
+    for (size_t i = first; i < first + rows; ++i, out += kLabStateColumns) {
+      LabStateRow(s->lab[i], out);
     }
   };
 }
@@ -45,7 +48,7 @@ void AddSampleDatasets(ChunksAhead* ahead, const Model& m, const SampleArrays* s
   ahead->AddDoubleRows("/tips/right", 2, r.tip_right);
   ahead->AddDoubleRows("/plate_z", 1, r.plate_z);
   ahead->AddDoubleRows("/theta", 1, r.theta);
-  ahead->AddDoubleRows("/state", kStateColumns, StateRowFill(s));
+  ahead->AddDoubleRows("/state", kLabStateColumns, StateRowFill(s));
 }
 
 }  // namespace dimer::sim

@@ -23,7 +23,9 @@ struct SampleArrays {
 TrajectoryRows SampleTrajectoryRows(const Model& m, const SampleArrays* s);
 // /state: the lab state x, z, theta, u, v, omega.
 RowFill StateRowFill(const SampleArrays* s);
-inline constexpr size_t kStateColumns = 6;
+// A lab state as a row of /state (and of /events/before and /events/after).
+inline constexpr size_t kLabStateColumns = 6;
+void LabStateRow(const State& q, double* out);
 
 // Every sample dataset above, for `ahead` (names as the file has them).
 void AddSampleDatasets(ChunksAhead* ahead, const Model& m, const SampleArrays* s);

@@ -3,7 +3,7 @@
 #include "common/atomic_output.h"
 #include "common/h5_file.h"
 #include "common/trajectory_io.h"
-#include "sim/frames.h"
+#include "sim/event_rows.h"
 #include "sim/initial_conditions.h"
 #include "sim/sample_rows.h"
 
@@ -64,29 +64,19 @@ std::string RestitutionName(RestitutionLaw law) {
   return "?";
 }
 
-std::vector<double> StateRows(const std::vector<State>& states) {
-  std::vector<double> out;
-  out.reserve(6 * states.size());
-  for (const State& q : states) out.insert(out.end(), {q.x, q.z, q.th, q.u, q.v, q.w});
-  return out;
-}
-
+// The numeric columns come from row functions (event_rows.h), made on the compressing threads
+// or taken from RunSim's chunks filtered during the run; the strings are short and cheap.
 void WriteEvents(H5Writer& w, const Model& m, const std::vector<EventRecord>& ev) {
   const hsize_t n = ev.size();
-  std::vector<double> t;
   std::vector<std::string> kind, detail;
   std::vector<int8_t> sphere;
-  std::vector<State> before, after;
   for (const EventRecord& e : ev) {
-    t.push_back(e.t);
     kind.push_back(ToString(e.kind));
     detail.push_back(e.detail);
     sphere.push_back(e.sphere);
-    const Model::PlatePhase p = m.Phase(e.t_local);
-    before.push_back(LabFromPlate(m, p, e.before));
-    after.push_back(LabFromPlate(m, p, e.after));
   }
-  w.WriteDoubles("/events/t", t, {n}, "s");
+  const EventLogRows rows = EventLogFills(m, &ev);
+  w.WriteDoubleRows("/events/t", {n}, rows.t, "s");
   w.SetAttr("/events/t", "description", "time of each event");
   w.WriteStrings("/events/kind", kind);
   w.SetAttr("/events/kind", "description", "what happened");
@@ -98,9 +88,11 @@ void WriteEvents(H5Writer& w, const Model& m, const std::vector<EventRecord>& ev
   w.WriteInt8("/events/sphere", sphere, {n});
   w.SetAttr("/events/sphere", "description", "the sphere(s) of the event");
   w.SetAttr("/events/sphere", "codes", "0=left,1=right,2=both");
-  w.WriteDoubles("/events/before", StateRows(before), {n, 6}, kStateUnits, kStateColumnNames);
+  w.WriteDoubleRows("/events/before", {n, kLabStateColumns}, rows.before, kStateUnits,
+                    kStateColumnNames);
   w.SetAttr("/events/before", "description", "lab-frame state just before the event");
-  w.WriteDoubles("/events/after", StateRows(after), {n, 6}, kStateUnits, kStateColumnNames);
+  w.WriteDoubleRows("/events/after", {n, kLabStateColumns}, rows.after, kStateUnits,
+                    kStateColumnNames);
   w.SetAttr("/events/after", "description", "lab-frame state just after the event");
 }
 
@@ -138,7 +130,7 @@ void WriteSimFile(const std::string& path, bool force, const SimOptions& o, cons
     const SampleArrays samples{r.t.data(), r.lab.data()};
     const hsize_t n = r.t.size();
     WriteTrajectory(w, n, SampleTrajectoryRows(m, &samples));
-    w.WriteDoubleRows("/state", {n, kStateColumns}, StateRowFill(&samples), kStateUnits,
+    w.WriteDoubleRows("/state", {n, kLabStateColumns}, StateRowFill(&samples), kStateUnits,
                       kStateColumnNames);
     w.SetAttr("/state", "description",
               "lab-frame state at each sample: centre of mass (x, z), axis angle theta, their "
