@@ -64,6 +64,7 @@ int RunSim(const SimRunArgs& args) {
   storage.threads = args.threads;
   const Model model = Model::FromOptions(args.options);
   SampleArrays samples;
+  SimResult r;  // before `ahead`: its workers, which read r's samples, stop before r goes
   ChunksAhead ahead(storage);
   AddSampleDatasets(&ahead, model, &samples);
   EventRowsAhead events(&ahead, model);
@@ -74,7 +75,7 @@ int RunSim(const SimRunArgs& args) {
     ahead.RowsReady(n);
     events.Flush();
   };
-  const SimResult r = RunSimulation(args.options, controls);
+  r = RunSimulation(args.options, controls);  // moved: the samples keep their addresses
   meter.Finish(static_cast<double>(r.periods.size()));
   storage.ahead = &ahead;
   WriteSimFile(args.output, args.force, args.options, r, storage);
