@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "common/h5_chunk_filter.h"
 #include "common/h5_file.h"
 #include "sim/run_sim.h"
 
@@ -137,44 +138,147 @@ std::vector<std::vector<uint8_t>> ShuffledChunks(const std::vector<Dataset>& dat
   return chunks;
 }
 
-void EncoderTable(const std::vector<Dataset>& data) {
+// One chunk's deflate by an encoder: zlib's compress2 (HDF5's H5Zdeflate.c), zlib with one
+// z_stream reset per chunk instead of allocated (the same stream parameters, so it must give
+// the same bytes), or libdeflate.
+enum class Encoder { kCompress2, kZlibReset, kLibdeflate };
+const char* kEncoderNames[] = {"zlib 1.2.13 compress2", "zlib 1.2.13, stream reset",
+                               "libdeflate 1.14"};
+
+struct Deflater {
+  Deflater(Encoder encoder, int deflate_level) : e(encoder), level(deflate_level) {
+    if (e == Encoder::kZlibReset) deflateInit(&zs, level);
+    if (e == Encoder::kLibdeflate) ld = libdeflate_alloc_compressor(level);
+  }
+  ~Deflater() {
+    if (e == Encoder::kZlibReset) deflateEnd(&zs);
+    if (ld) libdeflate_free_compressor(ld);
+  }
+  std::vector<uint8_t> operator()(const std::vector<uint8_t>& in) {
+    uLongf n = compressBound(static_cast<uLong>(in.size()));
+    std::vector<uint8_t> out(n);
+    if (e == Encoder::kCompress2) {
+      compress2(out.data(), &n, in.data(), in.size(), level);
+    } else if (e == Encoder::kZlibReset) {
+      deflateReset(&zs);
+      zs.next_in = const_cast<uint8_t*>(in.data());
+      zs.avail_in = static_cast<uInt>(in.size());
+      zs.next_out = out.data();
+      zs.avail_out = static_cast<uInt>(n);
+      deflate(&zs, Z_FINISH);
+      n = zs.total_out;
+    } else {
+      n = libdeflate_zlib_compress(ld, in.data(), in.size(), out.data(), out.size());
+    }
+    out.resize(n);
+    return out;
+  }
+  Encoder e;
+  int level;
+  z_stream zs{};
+  libdeflate_compressor* ld = nullptr;
+};
+
+// The file's double datasets written with `e`'s deflate inside HDF5's shuffle -> deflate ->
+// Fletcher32 chunks (H5Dwrite_chunk, 256 KiB chunks of whole rows), then read by h5dump and by
+// the HDF5 library through its own filters: true when both read every value back exactly.
+bool Hdf5ReadsIt(const std::string& path, const std::vector<Dataset>& data, Encoder e) {
+  Deflater deflater(e, 1);
+  hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  for (const Dataset& d : data) {
+    if (d.type != H5Reader::TypeClass::kFloat || d.doubles.empty()) continue;
+    const size_t row = d.dims.size() > 1 ? d.dims[1] : 1;
+    const hsize_t rows = std::min<hsize_t>(d.dims[0], std::max<size_t>(1, 32768 / row));
+    Dims chunk = d.dims;
+    chunk[0] = rows;
+    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data());
+    H5Pset_shuffle(dcpl);
+    H5Pset_deflate(dcpl, 1);
+    H5Pset_fletcher32(dcpl);
+    hid_t space = H5Screate_simple(static_cast<int>(d.dims.size()), d.dims.data(), nullptr);
+    hid_t ds = H5Dcreate2(file, ("/" + std::to_string(&d - data.data())).c_str(),
+                          H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    const size_t n = rows * row;  // doubles in a chunk
+    for (size_t at = 0; at < d.doubles.size(); at += n) {
+      std::vector<uint8_t> raw(8 * n, 0), shuffled(8 * n);
+      std::memcpy(raw.data(), d.doubles.data() + at, 8 * std::min(n, d.doubles.size() - at));
+      for (size_t j = 0; j < 8; ++j) {
+        for (size_t i = 0; i < n; ++i) shuffled[j * n + i] = raw[i * 8 + j];
+      }
+      std::vector<uint8_t> out = deflater(n > 1 ? shuffled : raw);
+      const uint32_t sum = Hdf5Fletcher32(out.data(), out.size());
+      for (int b = 0; b < 4; ++b) out.push_back(static_cast<uint8_t>(sum >> (8 * b)));
+      Dims offset(d.dims.size(), 0);
+      offset[0] = at / row;
+      H5Dwrite_chunk(ds, H5P_DEFAULT, 0, offset.data(), out.size(), out.data());
+    }
+    H5Dclose(ds);
+    H5Sclose(space);
+    H5Pclose(dcpl);
+  }
+  H5Fclose(file);
+  if (std::system(("h5dump '" + path + "' > /dev/null 2>&1").c_str()) != 0) return false;
+  H5Reader r(path);
+  for (const Dataset& d : data) {
+    if (d.type != H5Reader::TypeClass::kFloat || d.doubles.empty()) continue;
+    if (r.ReadDoubles("/" + std::to_string(&d - data.data())) != d.doubles) return false;
+  }
+  return true;
+}
+
+// h5py (its own build of HDF5's filters) reads every dataset of `path` equal to `reference`'s:
+// "yes", "NO", or "-" when no python3 on the PATH or in /usr/bin has h5py.
+const char* H5pyReadsIt(const std::string& path, const std::string& reference) {
+  const std::string script =
+      "import sys, h5py, numpy; a = h5py.File(sys.argv[1]); b = h5py.File(sys.argv[2]); "
+      "sys.exit(0 if all(numpy.array_equal(a[k][...], b[k][...]) for k in b) else 1)";
+  for (const char* python : {"python3", "/usr/bin/python3"}) {
+    const std::string probe = std::string(python) + " -c 'import h5py' > /dev/null 2>&1";
+    if (std::system(probe.c_str()) != 0) continue;
+    const std::string run = std::string(python) + " -c '" + script + "' '" + path + "' '" +
+                            reference + "' > /dev/null 2>&1";
+    return std::system(run.c_str()) == 0 ? "yes" : "NO";
+  }
+  return "-";
+}
+
+void EncoderTable(const std::vector<Dataset>& data, const std::string& dir) {
   const std::vector<std::vector<uint8_t>> chunks = ShuffledChunks(data);
-  std::printf("\nthe same shuffled 256 KiB chunks (%zu), deflate by two encoders\n\n",
+  std::printf("\nthe same shuffled 256 KiB chunks (%zu), deflate by three encoders\n\n",
               chunks.size());
-  std::printf("| encoder | level | compressed MB | CPU s (best of 3) | zlib inflates it back |\n");
-  std::printf("|---|---:|---:|---:|---|\n");
-  for (int level : {1, 2, 3, 6}) {
-    for (int libdeflate = 0; libdeflate < 2; ++libdeflate) {
+  std::printf("| encoder | level | compressed MB | CPU s (best of 3) | same bytes as compress2 | "
+              "read back by zlib, h5dump, libhdf5; h5py |\n");
+  std::printf("|---|---:|---:|---:|---|---|\n");
+  for (int level : {1, 6}) {
+    std::vector<std::vector<uint8_t>> reference;
+    for (Encoder e : {Encoder::kCompress2, Encoder::kZlibReset, Encoder::kLibdeflate}) {
       double best = 1e30, out_bytes = 0;
       bool round_trip = true;
+      std::vector<std::vector<uint8_t>> out(chunks.size());
       for (int rep = 0; rep < 3; ++rep) {
-        libdeflate_compressor* c = libdeflate_alloc_compressor(level);
-        std::vector<std::vector<uint8_t>> out(chunks.size());
+        Deflater deflater(e, level);
         const double cpu0 = CpuSeconds();
-        for (size_t k = 0; k < chunks.size(); ++k) {
-          uLongf n = compressBound(static_cast<uLong>(chunks[k].size()));
-          out[k].resize(n);
-          if (libdeflate) {
-            n = libdeflate_zlib_compress(c, chunks[k].data(), chunks[k].size(), out[k].data(),
-                                         out[k].size());
-          } else {
-            compress2(out[k].data(), &n, chunks[k].data(), chunks[k].size(), level);
-          }
-          out[k].resize(n);
-        }
+        for (size_t k = 0; k < chunks.size(); ++k) out[k] = deflater(chunks[k]);
         best = std::min(best, CpuSeconds() - cpu0);
-        libdeflate_free_compressor(c);
-        out_bytes = 0;
-        for (size_t k = 0; k < chunks.size(); ++k) {
-          out_bytes += out[k].size();
-          std::vector<uint8_t> back(chunks[k].size());
-          uLongf n = back.size();
-          round_trip &= uncompress(back.data(), &n, out[k].data(), out[k].size()) == Z_OK &&
-                        back == chunks[k];
-        }
       }
-      std::printf("| %s | %d | %.2f | %.3f | %s |\n", libdeflate ? "libdeflate 1.14" : "zlib 1.2.13",
-                  level, out_bytes / 1e6, best, round_trip ? "yes" : "NO");
+      out_bytes = 0;
+      for (size_t k = 0; k < chunks.size(); ++k) {
+        out_bytes += out[k].size();
+        std::vector<uint8_t> back(chunks[k].size());
+        uLongf n = back.size();
+        round_trip &= uncompress(back.data(), &n, out[k].data(), out[k].size()) == Z_OK &&
+                      back == chunks[k];
+      }
+      if (e == Encoder::kCompress2) reference = out;
+      const std::string file = dir + (e == Encoder::kCompress2 ? "/zlib.h5" : "/encoder.h5");
+      const bool hdf5 = level != 1 || Hdf5ReadsIt(file, data, e);
+      const char* h5py = level != 1 ? "" : H5pyReadsIt(file, dir + "/zlib.h5");
+      std::printf("| %s | %d | %.2f | %.3f | %s | %s%s%s |\n",
+                  kEncoderNames[static_cast<int>(e)], level, out_bytes / 1e6, best,
+                  e == Encoder::kCompress2 ? "-" : out == reference ? "yes" : "no",
+                  !round_trip ? "NO" : level != 1 ? "zlib: yes" : hdf5 ? "yes" : "NO",
+                  level != 1 ? "" : "; h5py: ", h5py);
       std::fflush(stdout);
     }
   }
@@ -236,7 +340,7 @@ int main(int argc, char** argv) {
     }
   }
 #ifdef DIMERLAB_BENCH_LIBDEFLATE
-  EncoderTable(data);
+  EncoderTable(data, dir);
 #endif
   std::filesystem::remove_all(dir);
   return 0;

@@ -3,11 +3,11 @@
 // rest state costs (almost) nothing per period. --baseline compares it with another build
 // measured in the same run.
 //
-// A second table times the whole `dimerlab sim` (RunSim: simulate, then write the sim file) by
-// CPU time per plate period, all threads counted, and wall time, with the file's chunks
-// compressed on one thread and on every core; beside it the MuJoCo model of the same dimer
-// (docs/BENCHMARKS.md, bench_sim_speed: 4.9-6.1 ms CPU per period at h = 2e-5 s, measured
-// outside the project, MuJoCo not being a dependency).
+// A second table times the whole `dimerlab sim` (RunSim: simulate while the file's chunks are
+// compressed, then write the sim file) by CPU time per plate period, all threads counted, and
+// wall time, compressing on one thread and on every core; beside it the MuJoCo model of the
+// same dimer (docs/BENCHMARKS.md, bench_sim_speed: 4.9-6.1 ms CPU per period at h = 2e-5 s,
+// measured outside the project, MuJoCo not being a dependency).
 //
 // Usage: bench_sim_speed [periods] [--baseline OLD_BENCH_BINARY] [--repeats N]
 //   --repeats N also sets how many times each case of the second table runs (default 3).

@@ -45,11 +45,10 @@ void Deflate(const std::vector<uint8_t>& in, int level, std::vector<uint8_t>* ou
   out->resize(out_len);
 }
 
-std::vector<uint8_t> Filter(const uint8_t* raw, size_t data_bytes, size_t chunk_bytes,
+std::vector<uint8_t> Filter(const ChunkFill& fill, size_t k, size_t n, size_t chunk_bytes,
                             size_t elem_size, int deflate_level, Scratch* s) {
-  const size_t n = std::min(data_bytes, chunk_bytes);
   s->chunk.resize(chunk_bytes);
-  std::memcpy(s->chunk.data(), raw, n);
+  fill(k, n, s->chunk.data());
   std::memset(s->chunk.data() + n, 0, chunk_bytes - n);
   const std::vector<uint8_t>* stage = &s->chunk;
   if (Shuffle(*stage, elem_size, &s->shuffled)) stage = &s->shuffled;
@@ -99,19 +98,39 @@ int FilterThreads(int threads) {
                      : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
+std::vector<uint8_t> FilterChunk(const ChunkFill& fill, size_t k, size_t n, size_t chunk_bytes,
+                                 size_t elem_size, int deflate_level) {
+  thread_local Scratch s;
+  return Filter(fill, k, n, chunk_bytes, elem_size, deflate_level, &s);
+}
+
 bool FilterChunksInOrder(const uint8_t* data, size_t data_bytes, size_t chunk_bytes,
                          size_t elem_size, int deflate_level, int threads,
-                         const std::function<bool(const std::vector<uint8_t>&)>& write) {
+                         const ChunkWrite& write) {
+  const ChunkFill copy = [&](size_t k, size_t n, uint8_t* out) {
+    std::memcpy(out, data + k * chunk_bytes, n);
+  };
+  return FilterChunksInOrder(copy, data_bytes, chunk_bytes, elem_size, deflate_level, threads,
+                             write);
+}
+
+bool FilterChunksInOrder(const ChunkFill& fill, size_t data_bytes, size_t chunk_bytes,
+                         size_t elem_size, int deflate_level, int threads,
+                         const ChunkWrite& write, size_t ahead_count,
+                         const std::function<std::vector<uint8_t>(size_t k)>& ahead) {
   const size_t count = (data_bytes + chunk_bytes - 1) / chunk_bytes;
+  ahead_count = std::min(ahead_count, count);
   auto filter = [&](size_t k, Scratch* s) {
     const size_t begin = k * chunk_bytes;
-    return Filter(data + begin, data_bytes - begin, chunk_bytes, elem_size, deflate_level, s);
+    const size_t n = std::min(data_bytes - begin, chunk_bytes);
+    return Filter(fill, k, n, chunk_bytes, elem_size, deflate_level, s);
   };
-  const size_t workers = std::min<size_t>(static_cast<size_t>(FilterThreads(threads)), count);
+  const size_t workers =
+      std::min<size_t>(static_cast<size_t>(FilterThreads(threads)), count - ahead_count);
   if (workers <= 1) {  // on this thread, one chunk at a time
     Scratch s;
     for (size_t k = 0; k < count; ++k) {
-      if (!write(filter(k, &s))) return false;
+      if (!write(k < ahead_count ? ahead(k) : filter(k, &s))) return false;
     }
     return true;
   }
@@ -122,7 +141,7 @@ bool FilterChunksInOrder(const uint8_t* data, size_t data_bytes, size_t chunk_by
   std::vector<char> ready(count, 0);
   std::mutex mutex;
   std::condition_variable filled, room;
-  size_t next = 0, written = 0;
+  size_t next = ahead_count, written = ahead_count;
   bool stop = false;
   std::exception_ptr failure;
   auto work = [&] {
@@ -157,6 +176,16 @@ bool FilterChunksInOrder(const uint8_t* data, size_t data_bytes, size_t chunk_by
   bool ok = true;
   for (size_t k = 0; k < count && ok; ++k) {
     std::vector<uint8_t> bytes;
+    if (k < ahead_count) {  // the workers go on past ahead_count meanwhile
+      try {
+        ok = write(ahead(k));
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!failure) failure = std::current_exception();
+        ok = false;
+      }
+      continue;
+    }
     {
       std::unique_lock<std::mutex> lock(mutex);
       filled.wait(lock, [&] { return stop || ready[k]; });

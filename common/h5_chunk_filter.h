@@ -32,9 +32,25 @@ namespace dimer {
 // zeros make up the rest. `deflate_level` 0 leaves deflate out (shuffle and checksum only).
 // Chunks are independent: the bytes do not depend on `threads`. Returns false as soon as
 // `write` does.
+using ChunkWrite = std::function<bool(const std::vector<uint8_t>&)>;
 bool FilterChunksInOrder(const uint8_t* data, size_t data_bytes, size_t chunk_bytes,
                          size_t elem_size, int deflate_level, int threads,
-                         const std::function<bool(const std::vector<uint8_t>&)>& write);
+                         const ChunkWrite& write);
+
+// The same with the raw bytes made on demand: `fill(k, n, out)` writes the first n bytes of
+// chunk k (n = chunk_bytes but for a partial last chunk) on the worker that filters it, so that
+// rows derived from other data are made in parallel and never held whole. Chunks k < ahead_count
+// come filtered from `ahead(k)` instead (h5_chunks_ahead.h: filtered while the data was still
+// being produced).
+using ChunkFill = std::function<void(size_t k, size_t n, uint8_t* out)>;
+bool FilterChunksInOrder(const ChunkFill& fill, size_t data_bytes, size_t chunk_bytes,
+                         size_t elem_size, int deflate_level, int threads,
+                         const ChunkWrite& write, size_t ahead_count = 0,
+                         const std::function<std::vector<uint8_t>(size_t k)>& ahead = {});
+
+// One chunk through the three filters, on the calling thread: what the workers above run.
+std::vector<uint8_t> FilterChunk(const ChunkFill& fill, size_t k, size_t n, size_t chunk_bytes,
+                                 size_t elem_size, int deflate_level);
 
 // How far the workers may run ahead of the writer, chunks per thread: enough that a worker
 // never waits for the write of a chunk, few enough that the memory held stays a few chunks.

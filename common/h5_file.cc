@@ -1,10 +1,12 @@
 #include "common/h5_file.h"
 
 #include <algorithm>
+#include <cstring>
 #include <numeric>
 
 #include "common/error.h"
 #include "common/h5_chunk_filter.h"
+#include "common/h5_chunks_ahead.h"
 
 namespace dimer {
 namespace {
@@ -49,8 +51,7 @@ Dims ChunkDims(const Dims& dims, size_t elem_size, size_t chunk_bytes) {
   Dims chunk = dims;
   size_t row_bytes = elem_size;
   for (size_t i = 1; i < dims.size(); ++i) row_bytes *= static_cast<size_t>(dims[i]);
-  const hsize_t rows = std::max<hsize_t>(1, chunk_bytes / std::max<size_t>(row_bytes, 1));
-  chunk[0] = std::min(dims[0], rows);
+  chunk[0] = std::min<hsize_t>(dims[0], ChunksAhead::ChunkRows(row_bytes, chunk_bytes));
   return chunk;
 }
 
@@ -126,7 +127,7 @@ void H5Writer::EnsureParents(const std::string& name) {
 }
 
 void H5Writer::Write(const std::string& name, hid_t mem_type, hid_t file_type, const void* data,
-                     const Dims& dims) {
+                     const Dims& dims, const RowFill* rows) {
   EnsureParents(name);
   hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
   hid_t dcpl = DatasetPlist(dims, file_type, options_);
@@ -137,8 +138,12 @@ void H5Writer::Write(const std::string& name, hid_t mem_type, hid_t file_type, c
   if (ds >= 0 && Count(dims) == 0) {
     st = 0;
   } else if (ds >= 0 && options_.direct_chunks && H5Tequal(mem_type, file_type) > 0) {
-    st = WriteFilteredChunks(ds, static_cast<const uint8_t*>(data), dims,
+    st = WriteFilteredChunks(ds, name, static_cast<const uint8_t*>(data), rows, dims,
                              H5Tget_size(file_type));
+  } else if (ds >= 0 && rows) {  // HDF5's pipeline (the oracle): all the rows at once
+    std::vector<double> all(Count(dims));
+    (*rows)(0, dims[0], all.data());
+    st = H5Dwrite(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, all.data());
   } else if (ds >= 0) {
     st = H5Dwrite(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
   }
@@ -147,22 +152,34 @@ void H5Writer::Write(const std::string& name, hid_t mem_type, hid_t file_type, c
   if (st < 0) throw InputError(path_ + ": cannot write dataset " + name);
 }
 
-// The chunks of DatasetPlist, filtered here on worker threads and stored as they are (the
-// memory and file types are the same: no conversion). Written in chunk order, as HDF5's
-// pipeline allocates them, so the file's layout is the same too.
-herr_t H5Writer::WriteFilteredChunks(hid_t ds, const uint8_t* data, const Dims& dims,
-                                     size_t elem_size) {
+// The chunks of DatasetPlist, filtered here on worker threads (or taken from options_.ahead)
+// and stored as they are (the memory and file types are the same: no conversion). Written in
+// chunk order, as HDF5's pipeline allocates them, so the file's layout is the same too.
+herr_t H5Writer::WriteFilteredChunks(hid_t ds, const std::string& name, const uint8_t* data,
+                                     const RowFill* rows, const Dims& dims, size_t elem_size) {
   const Dims chunk = ChunkDims(dims, elem_size, options_.chunk_bytes);
   const size_t chunk_bytes = Count(chunk) * elem_size;
+  const size_t row_bytes = chunk_bytes / chunk[0];
+  const ChunkFill fill = [&](size_t k, size_t n, uint8_t* out) {
+    if (rows) {
+      (*rows)(k * chunk[0], n / row_bytes, reinterpret_cast<double*>(out));
+    } else {
+      std::memcpy(out, data + k * chunk_bytes, n);
+    }
+  };
+  ChunksAhead* ahead = rows ? options_.ahead : nullptr;
+  const size_t ahead_count = ahead ? ahead->Count(name, elem_size, chunk[0]) : 0;
   Dims offset(dims.size(), 0);
   const bool ok = FilterChunksInOrder(
-      data, Count(dims) * elem_size, chunk_bytes, elem_size, options_.deflate_level,
-      options_.threads, [&](const std::vector<uint8_t>& bytes) {
+      fill, Count(dims) * elem_size, chunk_bytes, elem_size, options_.deflate_level,
+      options_.threads,
+      [&](const std::vector<uint8_t>& bytes) {
         const bool written = H5Dwrite_chunk(ds, H5P_DEFAULT, 0, offset.data(), bytes.size(),
                                             bytes.data()) >= 0;
         offset[0] += chunk[0];
         return written;
-      });
+      },
+      ahead_count, [&](size_t k) { return ahead->Take(name, k); });
   if (!ok) return -1;
   return 0;
 }
@@ -172,6 +189,15 @@ void H5Writer::WriteDoubles(const std::string& name, const std::vector<double>& 
                             const std::string& columns) {
   if (Count(dims) != data.size()) throw std::logic_error("WriteDoubles: size mismatch " + name);
   Write(name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, data.data(), dims);
+  SetUnitsAndColumns(name, units, columns);
+}
+void H5Writer::WriteDoubleRows(const std::string& name, const Dims& dims, const RowFill& fill,
+                               const std::string& units, const std::string& columns) {
+  Write(name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, nullptr, dims, &fill);
+  SetUnitsAndColumns(name, units, columns);
+}
+void H5Writer::SetUnitsAndColumns(const std::string& name, const std::string& units,
+                                  const std::string& columns) {
   if (!units.empty()) SetAttr(name, "units", units);
   if (!columns.empty()) SetAttr(name, "columns", columns);
 }

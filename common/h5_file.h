@@ -18,6 +18,7 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,6 +26,7 @@
 namespace dimer {
 
 using Dims = std::vector<hsize_t>;
+class ChunksAhead;  // h5_chunks_ahead.h
 
 // Deflate level used by default: the knee of the size/speed table in docs/BENCHMARKS.md
 // (bench_h5_compression).
@@ -40,7 +42,13 @@ struct H5WriteOptions {
   // HDF5's own pipeline through H5Dwrite, on one thread: the same bytes (kept as the tests'
   // oracle).
   bool direct_chunks = true;
+  // Chunks filtered while their rows were still being produced (h5_chunks_ahead.h), taken by
+  // WriteDoubleRows for the datasets it has; made with this chunk size and deflate level.
+  ChunksAhead* ahead = nullptr;
 };
+
+// Rows [first, first + rows) of a dataset of doubles, row-major, into `out` (WriteDoubleRows).
+using RowFill = std::function<void(size_t first, size_t rows, double* out)>;
 
 class H5Writer {
  public:
@@ -55,6 +63,11 @@ class H5Writer {
   // column of an N x k dataset) as its `columns` attribute when non-empty.
   void WriteDoubles(const std::string& name, const std::vector<double>& data, const Dims& dims,
                     const std::string& units = "", const std::string& columns = "");
+  // The same dataset from rows made on demand, on the threads that compress the chunks, so that
+  // rows derived from other data are never held whole; `fill` must be safe to call from several
+  // threads at once. The same bytes as WriteDoubles of the rows.
+  void WriteDoubleRows(const std::string& name, const Dims& dims, const RowFill& fill,
+                       const std::string& units = "", const std::string& columns = "");
   void WriteUint8(const std::string& name, const std::vector<uint8_t>& data, const Dims& dims);
   void WriteInt8(const std::string& name, const std::vector<int8_t>& data, const Dims& dims);
   void WriteInt64(const std::string& name, const std::vector<int64_t>& data, const Dims& dims);
@@ -71,8 +84,11 @@ class H5Writer {
 
  private:
   void Write(const std::string& name, hid_t mem_type, hid_t file_type, const void* data,
-             const Dims& dims);
-  herr_t WriteFilteredChunks(hid_t ds, const uint8_t* data, const Dims& dims, size_t elem_size);
+             const Dims& dims, const RowFill* rows = nullptr);
+  herr_t WriteFilteredChunks(hid_t ds, const std::string& name, const uint8_t* data,
+                             const RowFill* rows, const Dims& dims, size_t elem_size);
+  void SetUnitsAndColumns(const std::string& name, const std::string& units,
+                          const std::string& columns);
   void EnsureParents(const std::string& name);
   hid_t OpenObject(const std::string& object);
   std::string path_;

@@ -1,19 +1,11 @@
 #include "common/trajectory_io.h"
 
+#include <algorithm>
+
 #include "common/error.h"
 
 namespace dimer {
 namespace {
-
-std::vector<double> Flatten(const std::vector<Eigen::Vector2d>& v) {
-  std::vector<double> out;
-  out.reserve(2 * v.size());
-  for (const auto& p : v) {
-    out.push_back(p.x());
-    out.push_back(p.y());
-  }
-  return out;
-}
 
 std::vector<Eigen::Vector2d> ReadPoints(const H5Reader& r, const std::string& name, size_t n) {
   Dims dims;
@@ -31,18 +23,36 @@ std::vector<Eigen::Vector2d> ReadPoints(const H5Reader& r, const std::string& na
 
 void WriteTrajectory(H5Writer& w, const Trajectory& traj) {
   traj.CheckConsistent();
-  const hsize_t n = traj.size();
-  w.WriteDoubles("/t", traj.t, {n}, "s");
+  auto values = [](const std::vector<double>& v) -> RowFill {
+    return [&v](size_t first, size_t rows, double* out) {
+      std::copy(v.begin() + first, v.begin() + first + rows, out);
+    };
+  };
+  auto points = [](const std::vector<Eigen::Vector2d>& v) -> RowFill {
+    return [&v](size_t first, size_t rows, double* out) {
+      for (size_t i = first; i < first + rows; ++i, out += 2) {
+        out[0] = v[i].x();
+        out[1] = v[i].y();
+      }
+    };
+  };
+  WriteTrajectory(w, traj.size(),
+                  {values(traj.t), points(traj.tip_left), points(traj.tip_right),
+                   values(traj.plate_z), values(traj.theta)});
+}
+
+void WriteTrajectory(H5Writer& w, size_t n, const TrajectoryRows& rows) {
+  w.WriteDoubleRows("/t", {n}, rows.t, "s");
   w.SetAttr("/t", "description", "time of each sample");
-  w.WriteDoubles("/tips/left", Flatten(traj.tip_left), {n, 2}, "m", "x,z");
+  w.WriteDoubleRows("/tips/left", {n, 2}, rows.tip_left, "m", "x,z");
   w.SetAttr("/tips/left", "description",
             "centre of the left sphere, lab frame (x right, z up from the plate's mean surface)");
-  w.WriteDoubles("/tips/right", Flatten(traj.tip_right), {n, 2}, "m", "x,z");
+  w.WriteDoubleRows("/tips/right", {n, 2}, rows.tip_right, "m", "x,z");
   w.SetAttr("/tips/right", "description",
             "centre of the right sphere, lab frame (x right, z up from the plate's mean surface)");
-  w.WriteDoubles("/plate_z", traj.plate_z, {n}, "m");
+  w.WriteDoubleRows("/plate_z", {n}, rows.plate_z, "m");
   w.SetAttr("/plate_z", "description", "height of the plate surface under the dimer");
-  w.WriteDoubles("/theta", traj.theta, {n}, "rad");
+  w.WriteDoubleRows("/theta", {n}, rows.theta, "rad");
   w.SetAttr("/theta", "description",
             "axis angle from the left to the right sphere, counter-clockwise from +x");
 }

@@ -9,52 +9,42 @@ namespace dimer::sim {
 
 namespace {
 
-// A flight's start with the plate's position and velocity there, which every point of the
-// flight needs: the impact finder evaluates hundreds of points from one start, and this keeps
-// it at one sin/cos pair per point (the plate's phase at the point) instead of six calls.
-struct FlightOrigin {
-  FlightOrigin(const Model& model, const State& q, double t)
-      : m(model), q0(q), t0(t), p0(model.Phase(t)), zp0(model.PlateZ(p0)), vp0(model.PlateV(p0)) {}
-  const Model& m;
-  const State& q0;
-  double t0;
-  Model::PlatePhase p0;  // also the phase of the search's first point (dt = 0)
-  double zp0, vp0;
-};
-
-State Propagate(const FlightOrigin& o, double dt, Model::PlatePhase p1) {
-  const Model& m = o.m;
-  const State& q0 = o.q0;
-  const double gz = kGravity * m.cos_a;
-  // Plate displacement beyond its linear extrapolation: the plate frame's fictitious force.
-  const double dzp = m.PlateZ(p1) - o.zp0 - o.vp0 * dt;
-  const double dvp = m.PlateV(p1) - o.vp0;
-  State q;
-  q.x = q0.x + q0.u * dt + 0.5 * m.Gx() * dt * dt;
-  q.z = q0.z + q0.v * dt - 0.5 * gz * dt * dt - dzp;
-  q.th = q0.th + q0.w * dt;
-  q.u = q0.u + m.Gx() * dt;
-  q.v = q0.v - gz * dt - dvp;
-  q.w = q0.w;
-  return q;
-}
-
-GapDerivatives GapAt(const FlightOrigin& o, double dt, int sphere) {
-  const Model::PlatePhase p1 = dt == 0 ? o.p0 : o.m.Phase(o.t0 + dt);  // t0 + 0 is t0
-  const State q = Propagate(o, dt, p1);
-  const Arm r = ContactArm(o.m, q.th, sphere);
-  const double ar_sin = r.rz + o.m.R;  // s A R sin(theta)
-  return {q.z + r.rz, NormalV(r, q), o.m.Gz(p1) - ar_sin * q.w * q.w};
+GapDerivatives GapAt(const FlightPath& o, double dt, int sphere) {
+  const Model::PlatePhase p1 = dt == 0 ? o.start_phase() : o.model().Phase(o.t0() + dt);
+  const State q = o.At(dt, p1);  // t0 + 0 is t0: the start's phase
+  const Arm r = ContactArm(o.model(), q.th, sphere);
+  const double ar_sin = r.rz + o.model().R;  // s A R sin(theta)
+  return {q.z + r.rz, NormalV(r, q), o.model().Gz(p1) - ar_sin * q.w * q.w};
 }
 
 }  // namespace
 
+// The impact finder evaluates hundreds of points from one start: one sin/cos pair per point
+// instead of six calls.
+FlightPath::FlightPath(const Model& m, const State& q0, double t0)
+    : m_(m), q0_(q0), t0_(t0), p0_(m.Phase(t0)), zp0_(m.PlateZ(p0_)), vp0_(m.PlateV(p0_)) {}
+
+State FlightPath::At(double dt, Model::PlatePhase p1) const {
+  const double gz = kGravity * m_.cos_a;
+  // Plate displacement beyond its linear extrapolation: the plate frame's fictitious force.
+  const double dzp = m_.PlateZ(p1) - zp0_ - vp0_ * dt;
+  const double dvp = m_.PlateV(p1) - vp0_;
+  State q;
+  q.x = q0_.x + q0_.u * dt + 0.5 * m_.Gx() * dt * dt;
+  q.z = q0_.z + q0_.v * dt - 0.5 * gz * dt * dt - dzp;
+  q.th = q0_.th + q0_.w * dt;
+  q.u = q0_.u + m_.Gx() * dt;
+  q.v = q0_.v - gz * dt - dvp;
+  q.w = q0_.w;
+  return q;
+}
+
 State FlightPropagate(const Model& m, const State& q0, double t0, double dt) {
-  return Propagate(FlightOrigin(m, q0, t0), dt, m.Phase(t0 + dt));
+  return FlightPath(m, q0, t0).At(dt);
 }
 
 GapDerivatives FlightGap(const Model& m, const State& q0, double t0, double dt, int sphere) {
-  return GapAt(FlightOrigin(m, q0, t0), dt, sphere);
+  return GapAt(FlightPath(m, q0, t0), dt, sphere);
 }
 
 namespace {
@@ -99,7 +89,7 @@ double SafeCubicStep(double c0, double c1, double c2, double c3, double cap) {
 ImpactSearch FindFlightImpact(const Model& m, const State& q0, double t0, double dt_max,
                               int sphere) {
   ImpactSearch out;
-  const FlightOrigin origin(m, q0, t0);
+  const FlightPath origin(m, q0, t0);
   const double arm = m.A * m.R;
   const double M = kGravity * m.cos_a + m.amp * m.omega_p * m.omega_p + arm * q0.w * q0.w;
   const double aw = std::abs(q0.w);  // cubes by products: pow() cost 3 % of a drift run

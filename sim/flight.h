@@ -18,6 +18,27 @@ namespace dimer::sim {
 // State after flying for dt from q0 at time t0.
 State FlightPropagate(const Model& m, const State& q0, double t0, double dt);
 
+// The same flight at any number of times from one start (the output samples, the impact
+// finder's points): the start's plate position and velocity are evaluated once, so each time
+// costs one sin/cos pair, its own phase. At(dt) is FlightPropagate(m, q0, t0, dt), bit for bit.
+class FlightPath {
+ public:
+  FlightPath(const Model& m, const State& q0, double t0);
+  State At(double dt) const { return At(dt, m_.Phase(t0_ + dt)); }
+  State At(double dt, Model::PlatePhase p1) const;  // p1: the phase at t0 + dt
+  const Model& model() const { return m_; }
+  const State& start() const { return q0_; }
+  double t0() const { return t0_; }
+  Model::PlatePhase start_phase() const { return p0_; }  // also the phase of dt = 0
+
+ private:
+  const Model& m_;
+  State q0_;
+  double t0_;
+  Model::PlatePhase p0_;
+  double zp0_, vp0_;
+};
+
 struct GapDerivatives {
   double h, hd, hdd;  // m, m/s, m/s^2
 };

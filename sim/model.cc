@@ -108,8 +108,9 @@ std::vector<std::string> SimOptions::Check() const {
 }
 
 double SimOptions::EstimatedMemoryBytes(bool with_event_log) const {
-  // Per sample: its time and lab state, and as much again for the file's derived datasets
-  // (tips, theta, plate). Per period: the statistics and, when kept, a drift mode's event log.
+  // Per sample: its time and lab state, and as much again for the file's chunks, compressed
+  // while the run goes on and held until written (run_sim.cc; never more than the raw rows).
+  // Per period: the statistics and, when kept, a drift mode's event log.
   const double periods = Duration() * freq_hz;
   const double samples = fps > 0 ? Duration() * fps + 1 : 0;
   const double per_period =

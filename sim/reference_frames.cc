@@ -5,7 +5,11 @@
 namespace dimer::sim {
 
 State LabFromPlate(const Model& m, double t, const State& q) {
-  const double c = m.cos_a, s = m.sin_a, zp = m.PlateZ(t), vp = m.PlateV(t);
+  return LabFromPlate(m, m.Phase(t), q);
+}
+
+State LabFromPlate(const Model& m, Model::PlatePhase p, const State& q) {
+  const double c = m.cos_a, s = m.sin_a, zp = m.PlateZ(p), vp = m.PlateV(p);
   State o;
   o.x = c * q.x - s * q.z - s * zp;
   o.z = s * q.x + c * q.z + c * zp;

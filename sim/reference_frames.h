@@ -10,6 +10,9 @@
 namespace dimer::sim {
 
 State LabFromPlate(const Model& m, double t, const State& q);
+// The same at the plate phase p = m.Phase(t), bit for bit: one sin/cos pair for several states
+// at one time (an event's before and after).
+State LabFromPlate(const Model& m, Model::PlatePhase p, const State& q);
 State PlateFromLab(const Model& m, double t, const State& lab);
 // Lab sphere centres (left, right) of a lab state.
 Eigen::Vector2d TipLab(const Model& m, const State& lab, int sphere);

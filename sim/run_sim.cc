@@ -4,11 +4,14 @@
 #include <sstream>
 
 #include "common/atomic_output.h"
+#include "common/check.h"
 #include "common/error.h"
 #include "common/interrupt.h"
 #include "common/memory_limit.h"
 #include "common/progress.h"
+#include "sim/event_rows.h"
 #include "sim/initial_conditions.h"
+#include "sim/sample_rows.h"
 #include "sim/sim_file.h"
 #include "sim/simulator.h"
 
@@ -54,10 +57,27 @@ int RunSim(const SimRunArgs& args) {
   RunControls controls;
   controls.progress = [&](double done, double) { meter.Update(done); };
   controls.should_stop = [] { return InterruptRequested(); };
-  const SimResult r = RunSimulation(args.options, controls);
-  meter.Finish(static_cast<double>(r.periods.size()));
+  // The chunks of the samples and of the event log's numbers are compressed on worker threads
+  // as the periods complete, while this thread simulates on, and the writer then takes them
+  // (common/h5_chunks_ahead.h).
   H5WriteOptions storage;
   storage.threads = args.threads;
+  const Model model = Model::FromOptions(args.options);
+  SampleArrays samples;
+  SimResult r;  // before `ahead`: its workers, which read r's samples, stop before r goes
+  ChunksAhead ahead(storage);
+  AddSampleDatasets(&ahead, model, &samples);
+  EventRowsAhead events(&ahead, model);
+  controls.on_event = [&](const EventRecord& e) { events.See(e); };
+  controls.on_samples = [&](const double* t, const State* lab, size_t n) {
+    if (!samples.t) samples = {t, lab};  // before any row is queued: no worker reads it yet
+    DIMER_CHECK(samples.t == t && samples.lab == lab, "the samples' arrays never move");
+    ahead.RowsReady(n);
+    events.Flush();
+  };
+  r = RunSimulation(args.options, controls);  // moved: the samples keep their addresses
+  meter.Finish(static_cast<double>(r.periods.size()));
+  storage.ahead = &ahead;
   WriteSimFile(args.output, args.force, args.options, r, storage);
   const ModeSummary& ms = r.mode;
   std::printf("%s: %zu samples, %ld events (%.1f per period), settled in %s mode",

@@ -3,8 +3,9 @@
 #include "common/atomic_output.h"
 #include "common/h5_file.h"
 #include "common/trajectory_io.h"
-#include "sim/reference_frames.h"
+#include "sim/event_rows.h"
 #include "sim/initial_conditions.h"
+#include "sim/sample_rows.h"
 
 namespace dimer::sim {
 
@@ -12,7 +13,7 @@ namespace {
 std::string RestitutionName(RestitutionLaw law);
 
 constexpr const char* kStateUnits = "m,m,rad,m/s,m/s,rad/s";
-constexpr const char* kStateColumns = "x,z,theta,u,v,omega";
+constexpr const char* kStateColumnNames = "x,z,theta,u,v,omega";
 constexpr const char* kEventKindCodes =
     "impact=one sphere hits the plate,"
     "double_impact=both spheres in one impact (or one hits while the other rests),"
@@ -63,28 +64,19 @@ std::string RestitutionName(RestitutionLaw law) {
   return "?";
 }
 
-std::vector<double> StateRows(const std::vector<State>& states) {
-  std::vector<double> out;
-  out.reserve(6 * states.size());
-  for (const State& q : states) out.insert(out.end(), {q.x, q.z, q.th, q.u, q.v, q.w});
-  return out;
-}
-
+// The numeric columns come from row functions (event_rows.h), made on the compressing threads
+// or taken from RunSim's chunks filtered during the run; the strings are short and cheap.
 void WriteEvents(H5Writer& w, const Model& m, const std::vector<EventRecord>& ev) {
   const hsize_t n = ev.size();
-  std::vector<double> t;
   std::vector<std::string> kind, detail;
   std::vector<int8_t> sphere;
-  std::vector<State> before, after;
   for (const EventRecord& e : ev) {
-    t.push_back(e.t);
     kind.push_back(ToString(e.kind));
     detail.push_back(e.detail);
     sphere.push_back(e.sphere);
-    before.push_back(LabFromPlate(m, e.t_local, e.before));
-    after.push_back(LabFromPlate(m, e.t_local, e.after));
   }
-  w.WriteDoubles("/events/t", t, {n}, "s");
+  const EventLogRows rows = EventLogFills(m, &ev);
+  w.WriteDoubleRows("/events/t", {n}, rows.t, "s");
   w.SetAttr("/events/t", "description", "time of each event");
   w.WriteStrings("/events/kind", kind);
   w.SetAttr("/events/kind", "description", "what happened");
@@ -96,9 +88,11 @@ void WriteEvents(H5Writer& w, const Model& m, const std::vector<EventRecord>& ev
   w.WriteInt8("/events/sphere", sphere, {n});
   w.SetAttr("/events/sphere", "description", "the sphere(s) of the event");
   w.SetAttr("/events/sphere", "codes", "0=left,1=right,2=both");
-  w.WriteDoubles("/events/before", StateRows(before), {n, 6}, kStateUnits, kStateColumns);
+  w.WriteDoubleRows("/events/before", {n, kLabStateColumns}, rows.before, kStateUnits,
+                    kStateColumnNames);
   w.SetAttr("/events/before", "description", "lab-frame state just before the event");
-  w.WriteDoubles("/events/after", StateRows(after), {n, 6}, kStateUnits, kStateColumns);
+  w.WriteDoubleRows("/events/after", {n, kLabStateColumns}, rows.after, kStateUnits,
+                    kStateColumnNames);
   w.SetAttr("/events/after", "description", "lab-frame state just after the event");
 }
 
@@ -133,15 +127,11 @@ void WriteSimFile(const std::string& path, bool force, const SimOptions& o, cons
   {
     H5Writer w(out.temp_path(), storage);
     const Model& m = r.model;
-    Trajectory traj;
-    traj.Reserve(r.t.size());
-    for (size_t i = 0; i < r.t.size(); ++i) {
-      const State& q = r.lab[i];
-      traj.Append(r.t[i], TipLab(m, q, kLeft), TipLab(m, q, kRight),
-                  PlateSurfaceZ(m, r.t[i], q.x), q.th);
-    }
-    WriteTrajectory(w, traj);
-    w.WriteDoubles("/state", StateRows(r.lab), {r.lab.size(), 6}, kStateUnits, kStateColumns);
+    const SampleArrays samples{r.t.data(), r.lab.data()};
+    const hsize_t n = r.t.size();
+    WriteTrajectory(w, n, SampleTrajectoryRows(m, &samples));
+    w.WriteDoubleRows("/state", {n, kLabStateColumns}, StateRowFill(&samples), kStateUnits,
+                      kStateColumnNames);
     w.SetAttr("/state", "description",
               "lab-frame state at each sample: centre of mass (x, z), axis angle theta, their "
               "rates (u, v, omega)");

@@ -71,6 +71,10 @@ class Sampler : public SampleSink {
   Sampler(const Model& m, double t0, long n, double fps, const double* offset, SimResult* res)
       : m_(&m), t0_(t0), fps_(fps), n_(n), offset_(offset), res_(res) {
     next_ = n > 0 ? t0 : kInf;
+    // Every sample's place from the start: no copy as they grow, and fixed addresses for
+    // RunControls::on_samples (the memory is the run's estimate, checked before it starts).
+    res->t.reserve(static_cast<size_t>(n));
+    res->lab.reserve(static_cast<size_t>(n));
   }
   double Next() const override { return next_ - *offset_; }
   void Record(double t_local, const State& q) override {
@@ -206,11 +210,12 @@ void Runner::FlightStage(double t_lim) {
       dt_max = is.dt;
     }
   }
+  const FlightPath path(m_, q_, t_);
   while (sampler_.Next() <= t_ + dt_max) {
     const double ts = sampler_.Next();
-    sampler_.Record(ts, FlightPropagate(m_, q_, t_, ts - t_));
+    sampler_.Record(ts, path.At(ts - t_));
   }
-  q_ = FlightPropagate(m_, q_, t_, dt_max);
+  q_ = path.At(dt_max);
   t_ = hitter >= 0 ? t_ + dt_max : t_lim;
   TrackPenetration(q_, cfg_);
   if (hitter < 0) return;
@@ -403,6 +408,7 @@ SimResult Runner::Run() {
       offset_ = k * m_.period;
       t_ = res_.t_start;
       StartPeriod();
+      if (c_.on_samples) c_.on_samples(res_.t.data(), res_.lab.data(), res_.t.size());
       if (c_.progress) c_.progress(static_cast<double>(k), total);
       if (c_.should_stop && c_.should_stop()) {
         res_.interrupted = true;

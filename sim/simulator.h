@@ -56,6 +56,10 @@ struct RunControls {
   // classifies its impacts on the fly instead of keeping the whole log (~200 bytes an event,
   // ~0.4 GB at a 10^5-period point; sim/sweep_point.cc).
   std::function<void(const EventRecord&)> on_event;
+  // Called once per period with every sample so far (SimResult::t and ::lab, n of them): the
+  // arrays hold all the run's samples from the start, so these addresses stay valid and the
+  // first n rows final while the run goes on (RunSim compresses them meanwhile, run_sim.cc).
+  std::function<void(const double* t, const State* lab, size_t n)> on_samples;
   std::function<void(double done, double total)> progress;  // called once per period
   std::function<bool()> should_stop;            // polled once per period (Ctrl-C)
   // The rest state that provably stays put (sim/resting.h) costs nothing per period; false

@@ -253,6 +253,35 @@ TEST(Simulator, SameInputsGiveBitIdenticalResults) {
   }
 }
 
+// RunControls::on_samples: once a period, the same arrays (RunSim's workers read them while
+// the run goes on), a count that only grows, and rows that are final when reported.
+TEST(Simulator, SampleCallbackSeesFinalRowsAtFixedAddresses) {
+  SimOptions o;
+  o.cycles = 30;
+  const double* t0 = nullptr;
+  const State* lab0 = nullptr;
+  size_t calls = 0, last = 0;
+  std::vector<double> seen_t, seen_x;
+  RunControls c;
+  c.on_samples = [&](const double* t, const State* lab, size_t n) {
+    if (calls++ == 0) t0 = t, lab0 = lab;
+    ASSERT_EQ(t, t0);
+    ASSERT_EQ(lab, lab0);
+    ASSERT_GE(n, last);
+    for (size_t i = last; i < n; ++i) seen_t.push_back(t[i]), seen_x.push_back(lab[i].x);
+    last = n;
+  };
+  const SimResult r = RunSimulation(o, c);
+  EXPECT_EQ(calls, 30u);
+  EXPECT_EQ(r.t.data(), t0) << "the result keeps the arrays the callback saw";
+  ASSERT_GT(seen_t.size(), 2000u);
+  ASSERT_LE(seen_t.size(), r.t.size());
+  for (size_t i = 0; i < seen_t.size(); ++i) {
+    ASSERT_EQ(seen_t[i], r.t[i]) << i;
+    ASSERT_EQ(seen_x[i], r.lab[i].x) << i;
+  }
+}
+
 // The event sink (RunControls::on_event) sees every event of the log, in order and equal to the
 // kept record, and the run is the same whether the log is kept or not.
 TEST(Simulator, EventSinkSeesTheWholeLogWithoutKeepingIt) {
