@@ -176,6 +176,9 @@ void Slip(const Analysis& a, std::ostringstream& o) {
     return;
   }
   o << "- resting sphere: " << Side(s.resting_sphere) << "; U positive toward the bouncing end\n"
+    << "- averaged over the settled window, " << s.window_periods
+    << (s.window_periods == 1 ? " period" : " periods") << " from t = " << NumOrNa(s.window_t_start, "%.4f")
+    << " s (the transient before it excluded; the whole run's profile is /slip/whole_profile)\n"
     << "- filter half-width h = " << s.half_window << " frames, predicted velocity noise "
     << NumOrNa(s.velocity_noise * kMm, "%.3g") << " mm/s\n"
     << "- U after the bouncing end's impact: " << Pm(s.after, s.after_err, kMm, "mm/s") << "\n"
