@@ -220,6 +220,11 @@ void WriteFit(Out& o, const FitResult& f) {
   o.Doubles("/fit/bound_hi", hi, {k}, "1", "upper bound searched");
   o.Doubles("/fit/range_lo", rlo, {k}, "1", "lowest value with chi2 within the threshold of the minimum");
   o.Doubles("/fit/range_hi", rhi, {k}, "1", "highest value with chi2 within the threshold of the minimum");
+  if (f.correlation.size() == k * k) {
+    o.Doubles("/fit/correlation", f.correlation, {k, k}, "1",
+              "correlation of each pair of constrained coefficients, from their chi2 profiles "
+              "(NaN unless both are constrained)");
+  }
   const hsize_t m = f.observable_names.size();
   o.Strings("/fit/observables/name", f.observable_names, "observable compared (velocities in g/f, phases in periods)");
   o.Doubles("/fit/observables/observed", f.observed, {m}, "1", "the track's value (dimensionless)");

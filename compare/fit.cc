@@ -10,6 +10,7 @@
 
 #include "common/error.h"
 #include "common/interrupt.h"
+#include "compare/fit_correlation.h"
 #include "compare/fit_observables.h"
 #include "compare/goodness_of_fit.h"
 #include "compare/simulate.h"
@@ -232,7 +233,8 @@ FitParameter Slice(Objective* obj, const std::vector<double>& best, double chi2_
   size_t a = at, b = at;
   while (a > 0 && p.slice_chi2[a - 1] <= limit) --a;
   while (b + 1 < p.slice_x.size() && p.slice_chi2[b + 1] <= limit) ++b;
-  auto edge = [&](size_t in_index, size_t out_index) {
+  // `*at_edge`: every parameter at the last point found inside (the others re-optimised there).
+  auto edge = [&](size_t in_index, size_t out_index, std::vector<double>* at_edge) {
     double in = p.slice_x[in_index], out = p.slice_x[out_index];
     std::vector<double> from = at_min[in_index];
     for (int it = 0; it < kEdgeBisections; ++it) {
@@ -245,11 +247,12 @@ FitParameter Slice(Objective* obj, const std::vector<double>& best, double chi2_
         out = mid;
       }
     }
+    *at_edge = from;
     return 0.5 * (in + out);
   };
   const bool open_lo = a == 0, open_hi = b + 1 == p.slice_x.size();
-  p.range_lo = open_lo ? spec.lo : edge(a, a - 1);
-  p.range_hi = open_hi ? spec.hi : edge(b, b + 1);
+  p.range_lo = open_lo ? spec.lo : edge(a, a - 1, &p.at_range_lo);
+  p.range_hi = open_hi ? spec.hi : edge(b, b + 1, &p.at_range_hi);
   p.status = open_lo && open_hi ? "unconstrained"
              : open_lo          ? "bounded_above"
              : open_hi          ? "bounded_below"
@@ -358,6 +361,7 @@ FitResult FitCoefficients(const Analysis& track, const sim::SimOptions& scene,
     r.observed_err.push_back(std::hypot(std::isfinite(o.err) ? o.err : 0.0, o.floor));
   }
   if (!r.acceptable) r.off = WorstObservables(r);
+  r.correlation = ProfileCorrelations(r.params);
   r.best = obj.Options(x);
   r.evaluations = obj.evaluations();
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

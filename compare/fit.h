@@ -45,6 +45,9 @@ struct FitParameter {
   std::string status;
   std::vector<double> slice_x, slice_chi2;  // the profile through the optimum (a plain slice
                                             // when there is no acceptable fit)
+  // Every parameter where the profile reaches range_lo and range_hi (the others re-optimised
+  // there); empty at an open end. The correlations are read off them (fit_correlation.h).
+  std::vector<double> at_range_lo, at_range_hi;
 };
 
 struct FitResult {
@@ -54,6 +57,9 @@ struct FitResult {
   double p_value = kNaN;         // P(chi2 >= the value found | dof), goodness_of_fit.h
   bool acceptable = false;       // p_value >= kMinFitPValue
   std::vector<std::string> off;  // no acceptable fit: the observables furthest off, worst first
+  // params x params, row-major: the correlation of each pair of constrained parameters from
+  // their profiles (fit_correlation.h); 1 on the diagonal of a constrained one, NaN elsewhere.
+  std::vector<double> correlation;
   double threshold = kNaN;       // chi2 range threshold
   int evaluations = 0;           // simulations run
   double seconds = 0;            // wall time

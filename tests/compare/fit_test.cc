@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "compare/fit.h"
+#include "compare/fit_correlation.h"
 #include "compare/goodness_of_fit.h"
 #include "compare/simulate.h"
 
@@ -20,6 +21,12 @@ void Print(const FitResult& r) {
   }
   std::printf("chi2 %.3f dof %d threshold %.3f evaluations %d, %.1f s\n", r.chi2, r.dof, r.threshold,
               r.evaluations, r.seconds);
+  const size_t n = r.params.size();
+  for (size_t j = 0; j < n && r.correlation.size() == n * n; ++j) {
+    std::printf("correlation %-9s", r.params[j].name.c_str());
+    for (size_t k = 0; k < n; ++k) std::printf(" %+.3f", r.correlation[j * n + k]);
+    std::printf("\n");
+  }
 }
 
 TEST(Fit, RecoversRestitutionAndImpactFrictionFromASimulatedDrift) {
@@ -47,6 +54,20 @@ TEST(Fit, RecoversRestitutionAndImpactFrictionFromASimulatedDrift) {
   EXPECT_TRUE(std::isnan(mu_hat_s.err));
   EXPECT_LE(mu_hat_s.range_lo, truth.mu_hat_s);
   EXPECT_GE(mu_hat_s.range_hi, truth.mu_hat_s);
+  // Correlations (fit_correlation.h): a number for each pair of constrained parameters, read
+  // off both profiles (eps-mu_hat -0.37, eps-mu +0.49, mu_hat-mu -0.44 here), none for the rest.
+  const size_t n = r.params.size();
+  ASSERT_EQ(r.correlation.size(), n * n);
+  for (size_t j = 0; j < n; ++j) {
+    for (size_t k = 0; k < n; ++k) {
+      const double rho = r.correlation[j * n + k];
+      const bool both = r.params[j].status == "constrained" && r.params[k].status == "constrained";
+      EXPECT_EQ(std::isfinite(rho), both) << j << "," << k;
+      if (!both) continue;
+      EXPECT_LE(std::abs(rho), 1.0);
+      EXPECT_EQ(rho, r.correlation[k * n + j]);
+    }
+  }
 }
 
 
@@ -110,6 +131,44 @@ TEST(Fit, SaysWhenNoCoefficientsReproduceTheTrack) {
   bool names_takeoff = false;
   for (const std::string& line : r.off) names_takeoff |= line.find("bouncing_") == 0;
   EXPECT_TRUE(names_takeoff) << r.off[0];
+}
+
+// A profile of the quadratic chi2 of covariance C, as fit.cc walks it: at theta_k = +-sigma_k
+// the others sit at their conditional optimum theta_j = (C_jk / C_kk) theta_k.
+FitParameter GaussianProfile(const double c[3][3], size_t k) {
+  FitParameter p;
+  p.status = "constrained";
+  const double sk = std::sqrt(c[k][k]);
+  p.at_range_lo.assign(3, 0);
+  p.at_range_hi.assign(3, 0);
+  for (size_t j = 0; j < 3; ++j) {
+    p.at_range_lo[j] = -c[j][k] / c[k][k] * sk;
+    p.at_range_hi[j] = c[j][k] / c[k][k] * sk;
+  }
+  return p;
+}
+
+TEST(FitCorrelation, ProfilesOfAGaussianChi2GiveItsCorrelations) {
+  // sigmas 0.01, 0.2, 3; correlations -0.6 (0,1), +0.3 (0,2), 0 (1,2).
+  const double s[3] = {0.01, 0.2, 3}, rho[3][3] = {{1, -0.6, 0.3}, {-0.6, 1, 0}, {0.3, 0, 1}};
+  double c[3][3];
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 3; ++k) c[j][k] = rho[j][k] * s[j] * s[k];
+  std::vector<FitParameter> params = {GaussianProfile(c, 0), GaussianProfile(c, 1), GaussianProfile(c, 2)};
+  std::vector<double> r = ProfileCorrelations(params);
+  ASSERT_EQ(r.size(), 9u);
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(r[3 * j + k], rho[j][k], 1e-12) << j << "," << k;
+  // A parameter not constrained has no correlation with anything, itself included.
+  params[2].status = "bounded_above";
+  r = ProfileCorrelations(params);
+  EXPECT_NEAR(r[1], -0.6, 1e-12);
+  for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isnan(r[3 * 2 + k]) && std::isnan(r[3 * k + 2])) << k;
+  // Profiles that disagree on the sign (one re-optimisation fell short) give no number.
+  params[1].at_range_hi[0] = -params[1].at_range_hi[0];
+  params[1].at_range_lo[0] = -params[1].at_range_lo[0];
+  r = ProfileCorrelations(params);
+  EXPECT_TRUE(std::isnan(r[1]) && std::isnan(r[3]));
 }
 
 TEST(GoodnessOfFit, PValueOfChiSquare) {
