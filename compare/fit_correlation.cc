@@ -29,8 +29,7 @@ std::vector<double> ProfileCorrelations(const std::vector<FitParameter>& params)
       const double product = s_jk * s_kj;
       if (!std::isfinite(product)) continue;
       double r = kNaN;
-      if (product == 0) r = 0;
-      else if (product > 0) r = std::copysign(std::min(1.0, std::sqrt(product)), s_jk);
+      if (product > 0) r = std::copysign(std::min(1.0, std::sqrt(product)), s_jk);
       rho[k * n + j] = rho[j * n + k] = r;
     }
   }

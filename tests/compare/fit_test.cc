@@ -149,8 +149,8 @@ FitParameter GaussianProfile(const double c[3][3], size_t k) {
 }
 
 TEST(FitCorrelation, ProfilesOfAGaussianChi2GiveItsCorrelations) {
-  // sigmas 0.01, 0.2, 3; correlations -0.6 (0,1), +0.3 (0,2), 0 (1,2).
-  const double s[3] = {0.01, 0.2, 3}, rho[3][3] = {{1, -0.6, 0.3}, {-0.6, 1, 0}, {0.3, 0, 1}};
+  // sigmas 0.01, 0.2, 3; correlations -0.6 (0,1), +0.3 (0,2), +0.5 (1,2) (positive definite).
+  const double s[3] = {0.01, 0.2, 3}, rho[3][3] = {{1, -0.6, 0.3}, {-0.6, 1, 0.5}, {0.3, 0.5, 1}};
   double c[3][3];
   for (int j = 0; j < 3; ++j)
     for (int k = 0; k < 3; ++k) c[j][k] = rho[j][k] * s[j] * s[k];
@@ -164,10 +164,15 @@ TEST(FitCorrelation, ProfilesOfAGaussianChi2GiveItsCorrelations) {
   r = ProfileCorrelations(params);
   EXPECT_NEAR(r[1], -0.6, 1e-12);
   for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isnan(r[3 * 2 + k]) && std::isnan(r[3 * k + 2])) << k;
-  // Profiles that disagree on the sign (one re-optimisation fell short) give no number.
-  params[1].at_range_hi[0] = -params[1].at_range_hi[0];
-  params[1].at_range_lo[0] = -params[1].at_range_lo[0];
-  r = ProfileCorrelations(params);
+  // Profiles that disagree on the sign (one re-optimisation fell short) give no number, nor
+  // does a profile along which the other parameter did not move at all.
+  std::vector<FitParameter> flipped = params, still = params;
+  flipped[1].at_range_hi[0] = -flipped[1].at_range_hi[0];
+  flipped[1].at_range_lo[0] = -flipped[1].at_range_lo[0];
+  r = ProfileCorrelations(flipped);
+  EXPECT_TRUE(std::isnan(r[1]) && std::isnan(r[3]));
+  still[1].at_range_hi[0] = still[1].at_range_lo[0];
+  r = ProfileCorrelations(still);
   EXPECT_TRUE(std::isnan(r[1]) && std::isnan(r[3]));
 }
 
