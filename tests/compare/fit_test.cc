@@ -176,6 +176,40 @@ TEST(FitCorrelation, ProfilesOfAGaussianChi2GiveItsCorrelations) {
   EXPECT_TRUE(std::isnan(r[1]) && std::isnan(r[3]));
 }
 
+// A scene the fitted model cannot produce: a drift on a plate tilted by 3 degrees (the paper's
+// Fig. 4b), fitted as a level plate (no --tilt-deg). The level model at the true coefficients
+// is off, the tilted one at them is exact; the fit says "no acceptable fit" (chi2/dof 4.4 here),
+// gives no coefficient and names what the tilt moves: the slip profile and the impact phase.
+TEST(Fit, SaysWhenATiltedPlateIsFittedAsLevel) {
+  sim::SimOptions truth;
+  truth.ar = 3.9;
+  truth.tilt_deg = 3;
+  truth.cycles = 60;
+  const Analysis track = SimulateAndAnalyze(truth, {}, "tilted");
+  ASSERT_EQ(track.periods.settled.summary.label, "drift");
+  sim::SimOptions level = truth;
+  level.tilt_deg = 0;
+  const double at_truth_tilted = FitChi2(track, truth, {}), at_truth_level = FitChi2(track, level, {});
+  std::printf("chi2 at the truth: tilted %.3g, level %.3g\n", at_truth_tilted, at_truth_level);
+  EXPECT_LT(at_truth_tilted, 1e-6);
+  FitOptions fo;
+  fo.global_evaluations = 100;
+  const FitResult r = FitCoefficients(track, level, fo);
+  Print(r);
+  EXPECT_GT(at_truth_level, r.chi2);
+  EXPECT_FALSE(r.acceptable);
+  EXPECT_LT(r.p_value, kMinFitPValue);
+  for (const FitParameter& p : r.params) {
+    EXPECT_EQ(p.status, "no_acceptable_fit") << p.name;
+    EXPECT_TRUE(std::isnan(p.err) && std::isnan(p.range_lo) && std::isnan(p.range_hi)) << p.name;
+  }
+  ASSERT_FALSE(r.off.empty());
+  bool names_slip_or_phase = false;
+  for (const std::string& line : r.off)
+    names_slip_or_phase |= line.find("slip_") == 0 || line.find("bouncing_impact_phase") == 0;
+  EXPECT_TRUE(names_slip_or_phase) << r.off[0];
+}
+
 TEST(GoodnessOfFit, PValueOfChiSquare) {
   // Reference values: the 5 % point of one dof (tables: 3.841459), dof 2 exactly exp(-chi2 / 2),
   // and 41 at 41 dof from the gamma series summed apart (0.4706224).
