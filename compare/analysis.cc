@@ -187,7 +187,7 @@ Analysis Analyze(const SampledRun& input, const AnalysisOptions& options) {
   }
   a.periods = AnalyzePeriods(run, a.plate, a.contacts, options.window_periods);
   a.drift = MeasureDrift(run, a.periods, options.travel_mm);
-  a.slip = AnalyzeSlip(run, a.plate, a.contacts, a.drift.bouncing_sphere, options.phase_bins,
+  a.slip = AnalyzeSlip(run, a.plate, a.contacts, a.periods.settled, options.phase_bins,
                        options.slip_half_window);
   for (int s = 0; s < 2; ++s) {
     size_t missing = 0;

@@ -164,10 +164,15 @@ void WriteSlip(Out& o, const SlipResult& s, const SampledRun& run) {
             "slip velocity u - omega r_z of the resting sphere's contact point, positive toward the "
             "bouncing end (NaN where it does not rest)");
   o.Doubles("/slip/phase", s.phase, {k}, "period", "centre of each plate-phase bin, 0..1");
-  o.Doubles("/slip/profile", s.profile, {k}, "m/s", "mean slip in each phase bin");
+  o.Doubles("/slip/profile", s.profile, {k}, "m/s", "mean slip in each phase bin over the settled window");
   o.Doubles("/slip/profile_err", s.profile_err, {k}, "m/s", "standard error of the mean slip in each bin");
   std::vector<int64_t> count(s.profile_count.begin(), s.profile_count.end());
   o.Ints("/slip/profile_count", count, {k}, "1", "", "frames in each phase bin");
+  o.Doubles("/slip/whole_profile", s.whole_profile, {k}, "m/s",
+            "mean slip in each phase bin over the whole run, the release's transient included");
+  o.Doubles("/slip/whole_profile_err", s.whole_profile_err, {k}, "m/s", "its standard error");
+  std::vector<int64_t> whole(s.whole_profile_count.begin(), s.whole_profile_count.end());
+  o.Ints("/slip/whole_profile_count", whole, {k}, "1", "", "frames in each phase bin, whole run");
 }
 
 void WriteComparison(Out& o, const Comparison& c) {
@@ -215,6 +220,11 @@ void WriteFit(Out& o, const FitResult& f) {
   o.Doubles("/fit/bound_hi", hi, {k}, "1", "upper bound searched");
   o.Doubles("/fit/range_lo", rlo, {k}, "1", "lowest value with chi2 within the threshold of the minimum");
   o.Doubles("/fit/range_hi", rhi, {k}, "1", "highest value with chi2 within the threshold of the minimum");
+  if (f.correlation.size() == k * k) {
+    o.Doubles("/fit/correlation", f.correlation, {k, k}, "1",
+              "correlation of each pair of constrained coefficients, from their chi2 profiles "
+              "(NaN unless both are constrained)");
+  }
   const hsize_t m = f.observable_names.size();
   o.Strings("/fit/observables/name", f.observable_names, "observable compared (velocities in g/f, phases in periods)");
   o.Doubles("/fit/observables/observed", f.observed, {m}, "1", "the track's value (dimensionless)");
@@ -263,6 +273,8 @@ AttrList Headline(const Analysis& a, const Comparison* c) {
       {"g_fit_err", a.free_fall.g_fit_err},
       {"tilt_fit_deg", a.free_fall.tilt_deg},
       {"tilt_fit_deg_err", a.free_fall.tilt_deg_err},
+      {"slip_window_t_start", a.slip.window_t_start},
+      {"slip_window_t_end", a.slip.window_t_end},
       {"slip_after", a.slip.after},
       {"slip_after_err", a.slip.after_err},
       {"slip_before", a.slip.before},
@@ -292,7 +304,7 @@ AttrUnits HeadlineUnits() {
           {"plate_amplitude", "m"},
           {"plate_phase", "rad"}, {"plate_phase_err", "rad"}, {"plate_residual_rms", "m"}, {"ar_measured", "1"},
           {"diameter", "m"}, {"fps", "1/s"}, {"g_fit", "m/s^2"}, {"g_fit_err", "m/s^2"}, {"tilt_fit_deg", "deg"},
-          {"tilt_fit_deg_err", "deg"}, {"slip_after", "m/s"},
+          {"tilt_fit_deg_err", "deg"}, {"slip_window_t_start", "s"}, {"slip_window_t_end", "s"}, {"slip_after", "m/s"},
           {"slip_after_err", "m/s"}, {"slip_before", "m/s"}, {"slip_before_err", "m/s"}, {"outliers", "1"},
           {"sim_drift_speed", "m/s"}, {"sim_slip_after", "m/s"}, {"sim_slip_after_err", "m/s"},
           {"sim_slip_before", "m/s"}, {"sim_slip_before_err", "m/s"}, {"sim_tilt_deg", "deg"}, {"time_offset", "s"}, {"x_offset", "m"},

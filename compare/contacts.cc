@@ -116,7 +116,7 @@ class ImpactFinder {
       if (!on) {
         // A minimum the gap fell into by more than thr (not a dip of noise on the way up).
         if (in_flight && IsBounceMinimum(i) && peak >= lvl + 2 * thr && peak - g[i] > thr &&
-            AddImpact(i, /*touch_end=*/i, /*bounce=*/true)) {
+            AddImpact(i, /*touch_end=*/i, /*bounce=*/true, peak)) {
           peak = -INFINITY;
         }
         in_flight = true;
@@ -147,7 +147,7 @@ class ImpactFinder {
         // is unresolved: the impact may be at the data's edge or beyond. Not counted.
         const bool unresolved = !bounce && end - i + 1 < kMinRestFrames &&
                                 (end + 1 >= n || !std::isfinite(g[end + 1]));
-        if (!unresolved) AddImpact(i, end, bounce);
+        if (!unresolved) AddImpact(i, end, bounce, peak);
       }
       in_flight = false;
       peak = -INFINITY;
@@ -213,6 +213,7 @@ class ImpactFinder {
   struct Solution {
     double tau = kNaN;  // impact, frames from tau0
     double v_before = kNaN, v_after = kNaN, level = kNaN;
+    Quadratic approach;  // fitted to the approach (points < 2: none)
   };
 
   // The impact from approach frames `before` and departure frames `after` (empty: a landing,
@@ -221,6 +222,7 @@ class ImpactFinder {
                  double land_limit) const {
     Solution sol;
     const Quadratic qa = FitFrames(lab_, before, tau0);
+    sol.approach = qa;
     if (qa.points < 2) return sol;
     auto time = [&](double tau) { return run_.t0 + (tau0 + tau) * run_.dt; };
     const double lo = static_cast<double>(before.back()) - tau0;
@@ -244,9 +246,18 @@ class ImpactFinder {
     return sol;
   }
 
-  // `first`: first frame of the touch (or the bounce minimum); `last`: its last frame.
+  // Impact::speed_bound for a flight whose highest sampled gap was `peak`: the apex can fall
+  // between two samples, at most (1 + Gamma) g dt^2 / 8 above the higher of them.
+  double SpeedBound(double peak) const {
+    const double accel = (1 + plate_.gamma) * kGravity;
+    const double h = peak - c_.level_m + accel * run_.dt * run_.dt / 8;
+    return std::sqrt(2 * accel * std::max(0.0, h));
+  }
+
+  // `first`: first frame of the touch (or the bounce minimum); `last`: its last frame; `peak`:
+  // the highest gap of the flight that ends there.
   // Returns false, adding nothing, for a minimum that is noise on a flight (below).
-  bool AddImpact(long first, long last, bool bounce) {
+  bool AddImpact(long first, long last, bool bounce, double peak) {
     const bool minimum = first == last && c_.gap[first] > c_.level_m + c_.threshold_m;
     const double tau0 = static_cast<double>(first);
     const double land_limit = static_cast<double>(last - first) + 1.0;
@@ -274,8 +285,16 @@ class ImpactFinder {
     imp.sphere = s_;
     imp.bounce = bounce;
     if (!std::isfinite(sol.tau)) sol.tau = minimum ? 0.0 : -0.5;  // no usable fit: the frame itself
+    // Flights too short for the approach and departure to meet (a resting end's micro-bounces
+    // of a few frames): the approach's slope at that frame is the best measure of its speed,
+    // which decides whether it counts (periods.h; ImpactCount.*).
+    if (!std::isfinite(sol.v_before) && sol.approach.points >= 2) {
+      const double t = run_.t0 + (tau0 + sol.tau) * run_.dt;
+      sol.v_before = sol.approach.Slope(sol.tau) / run_.dt - plate_.V(t);
+    }
     imp.v_before = sol.v_before;
     imp.v_after = sol.v_after;
+    imp.speed_bound = SpeedBound(peak);
     imp.level_m = sol.level;
     imp.frame = tau0 + sol.tau;
     imp.t = run_.t0 + imp.frame * run_.dt;

@@ -46,6 +46,10 @@ struct Impact {
   double plate_phase = kNaN;  // plate phase at t, [0, 1)
   double v_before = kNaN;     // normal velocity relative to the plate before (< 0), m/s
   double v_after = kNaN;      // after (> 0); NaN when it lands to rest
+  // The fastest it can have approached, m/s: from rest at the flight's highest gap h above the
+  // contact level (plus what the samples can miss of the apex), under the largest relative
+  // fall acceleration (1 + Gamma) g: sqrt(2 (1 + Gamma) g h). NaN when Gamma is unknown.
+  double speed_bound = kNaN;
   double level_m = kNaN;      // gap at the fitted contact point
   bool bounce = false;        // true: flight-kink-flight; false: landing to rest
 };

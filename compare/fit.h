@@ -8,8 +8,8 @@
 //   and impact phase.)
 //   chi2 = sum ((sim - track) / sigma)^2, sigma^2 = sigma_track^2 + sigma_sim^2 + floor^2.
 // The optimiser is NLopt's bounded Nelder-Mead, run from the start (the coefficients the user
-// gives, --eps etc., as given) and from the best of a multi-start search (NLopt MLSL over a
-// Sobol sequence), keeping the better; derivative-free and deterministic (the objective is
+// gives, --eps etc., as given), from the paper's coefficients when those differ, and from the
+// best of a multi-start search (NLopt MLSL over a Sobol sequence), keeping the best; derivative-free and deterministic (the objective is
 // piecewise smooth, with jumps where the impact type changes or the release falls into another
 // orbit, and has local minima: a start far from the truth can end in one, which the goodness of
 // fit then shows). The start is never replaced by a value read off the track: the bouncing
@@ -45,6 +45,9 @@ struct FitParameter {
   std::string status;
   std::vector<double> slice_x, slice_chi2;  // the profile through the optimum (a plain slice
                                             // when there is no acceptable fit)
+  // Every parameter where the profile reaches range_lo and range_hi (the others re-optimised
+  // there); empty at an open end. The correlations are read off them (fit_correlation.h).
+  std::vector<double> at_range_lo, at_range_hi;
 };
 
 struct FitResult {
@@ -54,6 +57,9 @@ struct FitResult {
   double p_value = kNaN;         // P(chi2 >= the value found | dof), goodness_of_fit.h
   bool acceptable = false;       // p_value >= kMinFitPValue
   std::vector<std::string> off;  // no acceptable fit: the observables furthest off, worst first
+  // params x params, row-major: the correlation of each pair of constrained parameters from
+  // their profiles (fit_correlation.h); 1 on the diagonal of a constrained one, NaN elsewhere.
+  std::vector<double> correlation;
   double threshold = kNaN;       // chi2 range threshold
   int evaluations = 0;           // simulations run
   double seconds = 0;            // wall time
@@ -73,7 +79,7 @@ struct FitOptions {
   std::function<void(int simulations)> progress;  // called after each simulation (may be empty)
   // An upper estimate of the simulations a fit runs, for progress meters.
   int EstimatedSimulations() const {
-    return global_evaluations + max_evaluations * 5 / 2 + 5 * 30 * (slice_points + 13);
+    return global_evaluations + max_evaluations * 7 / 2 + 5 * 30 * (slice_points + 13);
   }
 };
 

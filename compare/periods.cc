@@ -17,6 +17,15 @@ long PeriodOf(const SampledRun& run, double period_s, double t) {
   return static_cast<long>(std::floor((t - run.t0) / period_s + kBoundarySlack));
 }
 
+}  // namespace
+
+bool SignificantImpact(const Impact& imp, double period_s) {
+  const double v = std::isfinite(imp.v_before) ? std::abs(imp.v_before) : imp.speed_bound;
+  return !(v <= kSignificantImpactRel * kGravity * period_s);
+}
+
+namespace {
+
 double CentreX(const SampledRun& run, long i) { return 0.5 * (run.x[0][i] + run.x[1][i]); }
 
 // Sign of (x of sphere s - x of the other) at the last valid frame at or before t.
@@ -84,9 +93,7 @@ Periods AnalyzePeriods(const SampledRun& run, const PlateDrive& plate, const Con
     }
     for (int s = 0; s < 2; ++s) {
       for (const Impact& imp : contacts.sphere[s].impacts) {
-        // The simulator's rule (common/modes.h): slow micro-bounces do not count.
-        const bool significant = !(std::abs(imp.v_before) < kSignificantImpactRel * kGravity * p.period_s);
-        if (significant && PeriodOf(run, p.period_s, imp.t) == k) ++row.stats.impacts[s];
+        if (SignificantImpact(imp, p.period_s) && PeriodOf(run, p.period_s, imp.t) == k) ++row.stats.impacts[s];
       }
     }
     row.energy_gT2 = (row.elevation_m[0] + row.elevation_m[1]) / (kGravity * p.period_s * p.period_s);

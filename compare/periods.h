@@ -3,7 +3,10 @@
 // definition of the modes (common/modes.h).
 //
 // Impacts count as the simulator counts them: approaching faster than kSignificantImpactRel g/f
-// (common/modes.h); an impact whose approach could not be fitted counts.
+// (common/modes.h). An approach too short to fit (a micro-bounce of a few frames) is judged by
+// the fastest it can have been, from the height it fell (Impact::speed_bound); unknown, it
+// counts. Counting every unfitted approach made 5 impacts a period of the resting end where
+// the simulator counts 1 on the same file, A_r 3.9 (SimModes.*, ImpactCount.*).
 // Periods start at the first frame and last 1/f each (a sim file's periods start at its
 // t_start, its first sample, so compare's windows are the simulator's). Per period: impacts and
 // rest time per sphere (contacts.h), the CM's lab x at its start (interpolated to the exact
@@ -45,6 +48,9 @@ struct Periods {
   std::vector<ModeWindow> timeline; // consecutive windows of `window` complete periods
   ModeWindow settled;               // the settled window (common/modes.h SettledWindow)
 };
+
+// Whether `imp` counts toward the modes (above).
+bool SignificantImpact(const Impact& imp, double period_s);
 
 Periods AnalyzePeriods(const SampledRun& run, const PlateDrive& plate, const Contacts& contacts,
                        int window_periods);

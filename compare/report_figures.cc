@@ -150,7 +150,7 @@ PlannedFigure PlanPositions(const Analysis& a) {
 PlannedFigure PlanSlipPhase(const Analysis& a, const Comparison* c) {
   PlannedFigure p;
   p.outcome = {"slip_phase", "phase-averaged slip velocity of the resting sphere over the plate "
-               "period", false, ""};
+               "period, in the settled window", false, ""};
   const SlipResult& s = a.slip;
   if (s.resting_sphere < 0 || !AnyFinite(s.profile)) {
     p.outcome.note = "no resting sphere (settled mode " + a.periods.settled.summary.label +

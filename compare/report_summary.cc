@@ -176,6 +176,9 @@ void Slip(const Analysis& a, std::ostringstream& o) {
     return;
   }
   o << "- resting sphere: " << Side(s.resting_sphere) << "; U positive toward the bouncing end\n"
+    << "- averaged over the settled window, " << s.window_periods
+    << (s.window_periods == 1 ? " period" : " periods") << " from t = " << NumOrNa(s.window_t_start, "%.4f")
+    << " s (the transient before it excluded; the whole run's profile is /slip/whole_profile)\n"
     << "- filter half-width h = " << s.half_window << " frames, predicted velocity noise "
     << NumOrNa(s.velocity_noise * kMm, "%.3g") << " mm/s\n"
     << "- U after the bouncing end's impact: " << Pm(s.after, s.after_err, kMm, "mm/s") << "\n"
@@ -287,6 +290,27 @@ std::string ParameterValue(const FitParameter& p) {
   return "unconstrained (range " + NumOrNa(p.lo) + "–" + NumOrNa(p.hi) + ")";
 }
 
+// The correlations of the constrained parameters (fit_correlation.h), when two or more are.
+void Correlations(const FitResult& f, std::ostringstream& o) {
+  const size_t n = f.params.size();
+  std::vector<size_t> c;
+  for (size_t k = 0; k < n; ++k)
+    if (f.params[k].status == "constrained") c.push_back(k);
+  if (c.size() < 2 || f.correlation.size() != n * n) return;
+  o << "Correlations of the constrained parameters (from their chi2 profiles: how far each moves "
+       "when another is held off its optimum):\n\n|   |";
+  for (size_t k : c) o << " " << f.params[k].name << " |";
+  o << "\n|---|";
+  for (size_t k = 0; k < c.size(); ++k) o << "---|";
+  o << "\n";
+  for (size_t j : c) {
+    o << "| " << f.params[j].name << " |";
+    for (size_t k : c) o << " " << NumOrNa(f.correlation[j * n + k], "%+.2f") << " |";
+    o << "\n";
+  }
+  o << "\n";
+}
+
 void Fitting(const FitResult& f, std::ostringstream& o) {
   o << "## Fit of the contact coefficients\n\n| parameter | fitted | status | value |\n"
        "|---|---|---|---|\n";
@@ -310,6 +334,7 @@ void Fitting(const FitResult& f, std::ostringstream& o) {
   }
   o << " " << f.evaluations
     << " simulations (their wall time is on stderr, so that reports are identical on rerun).\n\n";
+  Correlations(f, o);
   if (f.observable_names.empty()) return;
   o << "| observable | track | simulation at the optimum |\n|---|---|---|\n";
   for (size_t k = 0; k < f.observable_names.size(); ++k) {

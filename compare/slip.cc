@@ -56,8 +56,8 @@ std::vector<double> SegmentDerivative(const std::vector<double>& v, double dt,
     long j = i;
     while (j < n && std::isfinite(v[j]) && static_cast<double>(j) < limit) ++j;
     const long len = j - i;
-    if (len >= 3) {
-      const long w = std::min<long>(2 * h + 1, len);
+    if (len >= 2 * h + 1) {
+      const long w = 2 * h + 1;
       for (long k = i; k < j; ++k) {
         const long a = std::clamp<long>(k - w / 2, i, j - w);
         out[k] = LocalSlope(v, a, a + w - 1, k, dt);
@@ -99,8 +99,11 @@ void PhaseAverage(const std::vector<double>& phase, const std::vector<double>& v
 }
 
 SlipResult AnalyzeSlip(const SampledRun& run, const PlateDrive& plate, const Contacts& contacts,
-                       int bouncing_sphere, int phase_bins, int half_window) {
+                       const ModeWindow& settled, int phase_bins, int half_window) {
   SlipResult out;
+  const int bouncing_sphere = settled.count > 0 ? settled.summary.bouncing_sphere : -1;
+  out.window_periods = settled.count;
+  if (settled.count > 0) out.window_t_start = settled.t_start, out.window_t_end = settled.t_end;
   const size_t n = run.n;
   out.U.assign(n, NAN);
   // The resting sphere: the drift's non-bouncing end, else the one resting most.
@@ -151,13 +154,22 @@ SlipResult AnalyzeSlip(const SampledRun& run, const PlateDrive& plate, const Con
     const double rz = run.z[rs][i] - radius - zc[i];
     out.U[i] = out.sign * (u[i] - w[i] * rz);
   }
-  PhaseAverage(phase, out.U, phase_bins, &out.phase, &out.profile, &out.profile_err,
+  // A frame is in the window when its time is in [t_start, t_end) (periods.cc counts so).
+  auto in_window = [&](double t) { return t >= out.window_t_start && t < out.window_t_end; };
+  std::vector<double> settled_u(n, NAN);
+  for (size_t i = 0; i < n; ++i)
+    if (in_window(run.Time(i))) settled_u[i] = out.U[i];
+  PhaseAverage(phase, settled_u, phase_bins, &out.phase, &out.profile, &out.profile_err,
                &out.profile_count);
-  // After / before the bouncing end's impacts.
+  std::vector<double> centres;
+  PhaseAverage(phase, out.U, phase_bins, &centres, &out.whole_profile, &out.whole_profile_err,
+               &out.whole_profile_count);
+  // After / before the bouncing end's impacts, intervals inside the settled window.
   if (bouncing_sphere >= 0) {
     const auto& imps = contacts.sphere[bouncing_sphere].impacts;
     std::vector<double> a_means, b_means;
     for (size_t k = 0; k + 1 < imps.size(); ++k) {
+      if (!in_window(imps[k].t) || !(imps[k + 1].t <= out.window_t_end)) continue;
       const double ta = imps[k].frame, tb = imps[k + 1].frame, mid = 0.5 * (ta + tb);
       double sa = 0, sb = 0;
       int na = 0, nb = 0;

@@ -69,7 +69,7 @@ void WriteSweepFile(const std::string& path, bool force, const SweepSpec& spec,
                   (swept ? "swept" : "fixed") + ")");
     }
     std::vector<std::string> mode, impact_type, error;
-    std::vector<int8_t> bouncing, survived;
+    std::vector<int8_t> bouncing, survived, orbit;
     std::vector<double> ipp, rest;
     for (const PointResult& p : rows) {
       mode.push_back(p.mode);
@@ -77,6 +77,7 @@ void WriteSweepFile(const std::string& path, bool force, const SweepSpec& spec,
       error.push_back(p.error);
       bouncing.push_back(p.bouncing_sphere);
       survived.push_back(p.drift_survived);
+      orbit.push_back(p.orbit_periods);
       ipp.insert(ipp.end(), p.impacts_per_period.begin(), p.impacts_per_period.end());
       rest.insert(rest.end(), p.rest_fraction.begin(), p.rest_fraction.end());
     }
@@ -97,6 +98,10 @@ void WriteSweepFile(const std::string& path, bool force, const SweepSpec& spec,
               "drift release: whether the released (right) end still drifts over the window");
     w.SetAttr("/results/drift_survived", "codes",
               "-1=not a drift release,0=drift lost,1=drift survived");
+    w.WriteInt8("/results/orbit_periods", orbit, {n});
+    w.SetAttr("/results/orbit_periods", "description",
+              "the orbit's period over the window in plate periods (1..4; 0: none up to 4 repeats)");
+    w.SetAttr("/results/orbit_periods", "units", "periods");
     Doubles(w, "/results/events_per_period", Column(rows, &PointResult::events_per_period),
             "1/period", "simulator events per period over the window");
     w.WriteDoubles("/results/impacts_per_period", ipp, {n, 2}, "1/period", "left,right");
@@ -145,6 +150,7 @@ SweepFileContent ReadSweepFile(const std::string& path) {
   const auto sc = r.ReadDoubles("/results/drift_scaled");
   const auto sce = r.ReadDoubles("/results/drift_scaled_err");
   const auto surv = r.ReadInt8("/results/drift_survived");
+  const auto orbit = r.ReadInt8("/results/orbit_periods");
   const auto epp = r.ReadDoubles("/results/events_per_period");
   const auto ipp = r.ReadDoubles("/results/impacts_per_period");
   const auto rest = r.ReadDoubles("/results/rest_fraction");
@@ -152,7 +158,7 @@ SweepFileContent ReadSweepFile(const std::string& path) {
   const auto itf = r.ReadDoubles("/results/impact_type_fraction");
   const auto err = r.ReadStrings("/results/error");
   for (size_t len : {mode.size(), bouncing.size(), ds.size(), dse.size(), sc.size(), sce.size(),
-                     surv.size(), epp.size(), it.size(), itf.size(), err.size(), ipp.size() / 2,
+                     surv.size(), orbit.size(), epp.size(), it.size(), itf.size(), err.size(), ipp.size() / 2,
                      rest.size() / 2}) {
     if (len != n) throw InputError(path + ": sweep datasets of different lengths");
   }
@@ -166,6 +172,7 @@ SweepFileContent ReadSweepFile(const std::string& path) {
     p.drift_scaled = sc[i];
     p.drift_scaled_err = sce[i];
     p.drift_survived = surv[i];
+    p.orbit_periods = orbit[i];
     p.events_per_period = epp[i];
     p.impacts_per_period = {ipp[2 * i], ipp[2 * i + 1]};
     p.rest_fraction = {rest[2 * i], rest[2 * i + 1]};
@@ -192,16 +199,17 @@ void WriteSweepTsv(const std::string& path, bool force, const SweepSpec& spec,
   std::fprintf(f,
                " index mode bouncing_sphere drift_speed[m/s] drift_speed_err[m/s] drift_scaled "
                "drift_scaled_err drift_survived events_per_period[1/period] impacts_left "
-               "impacts_right rest_left rest_right impact_type impact_type_fraction\n");
+               "impacts_right rest_left rest_right impact_type impact_type_fraction "
+               "orbit_periods[periods]\n");
   for (const PointResult& p : rows) {
     const SimOptions o = spec.PointOptionsNoInit(p.index);
     for (const SweepParamInfo& info : SweepParams()) std::fprintf(f, "%.10g\t", o.*(info.field));
-    std::fprintf(f, "%lld\t%s\t%d\t%.10g\t%.10g\t%.10g\t%.10g\t%d\t%.10g\t%.6g\t%.6g\t%.6g\t%.6g\t%s\t%.6g\n",
+    std::fprintf(f, "%lld\t%s\t%d\t%.10g\t%.10g\t%.10g\t%.10g\t%d\t%.10g\t%.6g\t%.6g\t%.6g\t%.6g\t%s\t%.6g\t%d\n",
                  static_cast<long long>(p.index), p.mode.c_str(), p.bouncing_sphere,
                  p.drift_speed, p.drift_speed_err, p.drift_scaled, p.drift_scaled_err,
                  p.drift_survived, p.events_per_period, p.impacts_per_period[0],
                  p.impacts_per_period[1], p.rest_fraction[0], p.rest_fraction[1],
-                 p.impact_type.c_str(), p.impact_type_fraction);
+                 p.impact_type.c_str(), p.impact_type_fraction, p.orbit_periods);
   }
   if (std::fclose(f) != 0) throw InputError(path + ": cannot write");
   out.Commit();

@@ -14,7 +14,7 @@
 namespace dimer::sim {
 namespace {
 
-constexpr char kMagic[] = "dimerlab sweep journal 1\n";
+constexpr char kMagic[] = "dimerlab sweep journal 2\n";
 constexpr size_t kMagicLen = sizeof(kMagic) - 1;
 constexpr uint32_t kMaxRecord = 1u << 24;  // no real record comes near 16 MiB
 
@@ -107,6 +107,7 @@ std::string EncodePoint(const PointResult& p) {
   for (double x : p.rest_fraction) w.Put(x);
   w.PutString(p.impact_type);
   w.Put(p.impact_type_fraction);
+  w.Put<int8_t>(p.orbit_periods);
   w.PutString(p.error);
   return w.out;
 }
@@ -120,7 +121,7 @@ bool DecodePoint(const std::string& payload, PointResult* p) {
   for (double& x : p->impacts_per_period) ok = ok && r.Get(&x);
   for (double& x : p->rest_fraction) ok = ok && r.Get(&x);
   ok = ok && r.GetString(&p->impact_type) && r.Get(&p->impact_type_fraction) &&
-       r.GetString(&p->error);
+       r.Get(&p->orbit_periods) && r.GetString(&p->error);
   return ok && r.AtEnd() && p->index >= 0;
 }
 

@@ -5,7 +5,7 @@
 // that were running; the rerun of the same command reads the journal and computes only the
 // points not in it.
 //
-// Layout: the line "dimerlab sweep journal 1\n", then records [u32 n][n bytes][u32 CRC-32 of
+// Layout: the line "dimerlab sweep journal 2\n" (2: records hold orbit_periods), then records [u32 n][n bytes][u32 CRC-32 of
 // them] (little-endian). The first record is the sweep's identity (canonical spec + shard):
 // a journal of another sweep is refused, never mixed in. A record whose length or CRC does not
 // check (a write torn by the kill) ends the journal: it and anything after it are cut off.

@@ -101,6 +101,7 @@ PointResult RunSweepPoint(const SweepSpec& spec, size_t i,
   p.events_per_period = static_cast<double>(events) / static_cast<double>(count);
   p.impacts_per_period = ms.impacts_per_period;
   p.rest_fraction = ms.rest_fraction;
+  p.orbit_periods = static_cast<int8_t>(ms.orbit_periods);
   const std::array<long, 3> counts = tally.Of(ms.mode == Mode::kDrift ? ms.bouncing_sphere : -1);
   const long total = counts[0] + counts[1] + counts[2];
   if (total > 0) {

@@ -25,6 +25,9 @@ struct PointResult {
                                     // (the right one) over the window, 0 if not; -1 other inits
   double events_per_period = NAN;   // simulator events per period over the window
   std::array<double, 2> impacts_per_period{NAN, NAN}, rest_fraction{NAN, NAN};
+  // The orbit's period in plate periods over the window (ModeSummary::orbit_periods: 1..4, 0
+  // when none up to 4 repeats), apart from the label: a drift of period 2 is a drift.
+  int8_t orbit_periods = 0;
   // Impacts of the bouncing end (drift; both ends otherwise) over the window, by how the slip
   // ended as the impact law reports it: the most frequent of continuous_slide / slip_stick /
   // slip_reversal ("none" without impacts), and the share of impacts of that type.

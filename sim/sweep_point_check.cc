@@ -65,6 +65,7 @@ std::string PointResultProblem(const PointResult& p, const SweepSpec& spec) {
   if (!IsImpactType(p.impact_type)) return "impact_type is not an impact outcome";
   if (p.bouncing_sphere < -1 || p.bouncing_sphere > 1) return "bouncing_sphere is not -1, 0, 1";
   if (p.drift_survived < -1 || p.drift_survived > 1) return "drift_survived is not -1, 0, 1";
+  if (p.orbit_periods < 0 || p.orbit_periods > kMaxOrbitPeriods) return "orbit_periods is not 0..4";
   const SimOptions o = spec.PointOptionsNoInit(static_cast<size_t>(p.index));
   // The mean speed over the window cannot exceed what gravity and the plate give in the whole
   // run: (1 + Gamma) g for the run's duration, beside a drop's initial speed (< 1 m/s here).

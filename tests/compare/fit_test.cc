@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "compare/fit.h"
+#include "compare/fit_correlation.h"
 #include "compare/goodness_of_fit.h"
 #include "compare/simulate.h"
 
@@ -20,6 +21,12 @@ void Print(const FitResult& r) {
   }
   std::printf("chi2 %.3f dof %d threshold %.3f evaluations %d, %.1f s\n", r.chi2, r.dof, r.threshold,
               r.evaluations, r.seconds);
+  const size_t n = r.params.size();
+  for (size_t j = 0; j < n && r.correlation.size() == n * n; ++j) {
+    std::printf("correlation %-9s", r.params[j].name.c_str());
+    for (size_t k = 0; k < n; ++k) std::printf(" %+.3f", r.correlation[j * n + k]);
+    std::printf("\n");
+  }
 }
 
 TEST(Fit, RecoversRestitutionAndImpactFrictionFromASimulatedDrift) {
@@ -47,6 +54,20 @@ TEST(Fit, RecoversRestitutionAndImpactFrictionFromASimulatedDrift) {
   EXPECT_TRUE(std::isnan(mu_hat_s.err));
   EXPECT_LE(mu_hat_s.range_lo, truth.mu_hat_s);
   EXPECT_GE(mu_hat_s.range_hi, truth.mu_hat_s);
+  // Correlations (fit_correlation.h): a number for each pair of constrained parameters, read
+  // off both profiles (eps-mu_hat -0.37, eps-mu +0.49, mu_hat-mu -0.44 here), none for the rest.
+  const size_t n = r.params.size();
+  ASSERT_EQ(r.correlation.size(), n * n);
+  for (size_t j = 0; j < n; ++j) {
+    for (size_t k = 0; k < n; ++k) {
+      const double rho = r.correlation[j * n + k];
+      const bool both = r.params[j].status == "constrained" && r.params[k].status == "constrained";
+      EXPECT_EQ(std::isfinite(rho), both) << j << "," << k;
+      if (!both) continue;
+      EXPECT_LE(std::abs(rho), 1.0);
+      EXPECT_EQ(rho, r.correlation[k * n + j]);
+    }
+  }
 }
 
 
@@ -110,6 +131,83 @@ TEST(Fit, SaysWhenNoCoefficientsReproduceTheTrack) {
   bool names_takeoff = false;
   for (const std::string& line : r.off) names_takeoff |= line.find("bouncing_") == 0;
   EXPECT_TRUE(names_takeoff) << r.off[0];
+}
+
+// A profile of the quadratic chi2 of covariance C, as fit.cc walks it: at theta_k = +-sigma_k
+// the others sit at their conditional optimum theta_j = (C_jk / C_kk) theta_k.
+FitParameter GaussianProfile(const double c[3][3], size_t k) {
+  FitParameter p;
+  p.status = "constrained";
+  const double sk = std::sqrt(c[k][k]);
+  p.at_range_lo.assign(3, 0);
+  p.at_range_hi.assign(3, 0);
+  for (size_t j = 0; j < 3; ++j) {
+    p.at_range_lo[j] = -c[j][k] / c[k][k] * sk;
+    p.at_range_hi[j] = c[j][k] / c[k][k] * sk;
+  }
+  return p;
+}
+
+TEST(FitCorrelation, ProfilesOfAGaussianChi2GiveItsCorrelations) {
+  // sigmas 0.01, 0.2, 3; correlations -0.6 (0,1), +0.3 (0,2), +0.5 (1,2) (positive definite).
+  const double s[3] = {0.01, 0.2, 3}, rho[3][3] = {{1, -0.6, 0.3}, {-0.6, 1, 0.5}, {0.3, 0.5, 1}};
+  double c[3][3];
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 3; ++k) c[j][k] = rho[j][k] * s[j] * s[k];
+  std::vector<FitParameter> params = {GaussianProfile(c, 0), GaussianProfile(c, 1), GaussianProfile(c, 2)};
+  std::vector<double> r = ProfileCorrelations(params);
+  ASSERT_EQ(r.size(), 9u);
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(r[3 * j + k], rho[j][k], 1e-12) << j << "," << k;
+  // A parameter not constrained has no correlation with anything, itself included.
+  params[2].status = "bounded_above";
+  r = ProfileCorrelations(params);
+  EXPECT_NEAR(r[1], -0.6, 1e-12);
+  for (int k = 0; k < 3; ++k) EXPECT_TRUE(std::isnan(r[3 * 2 + k]) && std::isnan(r[3 * k + 2])) << k;
+  // Profiles that disagree on the sign (one re-optimisation fell short) give no number, nor
+  // does a profile along which the other parameter did not move at all.
+  std::vector<FitParameter> flipped = params, still = params;
+  flipped[1].at_range_hi[0] = -flipped[1].at_range_hi[0];
+  flipped[1].at_range_lo[0] = -flipped[1].at_range_lo[0];
+  r = ProfileCorrelations(flipped);
+  EXPECT_TRUE(std::isnan(r[1]) && std::isnan(r[3]));
+  still[1].at_range_hi[0] = still[1].at_range_lo[0];
+  r = ProfileCorrelations(still);
+  EXPECT_TRUE(std::isnan(r[1]) && std::isnan(r[3]));
+}
+
+// A scene the fitted model cannot produce: a drift on a plate tilted by 3 degrees (the paper's
+// Fig. 4b), fitted as a level plate (no --tilt-deg). The level model at the true coefficients
+// is off, the tilted one at them is exact; the fit says "no acceptable fit" (chi2/dof 4.4 here),
+// gives no coefficient and names what the tilt moves: the slip profile and the impact phase.
+TEST(Fit, SaysWhenATiltedPlateIsFittedAsLevel) {
+  sim::SimOptions truth;
+  truth.ar = 3.9;
+  truth.tilt_deg = 3;
+  truth.cycles = 60;
+  const Analysis track = SimulateAndAnalyze(truth, {}, "tilted");
+  ASSERT_EQ(track.periods.settled.summary.label, "drift");
+  sim::SimOptions level = truth;
+  level.tilt_deg = 0;
+  const double at_truth_tilted = FitChi2(track, truth, {}), at_truth_level = FitChi2(track, level, {});
+  std::printf("chi2 at the truth: tilted %.3g, level %.3g\n", at_truth_tilted, at_truth_level);
+  EXPECT_LT(at_truth_tilted, 1e-6);
+  FitOptions fo;
+  fo.global_evaluations = 100;
+  const FitResult r = FitCoefficients(track, level, fo);
+  Print(r);
+  EXPECT_GT(at_truth_level, r.chi2);
+  EXPECT_FALSE(r.acceptable);
+  EXPECT_LT(r.p_value, kMinFitPValue);
+  for (const FitParameter& p : r.params) {
+    EXPECT_EQ(p.status, "no_acceptable_fit") << p.name;
+    EXPECT_TRUE(std::isnan(p.err) && std::isnan(p.range_lo) && std::isnan(p.range_hi)) << p.name;
+  }
+  ASSERT_FALSE(r.off.empty());
+  bool names_slip_or_phase = false;
+  for (const std::string& line : r.off)
+    names_slip_or_phase |= line.find("slip_") == 0 || line.find("bouncing_impact_phase") == 0;
+  EXPECT_TRUE(names_slip_or_phase) << r.off[0];
 }
 
 TEST(GoodnessOfFit, PValueOfChiSquare) {

@@ -383,6 +383,20 @@ TEST_F(ReportTest, SummaryNeverPrintsAValueForAnUnconstrainedParameter) {
   EXPECT_EQ(md.find("nan"), std::string::npos);
 }
 
+// Two constrained parameters: their correlation is printed (fit_correlation.h); an
+// unconstrained one gets neither row nor column.
+TEST_F(ReportTest, SummaryPrintsTheCorrelationsOfConstrainedParameters) {
+  fit_.params.push_back(Param("mu_hat", "constrained", 0.12, 0.01, 0, 0.5, 1e4));
+  fit_.correlation = {1, kNaN, -0.83, kNaN, kNaN, kNaN, -0.83, kNaN, 1};
+  Write();
+  const std::string md = ReadText(dir_ / "summary.md");
+  EXPECT_NE(md.find("|   | eps | mu_hat |\n|---|---|---|\n| eps | +1.00 | -0.83 |\n"
+                    "| mu_hat | -0.83 | +1.00 |\n"), std::string::npos) << md;
+  const size_t table = md.find("Correlations of the constrained");
+  ASSERT_NE(table, std::string::npos);
+  EXPECT_EQ(md.find("| mu |", table), std::string::npos);
+}
+
 // A fit whose goodness fails gives no coefficient: the best point is named as failing, with the
 // observables furthest off.
 TEST_F(ReportTest, NoAcceptableFitGivesNoCoefficient) {

@@ -5,7 +5,7 @@ sweep. Layout as sim/sweep_journal.h; run from tests/fuzz/ to rewrite corpus/swe
 import struct, zlib
 
 IDENTITY = b"ar = 3.9\nshard = 1/1\n"
-MAGIC = b"dimerlab sweep journal 1\n"
+MAGIC = b"dimerlab sweep journal 2\n"
 
 def record(payload):
     return struct.pack("<I", len(payload)) + payload + struct.pack("<I", zlib.crc32(payload))
@@ -18,7 +18,7 @@ def point(index, mode, bouncing, speed, impact):
     p += struct.pack("<4d", speed, 1e-5, speed * 25 / 9.81, 1e-5 * 25 / 9.81)
     p += struct.pack("<b", 1) + struct.pack("<d", 18.0)
     p += struct.pack("<2d", 0.0, 1.0) + struct.pack("<2d", 0.6, 0.0)
-    p += string(impact) + struct.pack("<d", 1.0) + string(b"")
+    p += string(impact) + struct.pack("<d", 1.0) + struct.pack("<b", 1) + string(b"")
     return p
 
 whole = MAGIC + record(IDENTITY) + record(point(0, b"drift", 1, 0.02, b"continuous_slide"))

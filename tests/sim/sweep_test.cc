@@ -168,6 +168,7 @@ TEST(SweepJournal, KeepsWholeRecordsAndCutsATornTail) {
       p.index = i;
       p.mode = "drift";
       p.drift_scaled = 0.01 * i;
+      p.orbit_periods = static_cast<int8_t>(i % 4);
       j.Append(p);
     }
   }
@@ -184,6 +185,7 @@ TEST(SweepJournal, KeepsWholeRecordsAndCutsATornTail) {
     ASSERT_EQ(j.recovered().size(), 3u);
     EXPECT_EQ(j.recovered()[1].index, 1);
     EXPECT_EQ(j.recovered()[2].drift_scaled, 0.07);
+    EXPECT_EQ(j.recovered()[2].orbit_periods, 3);
     EXPECT_EQ(j.discarded_bytes(), 9);
   }
   EXPECT_EQ(Slurp(path), whole);  // the tail was cut
@@ -341,6 +343,7 @@ TEST_F(SweepFiles, ForwardDriftAt3_9BackwardAt6_1AndUphillOnASmallTilt) {
     EXPECT_GT(p.events_per_period, 1.0);
     EXPECT_NEAR(p.impacts_per_period[kRight], 1.0, 0.2);
     EXPECT_NEAR(p.drift_scaled, p.drift_speed * 25.0 / kGravity, 1e-15);
+    EXPECT_EQ(p.orbit_periods, 1);  // the paper's drift: one bounce a period, every period alike
     // Signed beyond its own uncertainty.
     const double sign = v[0] < 5 ? 1 : -1;
     EXPECT_GT(sign * p.drift_scaled, 3 * p.drift_scaled_err);
@@ -371,6 +374,7 @@ TEST(SweepPoint, PointEqualsSimulationOnLevelAndTiltedPlatesAtTwoFrequencies) {
     const SimResult r = RunSimulation(o);
     ASSERT_EQ(r.periods.size(), 80u);
     EXPECT_EQ(p.mode, r.mode.label);
+    EXPECT_EQ(p.orbit_periods, r.mode.orbit_periods);
     ASSERT_TRUE(std::isfinite(p.drift_speed));
     EXPECT_NEAR(p.drift_speed, r.mode.drift_speed, 1e-12 * std::abs(r.mode.drift_speed) + 1e-15);
   }
