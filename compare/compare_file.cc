@@ -221,9 +221,12 @@ void WriteFit(Out& o, const FitResult& f) {
   o.Doubles("/fit/range_lo", rlo, {k}, "1", "lowest value with chi2 within the threshold of the minimum");
   o.Doubles("/fit/range_hi", rhi, {k}, "1", "highest value with chi2 within the threshold of the minimum");
   if (f.correlation.size() == k * k) {
+    std::string columns;  // rows and columns in /fit/name's order
+    for (const std::string& n : names) columns += (columns.empty() ? "" : ",") + n;
     o.Doubles("/fit/correlation", f.correlation, {k, k}, "1",
               "correlation of each pair of constrained coefficients, from their chi2 profiles "
-              "(NaN unless both are constrained)");
+              "(NaN unless both are constrained)",
+              columns);
   }
   const hsize_t m = f.observable_names.size();
   o.Strings("/fit/observables/name", f.observable_names, "observable compared (velocities in g/f, phases in periods)");

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <mutex>
 #include <set>
@@ -43,7 +44,16 @@ TEST(ParallelFor, EveryIndexOnceAndTheSameResultsForAnyThreadCount) {
 TEST(ParallelFor, RunsOnSeveralThreadsIncludingTheCaller) {
   std::mutex m;
   std::set<std::thread::id> seen;
+  // Indices 0 and 1 each wait (up to 10 s) until two threads have taken work: with the caller
+  // among the workers both are taken by different threads, however the scheduler orders them
+  // on a loaded machine (a worker alone would otherwise finish all 64 before the caller starts).
+  std::atomic<int> arrived{0};
   ParallelFor(64, 2, [&](size_t i) {
+    if (i < 2) {
+      ++arrived;
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+      while (arrived < 2 && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+    }
     Work(i);
     const std::lock_guard<std::mutex> lock(m);
     seen.insert(std::this_thread::get_id());
