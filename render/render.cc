@@ -183,7 +183,7 @@ void RenderArgs::Check() const {
   need(!input.empty(), "input: a trajectory file (sim.h5) is required");
   need(!output.empty(), "-o: the output folder is required");
   need(m_per_px > 0 && std::isfinite(m_per_px), "--m-per-px must be > 0 m/px");
-  need(std::isnan(diameter) || diameter > 0, "--diameter must be > 0 m");
+  need(!diameter || (*diameter > 0 && std::isfinite(*diameter)), "--diameter must be > 0 m");
   need(rod_diameter >= 0 && std::isfinite(rod_diameter), "--rod-diameter must be >= 0 m");
   need(exposure >= 0 && exposure <= 1, "--exposure must be in [0, 1] frame intervals");
   need(blur_samples >= 1 && blur_samples <= 64, "--blur-samples must be 1..64");
@@ -220,9 +220,8 @@ Scene ReadScene(const RenderArgs& args) {
   const Trajectory& traj = scene.traj;
   scene.frames = args.max_frames > 0 ? std::min(args.max_frames, traj.size()) : traj.size();
   CheckTrajectory(args.input, traj, scene.frames);
-  scene.diameter = std::isnan(args.diameter)
-                       ? reader.AttrDouble("/", "diameter").value_or(std::nan(""))
-                       : args.diameter;
+  scene.diameter = args.diameter ? *args.diameter
+                                 : reader.AttrDouble("/", "diameter").value_or(std::nan(""));
   if (!(scene.diameter > 0)) {
     throw InputError(args.input + ": no root attribute 'diameter' (m); pass --diameter");
   }
@@ -233,13 +232,12 @@ Scene ReadScene(const RenderArgs& args) {
 RenderPlan PlanOf(const RenderArgs& args, const Scene& scene) {
   RenderPlan plan;
   plan.map.m_per_px = args.m_per_px;
-  plan.map.row0 = std::isnan(args.row0) ? kDefaultRow0Fraction * args.image.height : args.row0;
+  plan.map.row0 = args.row0.value_or(kDefaultRow0Fraction * args.image.height);
   double mean_x = 0;
   for (size_t i = 0; i < scene.frames; ++i)
     mean_x += 0.5 * (scene.traj.tip_left[i].x() + scene.traj.tip_right[i].x());
   const double mean_col = (mean_x / double(scene.frames)) / args.m_per_px;
-  plan.map.col_offset =
-      std::isnan(args.col_offset) ? 0.5 * args.image.width - mean_col : args.col_offset;
+  plan.map.col_offset = args.col_offset.value_or(0.5 * args.image.width - mean_col);
   plan.radius_px = 0.5 * scene.diameter / args.m_per_px;
   plan.rod_half_width_px = 0.5 * args.rod_diameter / args.m_per_px;
   return plan;

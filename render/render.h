@@ -12,6 +12,7 @@
 // samples; the truth is the position at the sample time, the blur's centre.
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <functional>
 #include <string>
 #include <vector>
@@ -34,9 +35,10 @@ struct RenderArgs {
   std::string output;           // folder to create
   bool force = false;           // replace an existing folder
   double m_per_px = 2.0e-4;     // m per pixel
-  double row0 = std::numeric_limits<double>::quiet_NaN();        // z = 0 row; NaN: 0.78 height
-  double col_offset = std::numeric_limits<double>::quiet_NaN();  // x = 0 column; NaN: centred
-  double diameter = std::numeric_limits<double>::quiet_NaN();    // m; NaN: file's `diameter`
+  // Values a user may leave out are empty when not given.
+  std::optional<double> row0;        // z = 0 row, px; not given: 0.78 of the height
+  std::optional<double> col_offset;  // x = 0 column, px; not given: the trajectory centred
+  std::optional<double> diameter;    // m; not given: the sim file's `diameter`
   double rod_diameter = 1.5e-3; // m (0: no rod)
   double exposure = 0.25;       // shutter open time, fraction of the frame interval (0: sharp)
   int blur_samples = 5;         // instants averaged over the exposure
