@@ -18,19 +18,6 @@ namespace {
 // Before the radius is known, windows are sized from the distance-transform radius with this
 // headroom (the silhouette of a mirror sphere can look smaller than the sphere).
 constexpr double kProvisionalRadiusScale = 1.25;
-// Template method: whole-pixel search around a prediction (< 1 px per frame at 2000 frames/s)
-// and around an acquisition's coarse match, px. The coarse match is the first sphere's
-// appearance, and the second sphere's is framed differently (a sphere that never rests is
-// framed on its lowest learning frames, above its centre: 3 px at 0.2 mm/px, 6 px at 0.1 mm/px),
-// so the acquisition reaches Reach(kAcquireSearchPx, kAcquireSearchR, R) (tolerances.h): a
-// fixed 4 px search misses at 0.1 mm/px, and following, which moves at most a pixel a frame,
-// needs frames to catch up (povray.targets.fine_scale).
-constexpr int kFollowSearchPx = 2;
-constexpr int kAcquireSearchPx = 4;
-constexpr double kAcquireSearchR = 0.16;
-// A learnt appearance is found where its correlation coefficient reaches this (a present sphere
-// scores > 0.9 at sigma = 2; an empty window or the plate scores far less).
-constexpr double kMinTemplateScore = 0.5;
 // Acquisition by template: a second match is another sphere when at least this far away (in
 // radii) and scoring at least kMinTemplateScore.
 constexpr double kTemplateSeparationR = 1.5;
@@ -116,46 +103,27 @@ void FollowerOptions::Check() const {
 FrameFollower::FrameFollower(const FollowerOptions& options)
     : options_(options), polarity_(options.polarity), radius_px_(options.radius_px) {
   options_.Check();
+  for (int k = 0; k < 2; ++k) {
+    locator_[k] = uses_template() ? MakeTemplateLocator(options_.appearance, k, options_.ecc)
+                                  : MakeSilhouetteLocator(options_.method);
+  }
+}
+
+SpherePrediction FrameFollower::Prediction(const Eigen::Vector2d& at, const Eigen::Vector2d* other,
+                                           const FrameTrack& frame, bool precise) const {
+  SpherePrediction p;
+  p.position = at;
+  p.precise = precise;
+  p.radius_px = radius_px_;
+  p.polarity = polarity_;
+  if (other) p.other = *other;
+  p.plate_row = frame.PlateRowAt(at.x());
+  p.plate_slope = options_.plate_slope;
+  return p;
 }
 
 bool FrameFollower::uses_template() const {
   return options_.method == Method::kTemplate && options_.appearance;
-}
-
-// The template method's measurement: the reference point of sphere `sphere`'s appearance
-// (the track's offset turns it into the centre afterwards, track_sequence.cc), radius as known.
-SphereMeasurement FrameFollower::Locate(const cv::Mat& frame, int sphere,
-                                          const Eigen::Vector2d& guess,
-                                          const Eigen::Vector2d* other, double plate_row,
-                                          int search_px) const {
-  MaskContext ctx;
-  ctx.plate_row = plate_row;
-  ctx.plate_slope = options_.plate_slope;
-  if (other && (*other - guess).norm() > 0) {
-    ctx.rod_dir = (*other - guess).normalized();
-    ctx.other = *other - guess;
-  }
-  const Located l =
-      LocateAppearance(frame, (*options_.appearance)[sphere], guess, search_px, ctx, options_.ecc);
-  SphereMeasurement m;
-  m.status = l.clipped ? SphereMeasurement::Status::kClipped
-                       : (l.ok && l.score >= kMinTemplateScore ? SphereMeasurement::Status::kFound
-                                                               : SphereMeasurement::Status::kMissing);
-  m.centre = l.position;
-  m.radius_px = radius_px_;
-  m.score = l.refined;
-  return m;
-}
-
-// Following with the template: ECC straight from the prediction (no correlation search: the
-// search costs more than the refinement), the whole-pixel search only when that fails (a
-// prediction more than a pixel off, e.g. at an impact).
-SphereMeasurement FrameFollower::FollowTemplate(const cv::Mat& frame, int k,
-                                                  const std::array<Eigen::Vector2d, 2>& predicted,
-                                                  double plate_row) const {
-  const SphereMeasurement m = Locate(frame, k, predicted[k], &predicted[1 - k], plate_row, 0);
-  if (m.found()) return m;
-  return Locate(frame, k, predicted[k], &predicted[1 - k], plate_row, kFollowSearchPx);
 }
 
 double FrameFollower::PlateRow(const cv::Mat& frame, double guess, double guess_col,
@@ -185,13 +153,9 @@ bool FrameFollower::Follow(const cv::Mat& frame, FrameTrack* out) {
       PlateRow(frame, plate_row_, plate_col_, predicted, 2, &out->clipped_plate, &out->plate_col);
   if (!std::isfinite(out->plate_row)) return false;
   for (int k = 0; k < 2; ++k) {
-    const double plate = out->PlateRowAt(predicted[k].x());
-    RefineContext ctx = Context(polarity_, plate, predicted[k], &predicted[1 - k]);
-    ctx.precise_guess = true;  // constant-velocity prediction, < 1 px per frame at 2000 frames/s
+    // A constant-velocity prediction: < 1 px per frame at 2000 frames/s.
     const SphereMeasurement m =
-        uses_template()
-            ? FollowTemplate(frame, k, predicted, plate)
-            : MeasureSphere(frame, predicted[k], radius_px_, ctx, options_.method);
+        locator_[k]->Locate(frame, Prediction(predicted[k], &predicted[1 - k], *out, true));
     if (!m.found()) return false;
     out->found[k] = true;
     out->centre[k] = m.centre;
@@ -233,15 +197,14 @@ void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
                             &out->plate_col);
   std::vector<SphereMeasurement> found;
   for (int k = 0; k < n; ++k) {
-    const RefineContext ctx = Context(polarity_, out->PlateRowAt(coarse[k].x()), coarse[k],
-                                      n > 1 ? &coarse[1 - k] : nullptr);
     SphereMeasurement m;
     if (uses_template()) {  // coarse only: refined below with the identity's own appearance
       m.status = SphereMeasurement::Status::kFound;
       m.centre = coarse[k];
       m.radius_px = radius_px_;
-    } else {
-      m = MeasureSphere(frame, coarse[k], radius_px_, ctx, options_.method);
+    } else {  // the silhouette locator measures alike for either identity
+      m = locator_[0]->Locate(frame,
+                              Prediction(coarse[k], n > 1 ? &coarse[1 - k] : nullptr, *out, false));
     }
     if (m.found()) found.push_back(m);
   }
@@ -249,10 +212,8 @@ void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
   if (uses_template()) {
     for (size_t i = 0; i < found.size(); ++i) {
       const Eigen::Vector2d* other = found.size() == 2 ? &found[1 - i].centre : nullptr;
-      const int search_px =
-          int(std::lround(Reach(kAcquireSearchPx, kAcquireSearchR, radius_px_)));
-      found[i] = Locate(frame, slot_of[i], found[i].centre, other,
-                        out->PlateRowAt(found[i].centre.x()), search_px);
+      found[i] = locator_[slot_of[i]]->Locate(frame,
+                                              Prediction(found[i].centre, other, *out, false));
     }
   }
   for (size_t i = 0; i < found.size(); ++i) {

@@ -3,7 +3,8 @@
 // A list of stages per frame:
 //   1. predict each sphere from its last two positions (constant velocity);
 //   2. refine the plate row in a band around the last one, using columns clear of the spheres;
-//   3. measure each sphere in a window around its prediction (measure_sphere.h), masking the rod toward
+//   3. measure each sphere in a window around its prediction with the film's locator
+//      (sphere_locator.h: the silhouette or the learnt appearance), which masks the rod toward
 //      the other sphere, the plate, and the other sphere's disc where the two touch (A_r ~2);
 //   4. if a sphere is lost (missing, clipped) or nothing is locked yet, acquire on the whole
 //      frame (detector.h) and give each detection the identity of the nearest last position;
@@ -20,6 +21,7 @@
 #include "tracking/plate/clipped_edge.h"
 #include "tracking/plate/plate_edge.h"
 #include "tracking/sphere/measure_sphere.h"
+#include "tracking/sphere/sphere_locator.h"
 #include "tracking/sphere/template_locator.h"
 #include "tracking/tolerances.h"
 
@@ -88,11 +90,10 @@ class FrameFollower {
   bool Follow(const cv::Mat& frame, FrameTrack* out);
   void Acquire(const cv::Mat& frame, FrameTrack* out);
   bool uses_template() const;
-  SphereMeasurement Locate(const cv::Mat& frame, int sphere, const Eigen::Vector2d& guess,
-                           const Eigen::Vector2d* other, double plate_row, int search_px) const;
-  SphereMeasurement FollowTemplate(const cv::Mat& frame, int k,
-                                   const std::array<Eigen::Vector2d, 2>& predicted,
-                                   double plate_row) const;
+  // What a locator is told of sphere at `at`: the other sphere (null: none), the plate under it
+  // in `frame`'s track, and whether `at` is a follower's prediction or a coarse detection.
+  SpherePrediction Prediction(const Eigen::Vector2d& at, const Eigen::Vector2d* other,
+                              const FrameTrack& frame, bool precise) const;
   // The plate's row under the spheres at `centres` (the first n), and the column it is at;
   // `guess` is a row of the edge at column `guess_col`.
   double PlateRow(const cv::Mat& frame, double guess, double guess_col,
@@ -101,6 +102,8 @@ class FrameFollower {
   void Commit(const FrameTrack& t);
 
   FollowerOptions options_;
+  // Sphere k's locator (sphere_locator.h): the learnt appearance k, or the silhouette for both.
+  std::array<std::shared_ptr<const SphereLocator>, 2> locator_;
   int polarity_ = 0;
   double radius_px_;
   double plate_row_ = std::numeric_limits<double>::quiet_NaN();

@@ -1,6 +1,6 @@
 #pragma once
 // A learnt appearance matched where its sphere is not. The template method accepts a match whose
-// correlation coefficient reaches kMinTemplateScore (0.5, frame_follower.cc): low, because a sphere in
+// correlation coefficient reaches kMinTemplateScore (0.5, sphere/sphere_locator.h): low, because a sphere in
 // under-exposed footage scores that low in earnest (POV-Ray under-exposed: 0.52 at worst). A sphere
 // leaving the frame cannot be matched whole, and the best match left inside the frame lies beside
 // it: on POV-Ray front_point drifting out of a narrow frame the right sphere came out 9-10 px short

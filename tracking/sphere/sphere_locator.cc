@@ -1,0 +1,102 @@
+#include "tracking/sphere/sphere_locator.h"
+
+#include <cmath>
+#include <utility>
+
+#include "tracking/tolerances.h"
+
+namespace dimer::tracking {
+namespace {
+
+// Template method: whole-pixel search around a prediction (< 1 px per frame at 2000 frames/s)
+// and around an acquisition's coarse match, px. The coarse match is the first sphere's
+// appearance, and the second sphere's is framed differently (a sphere that never rests is
+// framed on its lowest learning frames, above its centre: 3 px at 0.2 mm/px, 6 px at 0.1 mm/px),
+// so the acquisition reaches Reach(kAcquireSearchPx, kAcquireSearchR, R) (tolerances.h): a
+// fixed 4 px search misses at 0.1 mm/px, and following, which moves at most a pixel a frame,
+// needs frames to catch up (povray.targets.fine_scale).
+constexpr int kFollowSearchPx = 2;
+constexpr int kAcquireSearchPx = 4;
+constexpr double kAcquireSearchR = 0.16;
+
+bool Distinct(const Eigen::Vector2d& other, const Eigen::Vector2d& self) {
+  return other.allFinite() && (other - self).norm() > 0;
+}
+
+class SilhouetteLocator final : public SphereLocator {
+ public:
+  explicit SilhouetteLocator(Method method) : method_(method) {}
+
+  SphereMeasurement Locate(const cv::Mat& frame, const SpherePrediction& p) const override {
+    RefineContext ctx;
+    ctx.polarity = p.polarity;
+    ctx.plate_row = p.plate_row;
+    if (Distinct(p.other, p.position)) ctx.rod_dir = (p.other - p.position).normalized();
+    ctx.other = p.other;  // left out where the spheres touch (measure_sphere.h)
+    ctx.precise_guess = p.precise;
+    return MeasureSphere(frame, p.position, p.radius_px, ctx, method_);
+  }
+
+ private:
+  Method method_;
+};
+
+class TemplateSphereLocator final : public SphereLocator {
+ public:
+  TemplateSphereLocator(std::shared_ptr<const std::array<Appearance, 2>> appearances, int which,
+                        const EccStop& stop)
+      : appearances_(std::move(appearances)), which_(which), stop_(stop) {}
+
+  // Following: ECC straight from the prediction (no correlation search: the search costs more
+  // than the refinement), the whole-pixel search only when that fails (a prediction more than
+  // a pixel off, e.g. at an impact). Acquisition: the search reaching as far as a coarse match
+  // can be off.
+  SphereMeasurement Locate(const cv::Mat& frame, const SpherePrediction& p) const override {
+    if (!p.precise) {
+      return At(frame, p, int(std::lround(Reach(kAcquireSearchPx, kAcquireSearchR, p.radius_px))));
+    }
+    const SphereMeasurement m = At(frame, p, 0);
+    if (m.found()) return m;
+    return At(frame, p, kFollowSearchPx);
+  }
+
+ private:
+  // The reference point of the appearance (the track's offset turns it into the centre
+  // afterwards, track_sequence.cc), radius as known.
+  SphereMeasurement At(const cv::Mat& frame, const SpherePrediction& p, int search_px) const {
+    MaskContext ctx;
+    ctx.plate_row = p.plate_row;
+    ctx.plate_slope = p.plate_slope;
+    if (Distinct(p.other, p.position)) {
+      ctx.rod_dir = (p.other - p.position).normalized();
+      ctx.other = p.other - p.position;
+    }
+    const Located l =
+        LocateAppearance(frame, (*appearances_)[which_], p.position, search_px, ctx, stop_);
+    SphereMeasurement m;
+    m.status = l.clipped ? SphereMeasurement::Status::kClipped
+                         : (l.ok && l.score >= kMinTemplateScore ? SphereMeasurement::Status::kFound
+                                                                 : SphereMeasurement::Status::kMissing);
+    m.centre = l.position;
+    m.radius_px = p.radius_px;
+    m.score = l.refined;
+    return m;
+  }
+
+  std::shared_ptr<const std::array<Appearance, 2>> appearances_;
+  int which_;
+  EccStop stop_;
+};
+
+}  // namespace
+
+std::unique_ptr<SphereLocator> MakeSilhouetteLocator(Method method) {
+  return std::make_unique<SilhouetteLocator>(method);
+}
+
+std::unique_ptr<SphereLocator> MakeTemplateLocator(
+    std::shared_ptr<const std::array<Appearance, 2>> appearances, int which, const EccStop& stop) {
+  return std::make_unique<TemplateSphereLocator>(std::move(appearances), which, stop);
+}
+
+}  // namespace dimer::tracking
