@@ -8,6 +8,7 @@
 #include "common/check.h"
 #include "common/error.h"
 #include "tracking/sphere/detector.h"
+#include "tracking/sphere/precision_bound.h"
 #include "tracking/plate/plate_edge.h"
 #include "tracking/sphere/template_locator.h"
 #include "tracking/tolerances.h"
@@ -116,6 +117,7 @@ SpherePrediction FrameFollower::Prediction(const Eigen::Vector2d& at, const Eige
   p.precise = precise;
   p.radius_px = radius_px_;
   p.polarity = polarity_;
+  p.noise_sigma = noise_sigma_;
   if (other) p.other = *other;
   p.plate_row = frame.PlateRowAt(at.x());
   p.plate_slope = options_.plate_slope;
@@ -161,6 +163,7 @@ bool FrameFollower::Follow(const cv::Mat& frame, FrameTrack* out) {
     out->centre[k] = m.centre;
     out->score[k] = m.score;
     out->radius_px[k] = m.radius_px;
+    out->sigma_px[k] = m.sigma_px;
   }
   return true;
 }
@@ -222,6 +225,7 @@ void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
     out->centre[slot_of[i]] = found[i].centre;
     out->score[slot_of[i]] = found[i].score;
     out->radius_px[slot_of[i]] = found[i].radius_px;
+    out->sigma_px[slot_of[i]] = found[i].sigma_px;
   }
 }
 
@@ -245,6 +249,10 @@ FrameTrack FrameFollower::Process(const cv::Mat& frame, size_t index) {
   DIMER_CHECK(!frame.empty() && frame.channels() == 1,
               "the tracker measures grey frames (frame sources make them grey)");
   if (polarity_ == 0) polarity_ = DetectPolarity(frame);
+  if (!noise_measured_) {  // once per follower: a chunk's frames share the camera's noise
+    noise_sigma_ = FrameNoiseSigma(frame);
+    noise_measured_ = true;
+  }
   FrameTrack out;
   out.index = index;
   if (!Follow(frame, &out)) Acquire(frame, &out);

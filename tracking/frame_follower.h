@@ -57,6 +57,11 @@ struct FrameTrack {
   std::array<bool, 2> found{false, false};
   std::array<Eigen::Vector2d, 2> centre{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};  // px
   std::array<double, 2> radius_px{0, 0};           // measured radius (for calibration), px
+  // Each found sphere's stated standard deviation (col, row), px, from its locator
+  // (SphereMeasurement::sigma_px; NaN where the locator states none).
+  std::array<Eigen::Vector2d, 2> sigma_px{
+      Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN()),
+      Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN())};
   // Template method: each found sphere's correlation with its learnt appearance, refined by ECC
   // (NaN where ECC did not converge, and for the other methods).
   std::array<double, 2> score{std::numeric_limits<double>::quiet_NaN(),
@@ -108,6 +113,10 @@ class FrameFollower {
   double radius_px_;
   double plate_row_ = std::numeric_limits<double>::quiet_NaN();
   double plate_col_ = 0;  // the column plate_row_ is at
+  // The footage's pixel noise (FrameNoiseSigma on the first frame), grey levels: the centroid's
+  // stated uncertainty scales with it.
+  double noise_sigma_ = std::numeric_limits<double>::quiet_NaN();
+  bool noise_measured_ = false;
   std::array<bool, 2> known_{false, false};    // a last position exists (maybe stale)
   std::array<bool, 2> locked_{false, false};   // found in the previous frame
   std::array<Eigen::Vector2d, 2> last_{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};

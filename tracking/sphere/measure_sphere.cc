@@ -1,6 +1,7 @@
 #include "tracking/sphere/measure_sphere.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -281,11 +282,25 @@ struct ActivePixels {
 // The core: window pixels that every mask keeps at weight 1 for any estimate within
 // kCoreShiftPx of the window centre (the window is re-read before the estimate gets further).
 // Their moments are summed once per window; iterations revisit only the pixels outside it.
+// Moments of the pixels whose weight is not clamped (0 < w < 1, window coordinates): only
+// their noise reaches the centroid.
+struct UnclampedMoments {
+  double n = 0, x = 0, y = 0, xx = 0, yy = 0;
+  void Add(int px, int py) {
+    n += 1;
+    x += px;
+    y += py;
+    xx += double(px) * px;
+    yy += double(py) * py;
+  }
+};
+
 struct CentroidState {
   Window window;
   Levels levels;
   ActivePixels active;                  // positive-weight pixels outside the core
   double core_w = 0, core_x = 0, core_y = 0;  // sum of w, w x, w y over the core (window coords)
+  UnclampedMoments unclamped;           // in the core (no mask reaches it)
 };
 
 // Largest distance of a pixel from the window centre at which the masks are 1 for every
@@ -325,6 +340,7 @@ void ComputeWeights(CentroidState* s, double core_radius) {
   a.Reserve(w.v.size());
   size_t n = 0;
   double cw = 0, cx = 0, cy = 0;
+  UnclampedMoments un;
   for (int y = 0; y < w.size; ++y) {
     const float* row = &w.v[size_t(y) * w.size];
     const int dy2 = (y - half) * (y - half);
@@ -332,6 +348,7 @@ void ComputeWeights(CentroidState* s, double core_radius) {
       const float wt = std::min(1.0f, (row[x] - bg) * inv);
       if (!(wt > 0)) continue;
       const int d2 = (x - half) * (x - half) + dy2;
+      if (wt < 1.0f && d2 < core_r2) un.Add(x, y);
       if (d2 < core_r2) {
         cw += wt;
         cx += double(wt) * x;
@@ -345,6 +362,7 @@ void ComputeWeights(CentroidState* s, double core_radius) {
     }
   }
   a.n = n;
+  s->unclamped = un;
   s->core_w = cw;
   s->core_x = cx;
   s->core_y = cy;
@@ -438,6 +456,49 @@ bool Iterate(const cv::Mat& frame, const RefineContext& ctx, double radius, int 
   return true;
 }
 
+// Standard deviation of the centroid at `c` over weighted area `area`: c = sum w x / W, and a
+// pixel's weight moves with its noise (sigma / span per grey level) only where it is not
+// clamped, so one step's var(F_x) = (sigma / span)^2 sum_unclamped m^2 (x - c_x)^2 / W^2 with m
+// the pixel's mask weight. A pixel at a clamp, unclamped half the time, has its rectified noise
+// (variance 0.34) counted as 0.5: this errs high. The masks
+// are point-symmetric about the estimate, so the centroid is the fixed point c = F(c): noise
+// moves it by (I - dF/dc)^-1 dF, and near the plate's cut dF/dc is ~0.5 (the row's scatter
+// doubles; SphereLocator.StatedUncertaintyMatchesTheScatterOverNoise, the resting sphere).
+Eigen::Vector2d CentroidSigma(const CentroidState& s, const Eigen::Vector2d& c, double area,
+                              double noise_sigma, const RefineContext& ctx, double radius,
+                              double win_r) {
+  const UnclampedMoments& u = s.unclamped;
+  const double cx = c.x() - s.window.col0, cy = c.y() - s.window.row0;
+  double sxx = std::max(0.0, u.xx - 2 * cx * u.x + u.n * cx * cx);
+  double syy = std::max(0.0, u.yy - 2 * cy * u.y + u.n * cy * cy);
+  // Outside the core, each unclamped pixel under its mask weight, as CentroidStep weighs it.
+  const CentroidMask mask = MakeCentroidMask(ctx, radius, c, win_r);
+  const ActivePixels& a = s.active;
+  const double bx = s.window.col0 - c.x(), by = s.window.row0 - c.y();
+  for (size_t i = 0; i < a.n; ++i) {
+    if (!(a.w[i] < 1.0f)) continue;
+    const double dx = bx + a.x[i], dy = by + a.y[i];
+    double m = CircleWeight(dx * dx + dy * dy, win_r);
+    if (mask.active()) m *= mask(dx, dy);
+    sxx += m * m * dx * dx;
+    syy += m * m * dy * dy;
+  }
+  const double per_level = noise_sigma / (s.levels.sphere - s.levels.background) / area;
+  const auto step = [&](const Eigen::Vector2d& at) {
+    return CentroidStep(s, at, win_r, MakeCentroidMask(ctx, radius, at, win_r));
+  };
+  // F(c) = c at the fixed point, to the iterations' tolerance (kCentroidConvergedPx, far
+  // below the probe's effect), so two steps give dF/dc.
+  constexpr double kProbePx = 0.05;  // well inside the masks' linear range (ramps of ~1 px)
+  Eigen::Matrix2d j;
+  j.col(0) = (step(c + Eigen::Vector2d(kProbePx, 0)) - c) / kProbePx;
+  j.col(1) = (step(c + Eigen::Vector2d(0, kProbePx)) - c) / kProbePx;
+  const Eigen::Matrix2d m = (Eigen::Matrix2d::Identity() - j).inverse();
+  const Eigen::Matrix2d cov = per_level * per_level * m *
+                              Eigen::Vector2d(sxx, syy).asDiagonal() * m.transpose();
+  return {std::sqrt(cov(0, 0)), std::sqrt(cov(1, 1))};
+}
+
 SphereMeasurement Centroid(const cv::Mat& frame, const Eigen::Vector2d& guess, double radius,
                            const RefineContext& ctx, CentroidState* s) {
   SphereMeasurement out;
@@ -476,6 +537,10 @@ SphereMeasurement Centroid(const cv::Mat& frame, const Eigen::Vector2d& guess, d
   out.area_fraction = area / (std::numbers::pi * radius * radius);
   out.centre = c;
   out.radius_px = std::sqrt(area / std::numbers::pi);
+  if (s->levels.uniform && area > 0 && std::isfinite(ctx.noise_sigma)) {
+    out.sigma_px = CentroidSigma(*s, c, area, ctx.noise_sigma, ctx, radius, win_r);
+  }
+  if (out.area_fraction > 0) out.quality = std::min(out.area_fraction, 1.0 / out.area_fraction);
   const bool ok = out.area_fraction > kMinAreaFraction && out.area_fraction < kMaxAreaFraction;
   out.status = ok ? SphereMeasurement::Status::kFound : SphereMeasurement::Status::kMissing;
   return out;
@@ -498,6 +563,8 @@ void DiscFit(const cv::Mat& frame, const RefineContext& ctx, const Levels& start
   thread_local Window w;  // read once (re-read only if the fit walks off it): no allocation
   const int half = int(std::ceil(radius_guess + kFitBandPx + 2.0));
   bool have_window = false;
+  Eigen::Matrix<double, 5, 5> last_jtj;
+  double last_r2 = 0, last_n = 0;
   for (int it = 1; it <= kFitMaxIter; ++it) {
     const Eigen::Vector2d c(p(0), p(1));
     const Eigen::Vector2d window_centre(w.col0 + w.size / 2, w.row0 + w.size / 2);
@@ -511,6 +578,7 @@ void DiscFit(const cv::Mat& frame, const RefineContext& ctx, const Levels& start
     const SymmetricMask mask = MakeMask(ctx, p(2), c, kMaskRampPx);
     Eigen::Matrix<double, 5, 5> jtj = Eigen::Matrix<double, 5, 5>::Zero();
     Eigen::Matrix<double, 5, 1> jtr = Eigen::Matrix<double, 5, 1>::Zero();
+    double sum_r2 = 0, used = 0;
     // Only the band R +- kFitBandPx: per row, the columns between its outer and inner circles.
     const double outer = p(2) + kFitBandPx, inner = std::max(0.0, p(2) - kFitBandPx);
     auto all_rows = [](double) { return true; };
@@ -526,16 +594,23 @@ void DiscFit(const cv::Mat& frame, const RefineContext& ctx, const Levels& start
         // the Jacobian row is a unit vector on one level, so only that level's diagonal and
         // right-hand side change.
         const int level = outside ? 3 : 4;
+        const double r = Data(w.at(x, y), start) - (p(3) + span * (outside ? 0.0 : 1.0));
         jtj(level, level) += 1.0;
-        jtr(level) += Data(w.at(x, y), start) - (p(3) + span * (outside ? 0.0 : 1.0));
+        jtr(level) += r;
+        sum_r2 += r * r, used += 1;
         return;
       }
       const PixelCoverage cov = DiscPixelCoverage(col, row, c, p(2));
       Eigen::Matrix<double, 5, 1> j;
       j << span * cov.d_cx, span * cov.d_cy, span * cov.d_r, 1.0 - cov.area, cov.area;
+      const double r = Data(w.at(x, y), start) - (p(3) + span * cov.area);
       jtj += j * j.transpose();
-      jtr += j * (Data(w.at(x, y), start) - (p(3) + span * cov.area));
+      jtr += j * r;
+      sum_r2 += r * r, used += 1;
     });
+    last_jtj = jtj;
+    last_r2 = sum_r2;
+    last_n = used;
     const Eigen::Matrix<double, 5, 1> step = jtj.ldlt().solve(jtr);
     if (!step.allFinite()) return;  // keep the centroid result
     p += step;
@@ -544,6 +619,12 @@ void DiscFit(const cv::Mat& frame, const RefineContext& ctx, const Levels& start
   }
   m->centre = {p(0), p(1)};
   m->radius_px = p(2);
+  // Least squares: covariance s^2 (J^T J)^-1, s^2 the residual variance (noise and whatever
+  // the disc model lacks), at the last linearisation.
+  if (last_n > 5) {
+    const Eigen::Matrix<double, 5, 5> cov = last_jtj.inverse() * (last_r2 / (last_n - 5));
+    if (cov.allFinite()) m->sigma_px = {std::sqrt(cov(0, 0)), std::sqrt(cov(1, 1))};
+  }
 }
 
 }  // namespace
@@ -604,6 +685,7 @@ SphereMeasurement MeasureSphere(const cv::Mat& frame, const Eigen::Vector2d& gue
     }
     m.centre = rim.centre;
     m.radius_px = rim.radius_px;
+    m.sigma_px = rim.sigma_px;
     m.iterations += rim.iterations;
     m.rim_fit = true;
     return m;

@@ -47,6 +47,10 @@ struct RefineContext {
   // its point mirror image, like the rod). Farther apart it changes nothing.
   Eigen::Vector2d other{std::numeric_limits<double>::quiet_NaN(),
                         std::numeric_limits<double>::quiet_NaN()};
+  // The frame's pixel noise, grey levels (precision_bound.h, FrameNoiseSigma): the centroid's
+  // stated uncertainty scales with it (NaN: none stated). The fits take theirs from their
+  // residuals.
+  double noise_sigma = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct SphereMeasurement {
@@ -60,6 +64,17 @@ struct SphereMeasurement {
   // Template method: ECC's correlation coefficient of the learnt appearance there, where ECC
   // converged (Located::refined; NaN otherwise).
   double score = std::numeric_limits<double>::quiet_NaN();
+  // Standard deviation of `centre` (col, row), px, from the pixels the measurement used: the
+  // centroid's from the noise of its unclamped weights, a fit's (disc, rim) from its residual
+  // and the inverse of its normal matrix; NaN where it cannot be stated. Within 0.86-1.12 of
+  // the scatter over noise (SphereLocator.StatedUncertaintyMatchesTheScatterOverNoise). The
+  // template states its registration's bound, which ECC misses by 2-4 times
+  // (SphereLocator.TemplateStatesTheBoundOfItsRegistration).
+  Eigen::Vector2d sigma_px{std::numeric_limits<double>::quiet_NaN(),
+                           std::numeric_limits<double>::quiet_NaN()};
+  // How well the sphere matched what the locator expects, 0 to 1: a silhouette's area against
+  // pi R^2 (min of the ratio and its inverse), a template's correlation coefficient.
+  double quality = std::numeric_limits<double>::quiet_NaN();
   bool found() const { return status == Status::kFound; }
 };
 

@@ -228,7 +228,8 @@ struct NormalEquations {
 
 // One Gauss-Newton step on all parameters; returns the number of pixels used.
 int Step(const Window& w, const Usable& usable, double ramp_px, bool fit_radius,
-         const std::array<bool, kRimSectors>& valid, Vec* p, double* sum_r2) {
+         const std::array<bool, kRimSectors>& valid, Vec* p, double* sum_r2,
+         Eigen::Vector2d* centre_sigma) {
   const Eigen::Vector2d c((*p)(0), (*p)(1));
   const double R = (*p)(2), bg = (*p)(3);
   const double band = std::max(0.5 * ramp_px, 0.71) + kEdgeBandPx;
@@ -280,7 +281,18 @@ int Step(const Window& w, const Usable& usable, double ramp_px, bool fit_radius,
     // them (and only them, in effect) at their current level.
     if (free[u] >= kGeomParams) a(u, u) += kLevelDamping;
   }
-  const SubVec sub = a.selfadjointView<Eigen::Lower>().ldlt().solve(b);
+  const auto ldlt = a.selfadjointView<Eigen::Lower>().ldlt();
+  const SubVec sub = ldlt.solve(b);
+  // The centre's standard deviation, s^2 (J^T J)^-1 with s^2 the residual variance: the centre
+  // is free parameters 0 and 1.
+  if (used > n) {
+    const double s2 = *sum_r2 / (used - n);
+    for (int axis = 0; axis < 2; ++axis) {
+      SubVec e = SubVec::Zero(n);
+      e(axis) = 1;
+      (*centre_sigma)(axis) = std::sqrt(s2 * ldlt.solve(e)(axis));
+    }
+  }
   Vec step = Vec::Zero();
   for (int u = 0; u < n; ++u) step(free[u]) = sub(u);
   if (!step.allFinite()) return -1;
@@ -380,7 +392,8 @@ RimFitResult FitRim(const cv::Mat& frame, const Eigen::Vector2d& centre, double 
       usable.centre_col = p(0);
       const Eigen::Vector2d before = p.head<2>();
       double sum_r2 = 0;
-      const int used = Step(w, usable, ramp, input.fit_radius, valid, &p, &sum_r2);
+      const int used =
+          Step(w, usable, ramp, input.fit_radius, valid, &p, &sum_r2, &out.sigma_px);
       out.rms = used > 0 ? std::sqrt(sum_r2 / used) : 0.0;
       ++out.iterations;
       out.edge_pixels = used;

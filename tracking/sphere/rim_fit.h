@@ -66,6 +66,10 @@ struct RimFitResult {
   int iterations = 0;
   int edge_pixels = 0;              // pixels in the last Gauss-Newton pass
   double rms = 0;                   // RMS residual of the last pass, grey levels
+  // Standard deviation of `centre` from the last pass (residual variance times the inverse
+  // normal matrix), px; NaN when it had no more pixels than unknowns.
+  Eigen::Vector2d sigma_px{std::numeric_limits<double>::quiet_NaN(),
+                           std::numeric_limits<double>::quiet_NaN()};
 };
 
 // Fits the rim of the sphere near (`centre`, `radius_px`) in `frame` (CV_8U or CV_16U).

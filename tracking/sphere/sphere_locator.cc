@@ -34,6 +34,7 @@ class SilhouetteLocator final : public SphereLocator {
     if (Distinct(p.other, p.position)) ctx.rod_dir = (p.other - p.position).normalized();
     ctx.other = p.other;  // left out where the spheres touch (measure_sphere.h)
     ctx.precise_guess = p.precise;
+    ctx.noise_sigma = p.noise_sigma;
     return MeasureSphere(frame, p.position, p.radius_px, ctx, method_);
   }
 
@@ -80,6 +81,8 @@ class TemplateSphereLocator final : public SphereLocator {
     m.centre = l.position;
     m.radius_px = p.radius_px;
     m.score = l.refined;
+    m.sigma_px = l.sigma;
+    m.quality = std::isfinite(l.refined) ? l.refined : l.score;
     return m;
   }
 

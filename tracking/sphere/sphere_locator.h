@@ -30,6 +30,9 @@ struct SpherePrediction {
   bool precise = false;            // a follower's prediction (true) or a coarse detection
   double radius_px = std::numeric_limits<double>::quiet_NaN();  // the sphere's known radius
   int polarity = 1;  // +1: spheres brighter than background; -1: darker
+  // The frame's pixel noise, grey levels (FrameNoiseSigma; NaN: unknown, and the centroid then
+  // states no uncertainty).
+  double noise_sigma = std::numeric_limits<double>::quiet_NaN();
   // The other sphere's expected position (NaN: unknown): the rod toward it and its disc, where
   // the two touch, are left out of the measurement.
   Eigen::Vector2d other{std::numeric_limits<double>::quiet_NaN(),

@@ -3,6 +3,8 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 
@@ -245,6 +247,56 @@ void KeepCorrelations(cv::Mat* res) {
 
 }  // namespace
 
+Eigen::Vector2d RegistrationSigma(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
+                                  const Eigen::Vector2d& t, int gauss_size) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const cv::Matx23d shift(1, 0, t.x(), 0, 1, t.y());
+  cv::Mat warped, m;
+  cv::warpAffine(moving, warped, shift, fixed.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+                 cv::BORDER_REPLICATE);
+  cv::warpAffine(mask, m, shift, fixed.size(), cv::INTER_NEAREST | cv::WARP_INVERSE_MAP,
+                 cv::BORDER_CONSTANT, 0);
+  // The residual of fixed ~ alpha + beta warped over the mask, on the pixels as they are: its
+  // variance s^2 counts the noise and whatever of the sphere's look the appearance lacks.
+  double n = 0, sw = 0, sf = 0, sww = 0, swf = 0, sff = 0;
+  for (int y = 0; y < fixed.rows; ++y) {
+    const uint8_t* mr = m.ptr<uint8_t>(y);
+    const float* wr = warped.ptr<float>(y);
+    const float* fr = fixed.ptr<float>(y);
+    for (int x = 0; x < fixed.cols; ++x) {
+      if (!mr[x]) continue;
+      const double wv = wr[x], fv = fr[x];
+      n += 1, sw += wv, sf += fv, sww += wv * wv, swf += wv * fv, sff += fv * fv;
+    }
+  }
+  const double vw = sww - sw * sw / n, cwf = swf - sw * sf / n, vf = sff - sf * sf / n;
+  if (!(n > 4) || !(vw > 0) || !(cwf != 0)) return {nan, nan};
+  const double beta = cwf / vw;
+  const double s2 = std::max(0.0, vf - beta * cwf) / (n - 4);
+  // ECC fits the images smoothed by its Gaussian: least squares on K*F against K*A(x + t). Its
+  // shift is A^-1 sum g (K n) = A^-1 sum (K g) n, with g the smoothed appearance's gradient over
+  // the mask and A = sum g g^T, so cov = s^2 / beta^2 A^-1 B A^-1, B = sum (K g)(K g)^T: the
+  // smoothing that steadies ECC costs the high-frequency part of the rim's information.
+  cv::Mat smooth, gx, gy;
+  cv::GaussianBlur(warped, smooth, cv::Size(gauss_size, gauss_size), 0, 0);
+  cv::Sobel(smooth, gx, CV_32F, 1, 0, 1, 0.5);  // central differences
+  cv::Sobel(smooth, gy, CV_32F, 0, 1, 1, 0.5);
+  cv::Mat inside;
+  cv::erode(m, inside, cv::Mat(), cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, 0);
+  gx.setTo(0, inside == 0);
+  gy.setTo(0, inside == 0);
+  cv::Mat hx, hy;
+  cv::GaussianBlur(gx, hx, cv::Size(gauss_size, gauss_size), 0, 0, cv::BORDER_CONSTANT);
+  cv::GaussianBlur(gy, hy, cv::Size(gauss_size, gauss_size), 0, 0, cv::BORDER_CONSTANT);
+  Eigen::Matrix2d a, b;
+  a << gx.dot(gx), gx.dot(gy), gx.dot(gy), gy.dot(gy);
+  b << hx.dot(hx), hx.dot(hy), hx.dot(hy), hy.dot(hy);
+  if (!(a.determinant() > 0)) return {nan, nan};
+  const Eigen::Matrix2d ai = a.inverse();
+  const Eigen::Matrix2d cov = s2 / (beta * beta) * ai * b * ai;
+  return {std::sqrt(cov(0, 0)), std::sqrt(cov(1, 1))};
+}
+
 Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
                          int search_px, const MaskContext& ctx, const EccStop& stop) {
   Located out;
@@ -304,6 +356,7 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   if ((refined - start).norm() <= kEccMaxMovePx) {
     out.position = refined;
     out.refined = rho;
+    out.sigma = RegistrationSigma(frame_patch, a.image, refine_mask, t, kEccFrameGaussSize);
     if (search_px == 0) out.ok = true, out.score = rho;
   }
   return out;

@@ -63,6 +63,10 @@ struct Located {
   // peak is off (POV-Ray under-exposed: 0.52 against 0.86 refined), so that only `refined`
   // compares one frame's match with another's (match_scores.h).
   double refined = std::numeric_limits<double>::quiet_NaN();
+  // Standard deviation of the refined position (col, row), px (RegistrationSigma); NaN where
+  // ECC did not refine it.
+  Eigen::Vector2d sigma{std::numeric_limits<double>::quiet_NaN(),
+                        std::numeric_limits<double>::quiet_NaN()};
 };
 
 // ECC's stopping rule (cv::findTransformECC's criteria, for each of its two runs): Gauss-Newton
@@ -80,6 +84,14 @@ struct EccStop {
 bool RegisterTranslation(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
                          Eigen::Vector2d* t, double* rho = nullptr, int residual_gauss = 5,
                          const EccStop& stop = {});
+
+// Standard deviation (col, row) of a translation t registered by RegisterTranslation (same
+// images and mask, its last run smoothing with a Gaussian of `gauss_size`): `moving` warped by
+// t and fitted to `fixed` by a gain and a level over the mask gives the residual variance,
+// which holds the noise and any mismatch of the appearance (a poorer match states a larger
+// uncertainty); propagated through the smoothed least squares that ECC solves.
+Eigen::Vector2d RegistrationSigma(const cv::Mat& fixed, const cv::Mat& moving, const cv::Mat& mask,
+                                  const Eigen::Vector2d& t, int gauss_size);
 
 // Searches +-search_px (whole pixels) around `guess`, then refines. search_px = 0: no search,
 // ECC from the guess (a tracker's prediction), ok only if it converges within a pixel of it,
