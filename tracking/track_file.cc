@@ -68,6 +68,26 @@ void WritePrecisionGroup(H5Writer& w, const SequenceResult& r) {
 }
 
 // The template method's learnt appearances and offsets (docs/FORMATS.md).
+// auto's trial (method_trial.h): one row per candidate, the template first.
+void WriteMethodTrial(H5Writer& w, const SequenceResult& r) {
+  if (r.method_trial.empty()) return;
+  std::vector<double> v;
+  std::string rows;
+  for (const TrialScores& t : r.method_trial) {
+    v.insert(v.end(), {double(t.frames), double(t.both_found), t.smooth_px, t.length_px, t.score});
+    rows += (rows.empty() ? "" : ",") + ToString(t.method);
+  }
+  w.WriteDoubles("/method_trial", v, {r.method_trial.size(), 5}, "px (frames: counts)",
+                 "frames,both_found,smooth_px,length_px,score");
+  w.SetAttr("/method_trial", "rows", rows);
+  w.SetAttr("/method_trial", "description",
+            "--method auto: each candidate followed over the film's first consecutive frames; "
+            "smooth_px is each centre's noise from its third differences, length_px the "
+            "dimer's length's, score the larger of smooth_px and length_px / sqrt(2) (NaN: "
+            "both spheres found in under 90 % of the frames); the centroid replaces the template "
+            "only at half its score or less, or where the template has none");
+}
+
 void WriteTemplateGroup(H5Writer& w, const SequenceResult& r) {
   std::vector<double> offset, err;
   std::vector<int64_t> frames;
@@ -341,6 +361,7 @@ void WriteColumns(H5Writer& w, const TrackColumns& columns, const SequenceResult
   w.SetAttr("/found", "description", "whether each sphere was found in the frame");
   if (r.method == Method::kTemplate) WriteTemplateGroup(w, r);
   WritePrecisionGroup(w, r);
+  WriteMethodTrial(w, r);
   std::vector<int64_t> stuck;
   for (const cv::Point& p : r.defects.at) stuck.insert(stuck.end(), {p.x, p.y});
   w.WriteInt64("/stuck_pixels", stuck, {r.defects.at.size(), 2});

@@ -9,6 +9,7 @@
 
 #include "common/error.h"
 #include "common/interrupt.h"
+#include "tracking/method_trial.h"
 #include "tracking/sphere/precision_bound.h"
 
 namespace dimer::tracking {
@@ -149,6 +150,31 @@ bool OpenFilm(const FrameAt& frame_at, size_t count, const SequenceOptions& opti
   return true;
 }
 
+// Stage "trial" (auto, where the template was learnt): the silhouette locator beside the
+// template on the film's first consecutive frames (method_trial.h); the lower noise is run.
+void TryTheSilhouettes(const FrameAt& frame_at, size_t available, int threads, Film* film,
+                       SequenceResult* result) {
+  std::vector<Frame> run;
+  for (size_t i = 0; i < std::min(available, kTrialFrames); ++i) {
+    Frame f = frame_at(i);
+    if (!f.error.empty() || f.image.cols != film->ref.width || f.image.rows != film->ref.height) {
+      continue;
+    }
+    f.image = CleanFrame(f.image, result->defects, film->undistort);
+    run.push_back(std::move(f));
+  }
+  FollowerOptions o = film->chunk_opts;
+  o.polarity = film->ref.polarity;
+  o.radius_px = film->ref.radius_px;
+  const MethodTrial trial = TryMethods(run, o, threads);
+  film->prepared.choice.reason += trial.reason;
+  result->method_trial = trial.candidates;
+  if (trial.chosen != Method::kCentroid) return;
+  film->prepared.choice.method = Method::kCentroid;
+  film->chunk_opts.method = Method::kCentroid;
+  film->chunk_opts.appearance.reset();
+}
+
 // Stage "choose method, learn" (template and auto): the learning frames, `learning_at(i)` for i
 // in LearningIndices(available), by index only (sequential sources: within the first chunk,
 // which is decoded ahead anyway); the method and appearances are fixed before any chunk runs.
@@ -184,6 +210,9 @@ void LearnFilm(const FrameAt& learning_at, size_t available, const SequenceOptio
     result->radius_source = std::isfinite(options.contact_radius_px) ? "scale"
                             : film->prepared.radius_from_outline     ? "outline"
                                                                      : "silhouette";
+  }
+  if (options.follower.method == Method::kAuto && film->chunk_opts.method == Method::kTemplate) {
+    TryTheSilhouettes(learning_at, available, threads, film, result);
   }
 }
 

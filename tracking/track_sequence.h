@@ -32,6 +32,7 @@
 #include "tracking/learn_method.h"
 #include "tracking/track_precision.h"
 #include "tracking/frame_follower.h"
+#include "tracking/method_trial.h"
 
 namespace dimer::tracking {
 struct SequenceOptions {
@@ -102,6 +103,9 @@ struct SequenceResult {
   DefectPixels defects;          // the sensor's stuck pixels, replaced in every frame
   DimerNames dimer_names;        // the spheres named by the rigid dimer (dimer_identity.h)
   MatchScores scores;            // template: matches far below their sphere's scores, dropped
+  // auto, where the template was learnt: each candidate's noise on the film's first frames
+  // (method_trial.h), the template first; empty otherwise.
+  std::vector<TrialScores> method_trial;
   // Template: the first readable frame's noise (grey levels, precision_bound.h) and each
   // sphere's bound (col, row; px) on how precisely its learnt appearance can be placed in it.
   double frame_noise = std::numeric_limits<double>::quiet_NaN();
