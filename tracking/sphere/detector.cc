@@ -138,6 +138,12 @@ double LowestPointRow(const Detection& det, double slope, int cols, double radiu
   return lowest;
 }
 
+double LargestRadius(const Detection& det) {
+  double r = 0;
+  for (double dt : det.radii_px) r = std::max(r, dt);
+  return r;
+}
+
 // The spheres found above the image's choice (`out`) do not stand on it (`lowest`: their lowest
 // point, NaN where none was found), or one is missing (an edge that runs across the spheres
 // leaves too little of them above it). The candidate their lowest point meets is the plate;
@@ -148,6 +154,7 @@ bool DimerStandsOnAnother(const cv::Mat& frame, int polarity, double slope, doub
                           const std::vector<PlateCandidate>& candidates, double lowest,
                           Detection* out) {
   const size_t found = out->centres.size();
+  const double largest = LargestRadius(*out);
   std::vector<size_t> order;
   const int meets = CandidateTheDimerStandsOn(candidates, lowest);
   if (meets >= 0) order.push_back(size_t(meets));
@@ -167,7 +174,13 @@ bool DimerStandsOnAnother(const cv::Mat& frame, int polarity, double slope, doub
     out->top_rows.clear();
     FindSpheresAbove(frame, polarity, slope, out);
     const double low = LowestPointRow(*out, slope, frame.cols, radius_px);
-    if (out->centres.size() >= found && CandidateTheDimerStandsOn({candidates[i]}, low) == 0) {
+    // Without the radius, a lowest point is only as good as the smallest blob's radius, and
+    // above an edge that cuts the spheres only their highlights may be left, whose lowest
+    // points meet that edge: the spheres above the edge taken must be no smaller than above the
+    // image's choice (lowering the line the spheres are found above only adds to them).
+    const bool no_smaller = std::isfinite(radius_px) || LargestRadius(*out) >= largest;
+    if (out->centres.size() >= found && no_smaller &&
+        CandidateTheDimerStandsOn({candidates[i]}, low) == 0) {
       out->plate_by_dimer = true;
       return true;
     }
