@@ -116,7 +116,7 @@ void ReportPlateFound(const TrackArgs& args, const SequenceResult& r, Diagnostic
 // Where the image's strongest edge is not the plate's (a ruler, a backdrop's band, a reflection,
 // the plate's lower face): the plate is the edge the dimer stands on (sphere/detector.h), and
 // the film says so, once, with the first frame where it was told apart
-// (PlateUnderTheDimer.ARulerAboveThePlateIsNotTakenForIt).
+// (PlateUnderTheDimer.TrackSaysTheStrongestEdgeIsNotThePlate).
 void ReportStrongerEdge(const SequenceResult& r, Diagnostics* diag) {
   size_t frames = 0;
   const FrameTrack* first = nullptr;
@@ -129,7 +129,7 @@ void ReportStrongerEdge(const SequenceResult& r, Diagnostics* diag) {
   }
   if (!first) return;
   diag->Note("plate_not_strongest_edge",
-             Format("the image's strongest edge (row %.0f in frame %zu) is not the plate's: the "
+             Format("the image's strongest edge (row %.1f in frame %zu) is not the plate's: the "
                     "plate is the edge the dimer stands on (row %.1f there; told apart in %zu "
                     "of the frames where the spheres were searched afresh)",
                     first->strongest_edge_row, first->index, first->plate_row, frames),

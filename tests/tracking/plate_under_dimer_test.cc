@@ -7,9 +7,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
-#include <filesystem>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -23,8 +23,8 @@
 namespace dimer::tracking {
 namespace {
 
-// Where a distractor lies: on the backdrop (fixed rows, behind the dimer) or on the plate's
-// front face (rows below its top, riding with it).
+// Where a distractor lies: at fixed rows, or at rows relative to the plate's top (riding with
+// it: on its front face below, or on the backdrop just above).
 struct Distractor {
   const char* name;
   bool on_plate;   // rows relative to the plate's top; else absolute
@@ -35,8 +35,8 @@ struct Distractor {
 // Paints rows [top, bottom) at `level`, each pixel by the fraction of it the band covers, but
 // only where `mask` (the dimer) is 0.
 void PaintBand(cv::Mat* frame, const cv::Mat& mask, double top, double bottom, double level) {
-  for (int r = std::max(0, int(std::floor(top))); r < std::min(frame->rows, int(std::ceil(bottom)) + 1);
-       ++r) {
+  const int last = std::min(frame->rows - 1, int(std::ceil(bottom)));
+  for (int r = std::max(0, int(std::floor(top))); r <= last; ++r) {
     const double f = std::clamp(std::min(bottom, r + 0.5) - std::max(top, r - 0.5), 0.0, 1.0);
     if (f <= 0) continue;
     for (int c = 0; c < frame->cols; ++c) {

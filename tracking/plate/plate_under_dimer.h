@@ -13,9 +13,10 @@
 
 namespace dimer::tracking {
 
-// The coarse lowest point (a distance-transform centre and radius, +-1 px each) against a
-// candidate's whole-pixel row: they meet within this, px. Candidates are at least
-// kPlateCandidateSeparationRows apart, so at most one meets.
+// The coarse lowest point (a blob's top, +-1 px, and a diameter: of the radius the tracker knows,
+// or the distance transform's, +-1 px) against a candidate's whole-pixel row: they meet within
+// this, px. Candidates are at least kPlateCandidateSeparationRows apart, so at most one meets
+// (PlateUnderTheDimer.TheCandidateTheLowestPointMeets).
 inline constexpr double kPlateMeetPx = 3.0;
 
 // Index into `candidates` of the one the dimer stands on: nearest to `lowest_point_row` (the

@@ -119,8 +119,8 @@ void FindSpheresAbove(const cv::Mat& frame, int polarity, double slope, Detectio
   }
 }
 
-// The lowest sphere's lowest point (the top of its blob plus a diameter), moved along the slope to the
-// frame's centre column; NaN with no sphere.
+// The lowest sphere's lowest point (the top of its blob plus a diameter), moved along the slope
+// to the frame's centre column; NaN with no sphere.
 double LowestPointRow(const Detection& det, double slope, int cols, double radius_px) {
   // Without the radius, the smallest distance-transform one (a band joined to a sphere only
   // makes its circle larger).
