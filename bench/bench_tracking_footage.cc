@@ -2,7 +2,7 @@
 // front-lit touching spheres at A_r 2.0, 2.1, 2.3, each tracked by every method, against the
 // issue's targets (tests/footage/track_accuracy.h). docs/BENCHMARKS.md,
 // bench_tracking_footage.
-//   bench_tracking_footage [frames] [subframes] [cache_dir] [methods]
+//   bench_tracking_footage [frames] [subframes] [cache_dir] [methods] [footage]
 //   bench_tracking_footage --ecc [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --learn-passes [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --camera [frames] [subframes] [cache_dir]
@@ -29,7 +29,8 @@
 // Defaults: 40 frames of the hop motion, 6 exposure slices (300 us at 2000 frames/s), cache
 // folder bench_footage_cache (footage is reused while its scenes are unchanged), methods
 // "auto,centroid,template" (comma-separated `--method` names of tracking/sphere/measure_sphere.h; auto is the
-// default a user gets). The tracker is given the scale, as with `--m-per-px`.
+// default a user gets), every footage (or the comma-separated footage names given, to rerun
+// their rows). The tracker is given the scale, as with `--m-per-px`.
 // Prints the POV-Ray CPU time per frame of each footage (every slice, antialiased), then one
 // row per footage and method, and the machine (cores, load average).
 #include <algorithm>
@@ -593,7 +594,13 @@ int main(int argc, char** argv) {
   const std::string cache = argc > 3 ? argv[3] : "bench_footage_cache";
   const std::vector<std::string> methods =
       SplitList(argc > 4 ? argv[4] : "auto,centroid,template");
-  const std::vector<Case> cases = camera ? CameraCases() : AllCases();
+  std::vector<Case> cases = camera ? CameraCases() : AllCases();
+  if (argc > 5) {
+    const std::vector<std::string> only = SplitList(argv[5]);
+    std::erase_if(cases, [&](const Case& c) {
+      return std::find(only.begin(), only.end(), c.name) == only.end();
+    });
+  }
   std::filesystem::create_directories(cache);
   std::printf("POV-Ray footage: %zu frames per case, 640x320, %s, 300 us exposure in %d "
               "slices, noise 2 grey levels; %u cores, load average %.1f at start\n\n",

@@ -173,7 +173,8 @@ void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
   *out = FrameTrack{};
   out->index = index;
   out->acquired = true;
-  Detection det = DetectSpheres(frame, polarity_, options_.plate_slope);
+  Detection det = DetectSpheres(frame, polarity_, options_.plate_slope, radius_px_);
+  out->strongest_edge_row = det.strongest_edge_row;
   // The coarse plate row is the edge's at the frame's centre column; the plate's lowest point
   // bounds the search for the spheres.
   const double det_col = 0.5 * (frame.cols - 1);

@@ -79,6 +79,9 @@ struct FrameTrack {
   // clipped level (clipped_edge.h); null otherwise, and after that fit.
   std::shared_ptr<const ClippedEdgeProfile> clipped_plate;
   bool acquired = false;                           // whole-frame detection was needed
+  // Acquired: the image's strongest edge's row where the plate is another edge (the one the
+  // dimer stands on, sphere/detector.h); NaN where the strongest edge is the plate.
+  double strongest_edge_row = std::numeric_limits<double>::quiet_NaN();
   // Template method: the learnt appearance each sphere was measured with (the chunk's name for
   // it); the film's names (dimer_identity.h) may differ, and the appearance's offsets follow it.
   std::array<int, 2> appearance{0, 1};

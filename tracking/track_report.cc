@@ -113,6 +113,29 @@ void ReportPlateFound(const TrackArgs& args, const SequenceResult& r, Diagnostic
   }
 }
 
+// Where the image's strongest edge is not the plate's (a ruler, a backdrop's band, a reflection,
+// the plate's lower face): the plate is the edge the dimer stands on (sphere/detector.h), and
+// the film says so, once, with the first frame where it was told apart
+// (PlateUnderTheDimer.TrackSaysTheStrongestEdgeIsNotThePlate).
+void ReportStrongerEdge(const SequenceResult& r, Diagnostics* diag) {
+  size_t frames = 0;
+  const FrameTrack* first = nullptr;
+  for (const FrameTrack& f : r.frames) {
+    if (!f.acquired || !std::isfinite(f.strongest_edge_row) || !std::isfinite(f.plate_row)) {
+      continue;
+    }
+    ++frames;
+    if (!first) first = &f;
+  }
+  if (!first) return;
+  diag->Note("plate_not_strongest_edge",
+             Format("the image's strongest edge (row %.1f in frame %zu) is not the plate's: the "
+                    "plate is the edge the dimer stands on (row %.1f there; told apart in %zu "
+                    "of the frames where the spheres were searched afresh)",
+                    first->strongest_edge_row, first->index, first->plate_row, frames),
+             "plate");
+}
+
 // A camera not level (or a tilted plate): the rows are read under each sphere and the metres
 // run along the plate. The plate's top in view: its row is the contact line found from the
 // mirror images, and its motion scaled to the dimer plane's.
@@ -268,6 +291,7 @@ void ReportFilm(const TrackArgs& args, const Recording& rec, const SequenceResul
   ReportClippedPlate(args, r.plate_clip, diag);
   ReportCleaning(r, diag);
   ReportPlateFound(args, r, diag);
+  ReportStrongerEdge(r, diag);
   ReportPlateGeometry(args, r, diag);
   ReportTemplate(r, diag);
   ReportPrecision(args, r, diag);

@@ -22,6 +22,7 @@ constexpr std::pair<Lighting, const char*> kLightingNames[] = {
     {Lighting::kMirrorPlate, "mirror_plate"},
     {Lighting::kRingLight, "ring_light"},
     {Lighting::kClutteredBackdrop, "cluttered_backdrop"},
+    {Lighting::kRulerAbovePlate, "ruler_above_plate"},
 };
 
 constexpr double kMm = 1000.0;  // scene units per metre
@@ -123,6 +124,16 @@ std::string Lights(Lighting l) {
              " }\n";
         return s;
       }
+    case Lighting::kRulerAbovePlate:
+      // A white ruler on a stand 25 mm behind the dimer (5 mm behind the plate's back edge),
+      // from 2.5 to 6 mm above the plate's mean top: in the frames a white band from 29 to 12
+      // px above the plate's edge, behind the spheres' lower halves, its edges steps of twice
+      // the plate's. Taken from the image alone the plate was the ruler's lower edge, 11 px
+      // high; it is the edge the dimer stands on (povray.plate.ruler_above_plate;
+      // sphere/detector.h).
+      return std::string(kFrontLamps) + "background { rgb 0 }\n" +
+             "box { <-2000, 2.5, 25>, <2000, 6, 26>\n"
+             "  texture { pigment { rgb 0.9 } finish { ambient 0 diffuse 1 } } }\n";
     case Lighting::kRingLight: {
       // The lighting machine-vision setups use on axis: 16 LEDs on a ring 60 mm in radius
       // around the lens (10 mm in front of the pinhole, 0.7 m away), behind a glowing diffuser

@@ -41,6 +41,7 @@ enum class Lighting {
   kMirrorPlate,       // front_point on a polished plate that mirrors the spheres
   kRingLight,         // polished steel lit by an LED ring around the lens, dark background
   kClutteredBackdrop, // front_point before a grey wall with a white ruler, bolts on the plate
+  kRulerAbovePlate,   // front_point with a white ruler behind the dimer, just above the plate
 };
 std::string ToString(Lighting l);
 // Throws UsageError naming the option and listing the accepted names.

@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "common/error.h"
 #include "common/h5_file.h"
 #include "common/trajectory_io.h"
 #include "tests/common/test_tmpdir.h"
@@ -43,6 +44,7 @@
 #include "tracking/io/frame_source.h"
 #include "tracking/io/mosaic_grey.h"
 #include "tracking/run_track.h"
+#include "tracking/track_sequence.h"
 
 #ifndef DIMERLAB_POVRAY_TEST_METHOD
 #define DIMERLAB_POVRAY_TEST_METHOD "centroid"
@@ -607,6 +609,189 @@ TEST(PovrayLeavingTheFrame, ASphereCutByTheFramesEdgeIsNotFoundBesideItself) {
   EXPECT_EQ(right_found_whole, right_whole);
 }
 
+// Footage of `motion` with options `o`, rendered (or found) in the cache as `name`.
+std::string CachedFilm(const std::string& name, FootageOptions o, const Motion& motion) {
+  o.reuse = true;
+  o.quiet = true;
+  const std::string dir = std::string(DIMERLAB_POVRAY_CACHE) + "/" + name;
+  std::filesystem::create_directories(DIMERLAB_POVRAY_CACHE);
+  WriteFootage(motion, o, dir);
+  return dir;
+}
+
+// The dimer drifting out of the field of view (the camera still): the front_point scene with
+// the dimer resting on the still plate and sliding right, from 1 px a frame to 4 px a frame by
+// frame 8 (a 30 us exposure: it blurs by 0.2 px), the right sphere leaving by the frame's right
+// edge over frames 10-22, then the left over 47-58, none in view in the last two of 61 frames.
+// Each sphere whole in view (8 px clear of the edge, as above) is found under its own name (no
+// identity swap), its mean error within the 0.1 px and every frame within 0.5 px; a
+// sphere wholly out of view is not found (the track file's NaN); one cut by the edge is either
+// not found or found within 0.5 px. (At a steady 4 px a frame from frame 0 both spheres were
+// followed 1.6-1.8 px off in frames 1-2, where the follower's first prediction is the
+// acquisition's position.) CTest `povray.leaving_the_frame`.
+TEST(PovrayLeavingTheFrame, OneSphereLeavesThenTheOtherAndNeitherIsSwappedOrInvented) {
+  FootageOptions o = FootageOptions::For(Lighting::kFrontPoint);
+  o.exposure_s = 30e-6;
+  o.subframes = kSlices;
+  constexpr size_t kDriftFrames = 61;
+  const double m = o.camera.m_per_px, rs = 0.5 * o.shape.diameter, l = o.shape.CentreDistance();
+  std::vector<Pose> poses;
+  double x = 0;
+  for (size_t i = 0; i < kDriftFrames; ++i) {
+    poses.push_back({double(i) / o.fps, x, rs, 0.0, 0.0});
+    x += std::min(4.0, 1.0 + 0.375 * double(i)) * m;
+  }
+  o.camera.centre_x = poses[10].x + 0.5 * l + rs - 320 * m;  // right sphere's edge at col 639.5
+  const std::string dir = CachedFilm("leaving_both_edges", o, PoseMotion(o.shape, poses));
+  double radius = 0;
+  const std::vector<TruthRow> truth = ReadTruthCsv(dir + "/truth.csv", &radius);
+  ASSERT_EQ(truth.size(), kDriftFrames);
+  std::vector<cv::Mat> frames;
+  for (const TruthRow& row : truth) frames.push_back(cv::imread(dir + "/" + row.file,
+                                                                cv::IMREAD_UNCHANGED));
+  tracking::MemorySource source(frames);
+  tracking::SequenceOptions so;
+  so.follower.method = tracking::Method::kAuto;
+  so.contact_radius_px = radius;
+  so.threads = 2;
+  const tracking::SequenceResult r = tracking::TrackSequence(source, so);
+  ASSERT_EQ(r.frames.size(), kDriftFrames);
+  const int width = frames[0].cols;
+  const char* names[2] = {"left", "right"};
+  for (int k = 0; k < 2; ++k) {
+    Eigen::Vector2d sum(0, 0);
+    size_t whole = 0, found_whole = 0, out = 0, found_out = 0;
+    for (size_t i = 0; i < kDriftFrames; ++i) {
+      const double left_edge = truth[i].centre[k].x() - radius;
+      const bool is_whole = left_edge + 2 * radius < width - 8, is_out = left_edge > width;
+      const tracking::FrameTrack& f = r.frames[i];
+      if (is_out) ++out, found_out += f.found[k];
+      if (!f.found[k]) continue;
+      const Eigen::Vector2d e = f.centre[k] - truth[i].centre[k];
+      const Eigen::Vector2d crossed = f.centre[k] - truth[i].centre[1 - k];
+      EXPECT_LT(e.norm(), crossed.norm()) << names[k] << " frame " << i << ": swapped";
+      EXPECT_LT(e.norm(), 0.5) << names[k] << " frame " << i;
+      if (is_whole) ++found_whole, sum += e;
+    }
+    for (size_t i = 0; i < kDriftFrames; ++i) {
+      whole += truth[i].centre[k].x() + radius < width - 8;
+    }
+    const Eigen::Vector2d bias = found_whole ? Eigen::Vector2d(sum / double(found_whole)) : sum;
+    std::printf("[ stats    ] %s sphere: found in %zu of the %zu frames it is whole in, in %zu "
+                "of the %zu it is out of view; bias (%+.3f, %+.3f) px\n",
+                names[k], found_whole, whole, found_out, out, bias.x(), bias.y());
+    EXPECT_EQ(found_whole, whole) << names[k];
+    EXPECT_EQ(found_out, 0u) << names[k];
+    EXPECT_GT(out, 0u) << names[k] << " sphere never leaves: the film is not what it says";
+    EXPECT_LE(bias.norm(), kBiasTargetPx) << names[k];
+  }
+}
+
+// A still-plate calibration film: the dimer resting on a still plate in 16 poses (each frame its
+// own, sharp), the left sphere on the plate, the right lifted by 0 to 3 degrees, the dimer moved
+// by up to 6 mm between poses. A lab's film of this kind put both spheres' rows 2.2-2.4 px low
+// in every frame, stating 0.5 px. Per sphere and axis: |bias| within max(0.1 px, 2 x the stated
+// uncertainty), which is at most 0.3 px. Missed (CTest `povray.still_plate_poses`, an expected
+// failure): the rows show no such offset (the frames searched afresh: -0.06 and -0.03 px), but
+// where a frame's pose is followed from the last one's the right sphere, which changes height
+// between poses, is matched 7-11 px off in its row and kept (its mean row error +1.0 px); and
+// the columns read the dimer 0.27 px long (-0.14 and +0.13 px, the right's stated +-0.06).
+TEST(PovrayStillPlatePoses, CalibrationPosesAreUnbiasedWithinTheirStatedUncertainty) {
+  FootageOptions o = FootageOptions::For(Lighting::kFrontPoint);
+  o.exposure_s = 0;
+  o.subframes = 1;
+  o.camera.centre_x = 0;
+  constexpr int kPoses = 16;
+  const double r = 0.5 * o.shape.diameter, l = o.shape.CentreDistance();
+  std::vector<Pose> poses;
+  for (int i = 0; i < kPoses; ++i) {
+    const double theta = (3.0 * ((i * 7) % kPoses) / (kPoses - 1)) * M_PI / 180.0;
+    const double left_x = -0.5 * l + 1e-3 * (((i * 5) % 7) - 3);
+    poses.push_back({double(i) / o.fps, left_x + 0.5 * l * std::cos(theta),
+                     r + 0.5 * l * std::sin(theta), theta, 0.0});
+  }
+  const std::string dir = CachedFilm("still_plate_poses", o, PoseMotion(o.shape, poses));
+  {  // Where the errors are: the frames searched afresh and the frames followed from the last.
+    double radius = 0;
+    const std::vector<TruthRow> truth = ReadTruthCsv(dir + "/truth.csv", &radius);
+    std::vector<cv::Mat> frames;
+    for (const TruthRow& row : truth) {
+      frames.push_back(cv::imread(dir + "/" + row.file, cv::IMREAD_UNCHANGED));
+    }
+    tracking::MemorySource source(frames);
+    tracking::SequenceOptions so;
+    so.follower.method = tracking::Method::kAuto;
+    so.contact_radius_px = radius;
+    so.threads = 2;
+    const tracking::SequenceResult res = tracking::TrackSequence(source, so);
+    for (int k = 0; k < 2; ++k) {
+      for (bool acquired : {true, false}) {
+        Eigen::Vector2d sum(0, 0);
+        double worst = 0;
+        int n = 0;
+        for (size_t i = 0; i < truth.size(); ++i) {
+          const tracking::FrameTrack& f = res.frames[i];
+          if (!f.found[k] || f.acquired != acquired) continue;
+          const Eigen::Vector2d e = f.centre[k] - truth[i].centre[k];
+          sum += e, worst = std::max(worst, e.norm()), ++n;
+        }
+        std::printf("[ stats    ] %s sphere, %d frames %s: mean error (%+.3f, %+.3f) px, worst "
+                    "%.2f px\n", k ? "right" : "left", n,
+                    acquired ? "searched afresh" : "followed", n ? sum.x() / n : NAN,
+                    n ? sum.y() / n : NAN, worst);
+      }
+    }
+  }
+  const TrackAccuracy a = MeasureTrackAccuracy(dir, TestMethod(), 2);
+  std::printf("still_plate_poses\n%s%s", AccuracyHeader().c_str(), AccuracyRow(a).c_str());
+  ASSERT_EQ(a.frames, size_t(kPoses));
+  const char* names[2] = {"left", "right"};
+  const char* axes[2] = {"column", "row"};
+  for (int k = 0; k < 2; ++k) {
+    const SphereAccuracy& s = a.sphere[k];
+    EXPECT_EQ(s.found, s.good) << names[k];
+    std::printf("[ stats    ] %s: bias (%+.3f, %+.3f) px, stated +-(%.3f, %.3f)\n", names[k],
+                s.bias.x(), s.bias.y(), s.stated_err.x(), s.stated_err.y());
+    for (int ax = 0; ax < 2; ++ax) {
+      const double stated = std::isfinite(s.stated_err(ax)) ? s.stated_err(ax) : 0.0;
+      EXPECT_LE(std::abs(s.bias(ax)), std::max(kBiasTargetPx, 2 * stated))
+          << names[k] << " " << axes[ax] << " stated +-" << s.stated_err(ax);
+      if (a.template_run) EXPECT_LE(s.stated_err(ax), 0.3) << names[k] << " " << axes[ax];
+    }
+  }
+  EXPECT_EQ(a.identity_swaps, 0u);
+  EXPECT_LE(a.plate_max_error, kPlateTargetPx);
+}
+
+// A film with no dimer: one steel sphere alone resting on the oscillating plate (the dimer's
+// other sphere out of view, no rod). `track` exits 1 (InputError) with one line and writes
+// nothing (tracking/dimer_presence.h). CTest `povray.no_dimer`.
+TEST(PovrayNoDimer, OneSphereAloneIsRefusedAndNothingIsWritten) {
+  FootageOptions o = FootageOptions::For(Lighting::kFrontPoint);
+  o.shape.rod_diameter = 0;
+  o.shape.aspect_ratio = 40;  // the other sphere 370 mm away
+  o.subframes = kSlices;
+  o.camera.centre_x = -0.5 * o.shape.CentreDistance();  // the left sphere mid-frame
+  const std::string dir =
+      CachedFilm("one_sphere_alone", o, HopMotion(o.shape, 12, o.fps, HopOptions{}));
+  dimer::testing::TempDir tmp;
+  tracking::TrackArgs t;
+  t.input = dir;
+  t.output = tmp / "track.h5";
+  t.m_per_px = o.camera.m_per_px;
+  t.quiet = true;
+  std::string error;
+  try {
+    tracking::RunTrack(t);
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  std::printf("[ stats    ] %s\n", error.c_str());
+  EXPECT_NE(error.find("no dimer"), std::string::npos) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+  EXPECT_FALSE(std::filesystem::exists(t.output));
+}
+
 // 16-bit frames filling a quarter of the range (8-bit levels x 64: a 14-bit camera's, or a
 // 16-bit one's at a quarter of full exposure, as PNG with no header to say so) must track as
 // their 8-bit frames do: the same spheres found, each bias within 0.1 px of the 8-bit film's,
@@ -831,6 +1016,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"mirror_plate", Lighting::kMirrorPlate, 3.9},
                       Case{"ring_light", Lighting::kRingLight, 3.9},
                       Case{"cluttered_backdrop", Lighting::kClutteredBackdrop, 3.9},
+                      Case{"ruler_above_plate", Lighting::kRulerAbovePlate, 3.9},
                       Case{"front_point_ar2_0", Lighting::kFrontPoint, 2.0},
                       Case{"front_point_ar2_1", Lighting::kFrontPoint, 2.1},
                       Case{"front_point_ar2_3", Lighting::kFrontPoint, 2.3}),

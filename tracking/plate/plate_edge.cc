@@ -253,17 +253,62 @@ int CandidateUnderTheDimer(const RowProfile& p, std::vector<int> candidates, int
   return most >= kMinStandOutPixels ? chosen : k;
 }
 
+// The row FindPlateRowCoarse takes from the profile `p` (its step's index), -1 if none; the
+// strongest step's index in *strongest and the smallest step that counts in *min_step.
+int CoarseStepOf(const RowProfile& p, const cv::Mat& frame, int* strongest, double* min_step) {
+  *min_step = kPlateMinStepFraction * std::max(p.hi - p.lo, 0.05 * FullScale(frame));
+  double best = 0;
+  const int k = PlateStepIndex(p.profile, &best);
+  *strongest = k;
+  if (k < 0 || best < *min_step) return -1;
+  const std::vector<int> candidates = CandidateSteps(p.profile, k, *min_step);
+  if (candidates.size() == 1) return k;
+  return CandidateUnderTheDimer(p, candidates, k);
+}
+
 }  // namespace
 
 double FindPlateRowCoarse(const cv::Mat& frame, double slope) {
   const RowProfile p = RowProfileOf(frame, slope);
-  const double min_step = kPlateMinStepFraction * std::max(p.hi - p.lo, 0.05 * FullScale(frame));
-  double best = 0;
-  const int k = PlateStepIndex(p.profile, &best);
-  if (k < 0 || best < min_step) return kNaN;
-  const std::vector<int> candidates = CandidateSteps(p.profile, k, min_step);
-  if (candidates.size() == 1) return k + 0.5;
-  return CandidateUnderTheDimer(p, candidates, k) + 0.5;
+  int strongest = -1;
+  double min_step = 0;
+  const int k = CoarseStepOf(p, frame, &strongest, &min_step);
+  return k < 0 ? kNaN : k + 0.5;
+}
+
+std::vector<PlateCandidate> PlateCandidates(const cv::Mat& frame, double slope) {
+  const RowProfile p = RowProfileOf(frame, slope);
+  int strongest = -1;
+  double min_step = 0;
+  const int chosen = CoarseStepOf(p, frame, &strongest, &min_step);
+  if (chosen < 0) return {};
+  // Every local peak step that counts, strongest first, each kept where no stronger one is
+  // within kPlateCandidateSeparationRows (the same blurred edge); the two of PlateStepIndex's
+  // choices always.
+  std::vector<std::pair<double, int>> peaks;
+  const std::vector<double>& q = p.profile;
+  for (int i = 0; i + 1 < int(q.size()); ++i) {
+    const double step = std::abs(q[i + 1] - q[i]);
+    const bool peak = (i == 0 || step >= std::abs(q[i] - q[i - 1])) &&
+                      (i + 2 >= int(q.size()) || step >= std::abs(q[i + 2] - q[i + 1]));
+    if (step >= min_step && peak) peaks.emplace_back(step, i);
+  }
+  std::sort(peaks.begin(), peaks.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
+  std::vector<int> kept{chosen};
+  if (strongest != chosen) kept.push_back(strongest);
+  for (const auto& [size, i] : peaks) {
+    bool apart = true;
+    for (int c : kept) apart = apart && std::abs(i - c) >= kPlateCandidateSeparationRows;
+    if (apart) kept.push_back(i);
+  }
+  std::sort(kept.begin(), kept.end());
+  std::vector<PlateCandidate> out;
+  for (int i : kept) {
+    out.push_back({i + 0.5, std::abs(q[i + 1] - q[i]), i == strongest, i == chosen});
+  }
+  return out;
 }
 
 namespace {

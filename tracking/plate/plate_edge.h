@@ -37,6 +37,20 @@ double EdgeRowInProfile(const std::vector<double>& profile, int first_row, doubl
 // frame's centre column, and the row is the edge's there.
 double FindPlateRowCoarse(const cv::Mat& frame, double slope = 0);
 
+// The frame's horizontal edges that could be the plate's, each at its whole-pixel row (+ 1/2:
+// between the two rows of the step) at the frame's centre column, read along `slope`: steps of
+// the per-row median (as FindPlateRowCoarse) of at least kPlateMinStepFraction of the frame's
+// range, each at least kPlateCandidateSeparationRows from a stronger one; top to bottom. The
+// strongest is marked, and the one FindPlateRowCoarse takes from the image alone.
+struct PlateCandidate {
+  double row = 0;
+  double step = 0;          // |step|, grey levels
+  bool strongest = false;
+  bool from_image = false;  // FindPlateRowCoarse's choice
+};
+std::vector<PlateCandidate> PlateCandidates(const cv::Mat& frame, double slope = 0);
+inline constexpr int kPlateCandidateSeparationRows = 2 * kPlateBracketRows;
+
 // Sub-pixel plate row near `row_guess` from the columns outside `excluded` (column intervals
 // covered by the spheres, and so by their mirror images below a polished plate). Robust to the
 // lighting: the columns are cut into blocks (tolerances.h, kPlateBlockColumns), each block's

@@ -7,6 +7,7 @@
 
 #include "tracking/io/full_scale.h"
 #include "tracking/plate/plate_edge.h"
+#include "tracking/plate/plate_under_dimer.h"
 #include "tracking/tolerances.h"
 
 namespace dimer::tracking {
@@ -60,9 +61,20 @@ int DetectPolarity(const cv::Mat& frame) {
   return (hi - med) >= (med - lo) ? 1 : -1;
 }
 
-Detection DetectSpheres(const cv::Mat& frame, int polarity, double slope) {
-  Detection out;
-  out.plate_row = FindPlateRowCoarse(frame, slope);
+namespace {
+
+// The top of the silhouette's blob over `at`: the boundary above the first row up the column
+// that is background. Unlike the distance-transform circle, it does not move where an edge
+// across the frame cuts the sphere's lower part off or joins a band to it.
+double TopRow(const cv::Mat& silhouette, const cv::Point& at) {
+  int row = at.y;
+  while (row > 0 && silhouette.at<uint8_t>(row - 1, at.x) != 0) --row;
+  return row - 0.5;
+}
+
+// The spheres above out->plate_row (the band under it left out), into out->centres and radii_px.
+void FindSpheresAbove(const cv::Mat& frame, int polarity, double slope, Detection* det) {
+  Detection& out = *det;
   // The plate and a guard band above it are left out of the silhouette: under the plate's
   // line, which slopes across the frame by `slope` rows per column.
   const double centre = 0.5 * (frame.cols - 1), half_drop = std::abs(slope) * centre;
@@ -71,7 +83,7 @@ Detection DetectSpheres(const cv::Mat& frame, int polarity, double slope) {
     rows = std::clamp(int(out.plate_row + half_drop - kPlateGuardPx), 0, frame.rows);
     clear_rows = std::clamp(int(out.plate_row - half_drop - kPlateGuardPx), 0, frame.rows);
   }
-  if (rows < 2 * kMinRadiusPx) return out;
+  if (rows < 2 * kMinRadiusPx) return;
   cv::Mat region;
   frame.rowRange(0, rows).convertTo(region, CV_32F, polarity);
   // The threshold from the rows clear of the plate in every column (when there are enough).
@@ -101,9 +113,104 @@ Detection DetectSpheres(const cv::Mat& frame, int polarity, double slope) {
     if (k == 0) first_peak = peak;
     out.centres.emplace_back(at.x, at.y);
     out.radii_px.push_back(peak);
+    out.top_rows.push_back(TopRow(silhouette, at));
     // Suppress this sphere (and the rod near it) before looking for the other one.
     cv::circle(dist, at, int(std::ceil(1.5 * peak)), cv::Scalar(0), cv::FILLED);
   }
+}
+
+// The lowest sphere's lowest point (the top of its blob plus a diameter), moved along the slope
+// to the frame's centre column; NaN with no sphere.
+double LowestPointRow(const Detection& det, double slope, int cols, double radius_px) {
+  // Without the radius, the smallest distance-transform one (a band joined to a sphere only
+  // makes its circle larger).
+  double r = radius_px;
+  if (!std::isfinite(r)) {
+    r = std::numeric_limits<double>::infinity();
+    for (double dt : det.radii_px) r = std::min(r, dt);
+  }
+  const double centre = 0.5 * (cols - 1);
+  double lowest = std::numeric_limits<double>::quiet_NaN();
+  for (size_t k = 0; k < det.centres.size(); ++k) {
+    const double row = det.top_rows[k] + 2 * r - slope * (det.centres[k].x() - centre);
+    if (!(row <= lowest)) lowest = row;
+  }
+  return lowest;
+}
+
+double LargestRadius(const Detection& det) {
+  double r = 0;
+  for (double dt : det.radii_px) r = std::max(r, dt);
+  return r;
+}
+
+// The spheres found above the image's choice (`out`) do not stand on it (`lowest`: their lowest
+// point, NaN where none was found), or one is missing (an edge that runs across the spheres
+// leaves too little of them above it). The candidate their lowest point meets is the plate;
+// where none does, each other candidate in turn, the strongest first, with the spheres found
+// above it, until one is met by as many spheres as the image's choice had. False when none is:
+// the image's choice stands.
+bool DimerStandsOnAnother(const cv::Mat& frame, int polarity, double slope, double radius_px,
+                          const std::vector<PlateCandidate>& candidates, double lowest,
+                          Detection* out) {
+  const size_t found = out->centres.size();
+  const double largest = LargestRadius(*out);
+  std::vector<size_t> order;
+  const int meets = CandidateTheDimerStandsOn(candidates, lowest);
+  if (meets >= 0) order.push_back(size_t(meets));
+  std::vector<size_t> rest;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    if (!candidates[i].from_image && int(i) != meets) rest.push_back(i);
+  }
+  std::stable_sort(rest.begin(), rest.end(), [&](size_t a, size_t b) {
+    return candidates[a].step > candidates[b].step;
+  });
+  order.insert(order.end(), rest.begin(), rest.end());
+  for (size_t i : order) {
+    if (candidates[i].from_image) continue;
+    out->plate_row = candidates[i].row;
+    out->centres.clear();
+    out->radii_px.clear();
+    out->top_rows.clear();
+    FindSpheresAbove(frame, polarity, slope, out);
+    const double low = LowestPointRow(*out, slope, frame.cols, radius_px);
+    // Without the radius, a lowest point is only as good as the smallest blob's radius, and
+    // above an edge that cuts the spheres only their highlights may be left, whose lowest
+    // points meet that edge: the spheres above the edge taken must be no smaller than above the
+    // image's choice (lowering the line the spheres are found above only adds to them).
+    const bool no_smaller = std::isfinite(radius_px) || LargestRadius(*out) >= largest;
+    if (out->centres.size() >= found && no_smaller &&
+        CandidateTheDimerStandsOn({candidates[i]}, low) == 0) {
+      out->plate_by_dimer = true;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+Detection DetectSpheres(const cv::Mat& frame, int polarity, double slope, double radius_px) {
+  Detection out;
+  const std::vector<PlateCandidate> candidates = PlateCandidates(frame, slope);
+  out.plate_row = std::numeric_limits<double>::quiet_NaN();
+  double strongest = out.plate_row;
+  for (const PlateCandidate& c : candidates) {
+    if (c.from_image) out.plate_row = c.row;
+    if (c.strongest) strongest = c.row;
+  }
+  FindSpheresAbove(frame, polarity, slope, &out);
+  const double lowest = LowestPointRow(out, slope, frame.cols, radius_px);
+  // Kept where both spheres are found and the lowest one stands on the edge or in the band
+  // below it where a plate whose top is in view has its contact line (plate_contact.h).
+  const double below = lowest - out.plate_row;
+  if (out.centres.size() < 2 || !(below >= -kPlateMeetPx && below <= kPlateBandHalfPx)) {
+    const Detection image_choice = out;
+    if (!DimerStandsOnAnother(frame, polarity, slope, radius_px, candidates, lowest, &out)) {
+      out = image_choice;
+    }
+  }
+  if (strongest != out.plate_row) out.strongest_edge_row = strongest;
   return out;
 }
 
