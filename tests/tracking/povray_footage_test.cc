@@ -756,7 +756,9 @@ TEST(PovrayStillPlatePoses, CalibrationPosesAreUnbiasedWithinTheirStatedUncertai
       const double stated = std::isfinite(s.stated_err(ax)) ? s.stated_err(ax) : 0.0;
       EXPECT_LE(std::abs(s.bias(ax)), std::max(kBiasTargetPx, 2 * stated))
           << names[k] << " " << axes[ax] << " stated +-" << s.stated_err(ax);
-      if (a.template_run) EXPECT_LE(s.stated_err(ax), 0.3) << names[k] << " " << axes[ax];
+      if (a.template_run) {
+        EXPECT_LE(s.stated_err(ax), 0.3) << names[k] << " " << axes[ax];
+      }
     }
   }
   EXPECT_EQ(a.identity_swaps, 0u);
