@@ -118,6 +118,7 @@ SpherePrediction FrameFollower::Prediction(const Eigen::Vector2d& at, const Eige
   p.radius_px = radius_px_;
   p.polarity = polarity_;
   p.noise_sigma = noise_sigma_;
+  p.state_uncertainty = options_.state_uncertainty;
   if (other) p.other = *other;
   p.plate_row = frame.PlateRowAt(at.x());
   p.plate_slope = options_.plate_slope;
@@ -250,7 +251,8 @@ FrameTrack FrameFollower::Process(const cv::Mat& frame, size_t index) {
   DIMER_CHECK(!frame.empty() && frame.channels() == 1,
               "the tracker measures grey frames (frame sources make them grey)");
   if (polarity_ == 0) polarity_ = DetectPolarity(frame);
-  if (!noise_measured_) {  // once per follower: a chunk's frames share the camera's noise
+  // Once per follower: a chunk's frames share the camera's noise.
+  if (options_.state_uncertainty && !noise_measured_) {
     noise_sigma_ = FrameNoiseSigma(frame);
     noise_measured_ = true;
   }

@@ -48,6 +48,11 @@ struct FollowerOptions {
   // plate; plate_edge.h, PlateEdgeSlope), measured once for the sequence; 0: level.
   double plate_slope = 0;
 
+  // Each found sphere's stated uncertainty in FrameTrack::sigma_px (sphere_locator.h): off by
+  // default, as nothing downstream of the follower reads it and it costs ~25 % of a uniform
+  // sphere's centroid.
+  bool state_uncertainty = false;
+
   void Check() const;  // InputError listing every invalid field
 };
 
@@ -58,7 +63,8 @@ struct FrameTrack {
   std::array<Eigen::Vector2d, 2> centre{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};  // px
   std::array<double, 2> radius_px{0, 0};           // measured radius (for calibration), px
   // Each found sphere's stated standard deviation (col, row), px, from its locator
-  // (SphereMeasurement::sigma_px; NaN where the locator states none).
+  // (SphereMeasurement::sigma_px; NaN where the locator states none or
+  // FollowerOptions::state_uncertainty is off).
   std::array<Eigen::Vector2d, 2> sigma_px{
       Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN()),
       Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN())};

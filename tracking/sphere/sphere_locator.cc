@@ -34,7 +34,7 @@ class SilhouetteLocator final : public SphereLocator {
     if (Distinct(p.other, p.position)) ctx.rod_dir = (p.other - p.position).normalized();
     ctx.other = p.other;  // left out where the spheres touch (measure_sphere.h)
     ctx.precise_guess = p.precise;
-    ctx.noise_sigma = p.noise_sigma;
+    if (p.state_uncertainty) ctx.noise_sigma = p.noise_sigma;
     return MeasureSphere(frame, p.position, p.radius_px, ctx, method_);
   }
 
@@ -73,7 +73,8 @@ class TemplateSphereLocator final : public SphereLocator {
       ctx.other = p.other - p.position;
     }
     const Located l =
-        LocateAppearance(frame, (*appearances_)[which_], p.position, search_px, ctx, stop_);
+        LocateAppearance(frame, (*appearances_)[which_], p.position, search_px, ctx, stop_,
+                         p.state_uncertainty);
     SphereMeasurement m;
     m.status = l.clipped ? SphereMeasurement::Status::kClipped
                          : (l.ok && l.score >= kMinTemplateScore ? SphereMeasurement::Status::kFound

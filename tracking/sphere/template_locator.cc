@@ -298,7 +298,8 @@ Eigen::Vector2d RegistrationSigma(const cv::Mat& fixed, const cv::Mat& moving, c
 }
 
 Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
-                         int search_px, const MaskContext& ctx, const EccStop& stop) {
+                         int search_px, const MaskContext& ctx, const EccStop& stop,
+                         bool state_sigma) {
   Located out;
   const int size = 2 * a.half + 1;
   const cv::Point g(int(std::lround(guess.x())), int(std::lround(guess.y())));
@@ -356,7 +357,9 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   if ((refined - start).norm() <= kEccMaxMovePx) {
     out.position = refined;
     out.refined = rho;
-    out.sigma = RegistrationSigma(frame_patch, a.image, refine_mask, t, kEccFrameGaussSize);
+    if (state_sigma) {
+      out.sigma = RegistrationSigma(frame_patch, a.image, refine_mask, t, kEccFrameGaussSize);
+    }
     if (search_px == 0) out.ok = true, out.score = rho;
   }
   return out;

@@ -64,7 +64,7 @@ struct Located {
   // compares one frame's match with another's (match_scores.h).
   double refined = std::numeric_limits<double>::quiet_NaN();
   // Standard deviation of the refined position (col, row), px (RegistrationSigma); NaN where
-  // ECC did not refine it.
+  // ECC did not refine it or it was not asked for.
   Eigen::Vector2d sigma{std::numeric_limits<double>::quiet_NaN(),
                         std::numeric_limits<double>::quiet_NaN()};
 };
@@ -97,8 +97,10 @@ Eigen::Vector2d RegistrationSigma(const cv::Mat& fixed, const cv::Mat& moving, c
 // ECC from the guess (a tracker's prediction), ok only if it converges within a pixel of it,
 // score = ECC's correlation coefficient. `frame` is CV_8U or CV_16U
 // (or CV_32F), single channel.
+// `state_sigma`: also compute Located::sigma (RegistrationSigma, ~3 % of the call's time).
 Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
-                         int search_px, const MaskContext& ctx, const EccStop& stop = {});
+                         int search_px, const MaskContext& ctx, const EccStop& stop = {},
+                         bool state_sigma = false);
 
 // Whole-frame search (acquisition): the best match above `plate_row` (NaN: anywhere), and the
 // best one at least `min_separation_px` from it (if any scores above `min_score`).
