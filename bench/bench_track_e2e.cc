@@ -3,12 +3,14 @@
 //   bench_track_e2e [PATH/TO/dimerlab [frames (2000)] [workdir (/tmp/bench_track_e2e)]]
 // (without a path: ../app/dimerlab beside this program's folder, i.e. the build tree's)
 // Writes `frames` drift-like frames of 512x256 (the project's renderer, reflect lighting, noise
-// 2 grey levels) as a BMP folder, a TIFF folder and one 8-bit .cine, then per input kind:
+// 2 grey levels) as a BMP, a TIFF and a PNG folder and one 8-bit .cine, then per input kind:
 //  (a) read only: every frame decoded by the tracker's own FrameSource on all cores;
 //  (a') read only with OpenCV's cv::imread on all cores (folders; the baseline reader);
 //  (b) `dimerlab track INPUT -o OUT -q --method centroid` as a process (fork/exec, start
-//      included), wall time (centroid: the method (c) uses; the default is timed once apart);
+//      included), wall time (centroid: the method (c) uses; the default is (d));
 //  (c) the same tracking in memory (TrackSequence over frames already decoded);
+//  (d) `dimerlab track INPUT -o OUT -q` with the default method (auto: on these mirror-lit
+//      frames the learnt appearance, template), and its rate against (b)'s in the same run;
 // and prints frames/s and (b)/(a), (b)/(a') (the target: >= 80 %), and (b) against the bound
 // 1/(1/a + 1/c): the rate if reading and tracking shared all cores perfectly and the process
 // started in no time. Each is the best of 3 runs (the machine is shared: the best run is the
@@ -238,6 +240,7 @@ int main(int argc, char** argv) {
   WriteFolder(work + "/bmp", frames, "bmp");
   // Uncompressed, as camera software exports TIFF (OpenCV's default, LZW, decodes ~3x slower).
   WriteFolder(work + "/tiff", frames, "tif", {cv::IMWRITE_TIFF_COMPRESSION, 1});
+  WriteFolder(work + "/png", frames, "png");
   WriteCine(work + "/run.cine", frames, CineWriteOptions{});
   WriteFolder(work + "/one", {frames[0]}, "bmp");
   std::ifstream load("/proc/loadavg");
@@ -249,30 +252,30 @@ int main(int argc, char** argv) {
   const Rate memory = InMemoryRate(frames);
   std::printf("(c) tracking in memory (centroid, %d threads): %.0f frames/s, %.0f us CPU/frame\n\n",
               cores, memory.per_s, memory.cpu_us);
-  std::printf("| input | (a) read only, frames/s | (a) us CPU/frame | (a') cv::imread, frames/s | (a') us CPU/frame | (b) `dimerlab track`, s | (b) frames/s | (b) us CPU/frame | (b)/(a) | (b)/(a') | bound 1/(1/a+1/c), frames/s | (b)/bound |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| input | (a) read only, frames/s | (a) us CPU/frame | (a') cv::imread, frames/s | (a') us CPU/frame | (b) `dimerlab track`, s | (b) frames/s | (b) us CPU/frame | (b)/(a) | (b)/(a') | bound 1/(1/a+1/c), frames/s | (b)/bound | (d) default method, frames/s | (d) us CPU/frame | (d)/(b) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   const std::pair<const char*, std::string> inputs[] = {
-      {"BMP folder", work + "/bmp"}, {"TIFF folder", work + "/tiff"}, {".cine (8-bit)", work + "/run.cine"}};
+      {"BMP folder", work + "/bmp"}, {"TIFF folder", work + "/tiff"},
+      {"PNG folder", work + "/png"}, {".cine (8-bit)", work + "/run.cine"}};
   for (const auto& [label, path] : inputs) {
     const Rate read = ReadOnlyRate(path, cores);
     const bool folder = fs::is_directory(path);
     const Rate cv_read = folder ? ImreadRate(path, cores) : Rate{};
     const Run run = TrackProcess(dimerlab, path, work + "/track.h5", {"--method", "centroid"});
+    const Run def = TrackProcess(dimerlab, path, work + "/track.h5");
     const double rate = n / run.seconds, bound = 1 / (1 / read.per_s + 1 / memory.per_s);
     char cv_cols[96] = "| - | - | ", cv_ratio[32] = "-";
     if (folder) {
       std::snprintf(cv_cols, sizeof cv_cols, "| %.0f | %.0f | ", cv_read.per_s, cv_read.cpu_us);
       std::snprintf(cv_ratio, sizeof cv_ratio, "%.0f %%", 100 * rate / cv_read.per_s);
     }
-    std::printf("| %s | %.0f | %.0f %s%.3f | %.0f | %.0f | %.0f %% | %s | %.0f | %.0f %% |\n",
+    std::printf("| %s | %.0f | %.0f %s%.3f | %.0f | %.0f | %.0f %% | %s | %.0f | %.0f %% | %.0f | "
+                "%.0f | %.2f |\n",
                 label, read.per_s, read.cpu_us, cv_cols, run.seconds, rate, 1e6 * run.cpu / n,
-                100 * rate / read.per_s, cv_ratio, bound, 100 * rate / bound);
+                100 * rate / read.per_s, cv_ratio, bound, 100 * rate / bound, n / def.seconds,
+                1e6 * def.cpu / n, run.seconds / def.seconds);
     std::fflush(stdout);
   }
-  // The command's default method (auto: it may pick a costlier one than (c)'s centroid).
-  const Run def = TrackProcess(dimerlab, work + "/run.cine", work + "/track.h5");
-  std::printf("\n`dimerlab track run.cine` with the default --method: %.3f s, %.0f frames/s, "
-              "%.0f us CPU/frame\n", def.seconds, n / def.seconds, 1e6 * def.cpu / n);
   const Run one = TrackProcess(dimerlab, work + "/one", work + "/one.h5", {"--method", "centroid"});
   std::printf("\n`dimerlab track` on a 1-frame BMP folder (process start, library loading, one "
               "frame, the file): %.3f s wall, %.3f s CPU\n", one.seconds, one.cpu);

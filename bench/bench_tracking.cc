@@ -185,7 +185,8 @@ double SelfCpuSeconds() {
 }
 
 SequenceAccuracy MeasureSequence(Method method, const Sequence& q, int cores,
-                                 const EccStop& ecc = FollowerOptions{}.ecc) {
+                                 const EccStop& ecc = FollowerOptions{}.ecc,
+                                 const FollowStop& follow = FollowerOptions{}.follow) {
   SequenceAccuracy a;
   for (int threads : {1, cores}) {
     double best = 0;
@@ -197,6 +198,7 @@ SequenceAccuracy MeasureSequence(Method method, const Sequence& q, int cores,
       opts.threads = threads;
       opts.contact_radius_px = kRadius;  // the scale is known
       opts.follower.ecc = ecc;
+      opts.follower.follow = follow;
       const auto t0 = Clock::now();
       const double c0 = SelfCpuSeconds();
       r = TrackSequence(src, opts);
@@ -277,20 +279,33 @@ int main(int argc, char** argv) {
                   a.worst_scatter, 100 * a.found, a.rate1, a.rate2, a.cpu_us1, a.cpu_us2);
     }
   }
-  // ECC's stopping rule for the template's every frame (tracking/sphere/template_locator.h, EccStop):
-  // what it trades, on the reflect sequence.
-  std::printf("\nECC's stopping rule, template on the reflect sequence (%d frames; the "
-              "tracker's default: %d iterations, epsilon %.0e):\n\n"
-              "| max iterations | epsilon | worst |bias| (px) | worst scatter (px) | found | "
-              "µs CPU/frame 1 thread |\n|---|---|---|---|---|---|\n", std::min(n, 800),
-              FollowerOptions{}.ecc.max_iterations, FollowerOptions{}.ecc.epsilon);
+  // The quick step that follows from the prediction before ECC (tracking/sphere/fast_follow.h,
+  // FollowStop): what its knobs trade, on the reflect sequence; ECC alone first.
+  const FollowStop def;
+  std::printf("\nThe quick step, template on the reflect sequence (%d frames; the tracker's "
+              "default: %d iterations, grid 1/%d px, correlation >= %.2f):\n\n"
+              "| quick step: solves, grid (px), min. correlation | worst \\|bias\\| (px) | "
+              "worst scatter (px) | found | µs CPU/frame 1 thread |\n|---|---|---|---|---|\n",
+              std::min(n, 800), def.max_iterations, def.shifts_per_px, def.min_correlation);
   {
     const Sequence q = HopSequence(std::min(n, 800), Lighting::kReflect);
-    for (const EccStop& rule : std::vector<EccStop>{
-             {50, 1e-7}, {50, 1e-5}, {50, 1e-4}, {50, 1e-3}, {20, 1e-7}, {10, 1e-7}, {5, 1e-7}}) {
-      const SequenceAccuracy a = MeasureSequence(Method::kTemplate, q, 1, rule);
-      std::printf("| %d | %.0e | %.4f | %.4f | %.1f %% | %.0f |\n", rule.max_iterations,
-                  rule.epsilon, a.worst_bias, a.worst_scatter, 100 * a.found, a.cpu_us1);
+    for (const FollowStop& rule : std::vector<FollowStop>{{0, 8, 0.8}, def, {2, 8, 0.8},
+                                                          {4, 2, 0.8}, {4, 4, 0.8}, {4, 16, 0.8},
+                                                          {4, 8, 0.5}, {4, 8, 0.95}}) {
+      const SequenceAccuracy a =
+          MeasureSequence(Method::kTemplate, q, 1, FollowerOptions{}.ecc, rule);
+      char label[96];
+      if (rule.max_iterations == 0) {
+        std::snprintf(label, sizeof label, "none (ECC alone)");
+      } else {
+        const bool is_def = rule.max_iterations == def.max_iterations &&
+                            rule.shifts_per_px == def.shifts_per_px &&
+                            rule.min_correlation == def.min_correlation;
+        std::snprintf(label, sizeof label, "%d, 1/%d, %.2f%s", rule.max_iterations,
+                      rule.shifts_per_px, rule.min_correlation, is_def ? " (default)" : "");
+      }
+      std::printf("| %s | %.4f | %.4f | %.1f %% | %.0f |\n", label, a.worst_bias,
+                  a.worst_scatter, 100 * a.found, a.cpu_us1);
       std::fflush(stdout);
     }
   }

@@ -4,6 +4,7 @@
 // bench_tracking_footage.
 //   bench_tracking_footage [frames] [subframes] [cache_dir] [methods] [footage]
 //   bench_tracking_footage --ecc [frames] [subframes] [cache_dir]
+//   bench_tracking_footage --follow [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --learn-passes [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --camera [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --jackknife [frames] [subframes] [cache_dir] [seeds]
@@ -11,7 +12,8 @@
 //   bench_tracking_footage --seeds [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --seed-agreement [frames] [subframes] [cache_dir]
 //   bench_tracking_footage --scale [frames] [subframes] [cache_dir]
-// (--ecc: what ECC's stopping rule trades, tracking/sphere/template_locator.h EccStop; --learn-passes:
+// (--ecc: what ECC's stopping rule trades, tracking/sphere/template_locator.h EccStop; --follow:
+// what the quick step that follows before ECC trades, tracking/sphere/fast_follow.h; --learn-passes:
 // what the template learning's passes trade, tracking/sphere/appearance_model.h LearnOptions. Every
 // case tracked by `auto` with each rule; the accuracy, how far the answers move from the first
 // rule's, and the CPU time per frame. --camera: front-lit steel through other cameras,
@@ -148,7 +150,7 @@ struct RuleResult {
 
 // `ecc` null: the tracker's default rule.
 RuleResult RunRule(const std::vector<std::string>& dirs, const dimer::tracking::EccStop* ecc,
-                   int learn_passes) {
+                   int learn_passes, const dimer::tracking::FollowStop* follow = nullptr) {
   RuleResult r;
   double cpu = 0;
   size_t tracked = 0;
@@ -156,6 +158,7 @@ RuleResult RunRule(const std::vector<std::string>& dirs, const dimer::tracking::
     const std::clock_t t0 = std::clock();
     TrackerKnobs knobs;
     knobs.ecc = ecc;
+    knobs.follow = follow;
     knobs.learn_passes = learn_passes;
     const TrackAccuracy a = MeasureTrackAccuracy(dir, "auto", 1, true, knobs);
     cpu += double(std::clock() - t0) / CLOCKS_PER_SEC;
@@ -205,6 +208,43 @@ int EccTrade(size_t frames, int slices, const std::string& cache) {
     std::printf("| %d | %.0e | %d of %zu | %.4f | %.3f | %s | %.0f |\n", rule.max_iterations,
                 rule.epsilon, r.met, dirs.size(), r.scatter, r.worst_bias, Moved(r, first).c_str(),
                 r.cpu_us_per_frame);
+    std::fflush(stdout);
+  }
+  std::printf("\nload average at the end %.1f\n", LoadAverage());
+  return 0;
+}
+
+// --follow: every case tracked with each setting of the quick step that follows from the
+// prediction (tracking/sphere/fast_follow.h, FollowStop), ECC alone first; how far the spheres'
+// mean positions moved from ECC's (median and largest).
+int FollowTrade(size_t frames, int slices, const std::string& cache) {
+  const std::vector<std::string> dirs = AllFootage(frames, slices, cache);
+  std::printf("The quick step against accuracy: %zu POV-Ray cases x %zu frames, `auto`, 1 "
+              "thread, load average %.1f at start\n\n| quick step: solves, grid (px), "
+              "min. correlation | cases meeting the targets | mean scatter (px) | worst "
+              "\\|bias\\| (px) | moved from ECC's, median / largest (px) | CPU per frame (us) |\n"
+              "|---|---|---|---|---|---|\n", dirs.size(), frames, LoadAverage());
+  const dimer::tracking::FollowStop def;
+  const std::vector<dimer::tracking::FollowStop> rules = {
+      {0, 8, 0.8}, def, {2, 8, 0.8}, {4, 2, 0.8}, {4, 4, 0.8}, {4, 16, 0.8},
+      {4, 8, 0.5}, {4, 8, 0.95}};
+  RuleResult first;
+  for (const auto& rule : rules) {
+    const RuleResult r = RunRule(dirs, nullptr, dimer::tracking::kLearnPasses, &rule);
+    if (first.bias.empty()) first = r;
+    char label[96];
+    if (rule.max_iterations == 0) {
+      std::snprintf(label, sizeof label, "none (ECC alone)");
+    } else {
+      std::snprintf(label, sizeof label, "%d, 1/%d, %.2f%s", rule.max_iterations,
+                    rule.shifts_per_px, rule.min_correlation,
+                    rule.max_iterations == def.max_iterations &&
+                            rule.shifts_per_px == def.shifts_per_px &&
+                            rule.min_correlation == def.min_correlation
+                        ? " (default)" : "");
+    }
+    std::printf("| %s | %d of %zu | %.4f | %.3f | %s | %.0f |\n", label, r.met, dirs.size(),
+                r.scatter, r.worst_bias, Moved(r, first).c_str(), r.cpu_us_per_frame);
     std::fflush(stdout);
   }
   std::printf("\nload average at the end %.1f\n", LoadAverage());
@@ -581,6 +621,11 @@ int main(int argc, char** argv) {
     const int seeds = argc > 5 ? std::atoi(argv[5]) : 9;
     std::filesystem::create_directories(cache);
     return JackknifeTrade(frames, slices, cache, seeds);
+  }
+  if (argc > 1 && std::string(argv[1]) == "--follow") {
+    const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 40;
+    const int slices = argc > 3 ? std::atoi(argv[3]) : 6;
+    return FollowTrade(frames, slices, argc > 4 ? argv[4] : "bench_footage_cache");
   }
   if (argc > 1 && (std::string(argv[1]) == "--ecc" || std::string(argv[1]) == "--learn-passes")) {
     const size_t frames = argc > 2 ? size_t(std::atol(argv[2])) : 40;

@@ -105,7 +105,8 @@ FrameFollower::FrameFollower(const FollowerOptions& options)
     : options_(options), polarity_(options.polarity), radius_px_(options.radius_px) {
   options_.Check();
   for (int k = 0; k < 2; ++k) {
-    locator_[k] = uses_template() ? MakeTemplateLocator(options_.appearance, k, options_.ecc)
+    locator_[k] = uses_template() ? MakeTemplateLocator(options_.appearance, k, options_.ecc,
+                                                          options_.follow)
                                   : MakeSilhouetteLocator(options_.method);
   }
 }

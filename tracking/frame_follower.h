@@ -42,6 +42,9 @@ struct FollowerOptions {
   // CPU per frame and moves the answers by under 0.01 px (bench/bench_tracking.cc and
   // bench/bench_tracking_footage.cc --ecc).
   EccStop ecc{50, 1e-5};
+  // Method::kTemplate: the quick step that follows from a prediction before ECC is asked
+  // (sphere/fast_follow.h); max_iterations 0: ECC for every frame.
+  FollowStop follow;
   // Method::kTemplate: the learnt appearances (left, right), shared by every chunk's tracker.
   std::shared_ptr<const std::array<Appearance, 2>> appearance;
   // The plate edge's slope in the image, rows per column (a camera not quite level, or a tilted

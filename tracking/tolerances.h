@@ -80,6 +80,24 @@ inline constexpr int kPlateClipFitIterations = 8;
 // A profile row whose mean lies within this fraction of the clip from 0 or from the clip is
 // left out of the pixel noise measured for the clipped fit (its noise is cut by the clip).
 inline constexpr double kPlateClipNoiseRowMargin = 0.1;
+// A learnt appearance is located only where at least this fraction of its template remains
+// after the frame's cuts (rod, plate, other sphere, the frame's edge).
+inline constexpr double kTemplateMinMaskedFraction = 0.25;
+// Following a learnt appearance quickly (sphere/fast_follow.h). Its answer must stay within
+// kFollowMaxMovePx of the prediction, as ECC's from a prediction must (a prediction is < 1 px
+// off at 2000 frames/s; further means a neighbouring optimum). Iterations that wander beyond
+// kFollowReachPx end the quick step; the frame's patch reaches kFollowPatchMarginPx beyond the
+// template: that reach and the smoothing's pixel. A solve has converged when its remainder is
+// within kFollowCellFraction of a grid step of the shift it was solved at: its own cell (0.5),
+// or the border it shares with the next one, where the estimate would swing between the two.
+// Both images are smoothed by a Gaussian of kFollowGaussSize, ECC's residual run's
+// (template_locator.cc: the appearance is nearly noise-free, the frame is not; 3 keeps the
+// highlights' detail).
+inline constexpr double kFollowMaxMovePx = 1.0;
+inline constexpr double kFollowReachPx = 2.0;
+inline constexpr int kFollowPatchMarginPx = 3;
+inline constexpr double kFollowCellFraction = 0.75;
+inline constexpr int kFollowGaussSize = 3;
 // Acquisition: a second distance-transform peak is a sphere if at least this fraction of the
 // first one (a rod or a clipped sliver gives much less).
 inline constexpr double kSecondPeakFraction = 0.6;

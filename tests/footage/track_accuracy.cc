@@ -136,6 +136,7 @@ TrackAccuracy MeasureTrackAccuracy(const std::string& folder, const std::string&
   opt.follower.method = tracking::ParseMethod(method);
   opt.threads = threads;
   if (knobs.ecc) opt.follower.ecc = *knobs.ecc;
+  if (knobs.follow) opt.follower.follow = *knobs.follow;
   opt.learn_passes = knobs.learn_passes;
   opt.jackknife_groups = knobs.jackknife_groups;
   opt.seed_agreement_px = knobs.seed_agreement_px;

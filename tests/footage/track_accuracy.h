@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "tracking/sphere/appearance_model.h"
+#include "tracking/sphere/fast_follow.h"
 #include "tracking/sphere/template_locator.h"
 
 namespace dimer::footage {
@@ -98,6 +99,8 @@ inline constexpr double kScatterBoundFactor = 1.5;
 struct TrackerKnobs {
   // ECC's stopping rule (tracking/sphere/template_locator.h); null: the tracker's default.
   const tracking::EccStop* ecc = nullptr;
+  // The quick step's knobs (tracking/sphere/fast_follow.h); null: the tracker's default.
+  const tracking::FollowStop* follow = nullptr;
   int learn_passes = tracking::kLearnPasses;          // the learning's passes
   int jackknife_groups = tracking::kJackknifeGroups;  // of the column offset's uncertainty
   double seed_agreement_px = 0;  // highlight seeds' agreement with the dimer's length; 0: default

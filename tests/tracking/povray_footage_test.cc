@@ -505,9 +505,11 @@ TEST(PovrayLens, TheLensCalibrationTakesTheBendOut) {
 // halved (0.4 mm/px, spheres of 11.9 px), some of the noise the halving averaged away put back
 // (1.4 grey levels in all; with 2, as the film of the whole pipeline at that scale has, the
 // quarter-light film's 20 frames give no learning frame and auto falls back to the centroid):
-// front_point is tracked at its bound; the quarter-light film places its spheres to ~0.18 px
-// at best (on that film both spheres' offsets were 0.7 and 1.5 px off, stating 0.08-0.16:
-// bench/povray_film.sh with the underexposed lighting).
+// front_point is tracked at its bound. The quarter-light film was poor footage (bound 0.17-0.18
+// px, the truth scattering 0.28-0.95) while ECC registered the learning frames; the quick step's
+// registrations (sphere/fast_follow.h) average a sharper appearance, which tracks it to 0.07-0.11
+// px (bound 0.06-0.08), so the flag must say it is not poor; the flag's own rule is held by
+// TrackPrecision's unit tests.
 TEST(PovrayPrecision, TheScatterIsMeasuredAndPoorFootageIsFlagged) {
   for (const Case& c : {Case{"front_point", Lighting::kFrontPoint, 3.9},
                         Case{"underexposed", Lighting::kUnderexposed, 3.9}}) {
@@ -563,7 +565,8 @@ TEST(PovrayPrecision, TheScatterIsMeasuredAndPoorFootageIsFlagged) {
         EXPECT_GT(p.bound[axis], 0.0) << k << " axis " << axis;
       }
       EXPECT_TRUE(p.followed) << k;
-      EXPECT_EQ(p.poor, c.lighting == Lighting::kUnderexposed) << k;
+      // Poor exactly where the truth scatters beyond the flag's threshold.
+      EXPECT_EQ(p.poor, sd.maxCoeff() > tracking::kPoorFootageBoundPx) << k;
     }
   }
 }

@@ -1,6 +1,7 @@
 #include "tracking/sphere/appearance_model.h"
 
 #include "tracking/sphere/appearance_mismatch.h"
+#include "tracking/sphere/fast_follow.h"
 #include "tracking/sphere/impact_vertex.h"
 #include "tracking/sphere/limb_fit.h"
 #include "common/median.h"
@@ -294,6 +295,12 @@ namespace {
 
 // Learns sphere k's appearance from `start` positions (one per used sample): kLearnPasses of
 // averaging and registration to the mean. Invalid appearance if too few samples.
+// Each registration: the whole-pixel search about the last position, then the quick step from
+// its peak (fast_follow.h; ECC where it fails), but ECC alone in the last pass, whose positions
+// become the offsets and the next appearance's start: with the quick step there the
+// quarter-light POV-Ray film's centres scattered 0.27-0.39 px about the truth, with ECC
+// 0.07-0.11 (povray.precision), and fine_scale's right sphere was 0.102 px off, 0.097 with ECC
+// (povray.targets.fine_scale).
 void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
               const std::vector<size_t>& used, int k, int half, double radius_px,
               int cut_row, std::vector<Eigen::Vector2d> pos, const LearnOptions& learn,
@@ -304,11 +311,14 @@ void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSamp
     a = Average(images, samples, used, pos, k, half, radius_px, cut_row, learn.plate_slope);
     if (!a.valid()) return;
     s->averaged = pos;
+    const bool ecc_only = pass == learn.passes;
+    const FollowModel quick = ecc_only ? FollowModel{} : PrepareFollow(a);
     // Register every sample to the mean (the last pass only to report where they sit); each
     // sample on its own, so any thread count gives the same positions.
     ParallelFor(used.size(), learn.threads, [&](size_t i) {
-      const Located l = LocateAppearance(samples[used[i]].image, a, pos[i], search_px,
-                                         ContextOf(samples[used[i]], k));
+      const Located l = FollowAppearance(samples[used[i]].image, a, quick, pos[i],
+                                         ContextOf(samples[used[i]], k), FollowStop{}, EccStop{},
+                                         search_px);
       if (l.ok) pos[i] = l.position;
     });
   }
@@ -552,6 +562,20 @@ OffsetEstimate ImpactContact(const std::vector<ImpactVertex>& impacts) {
   return e;
 }
 
+// The V's of `gap` (ImpactVertices) with an arm that leaves the resting cluster's band over its
+// frames. One whose arms both stay within it is no impact at the band's resolution: a resting
+// sphere's gap wiggles by the tracker's own error, and where that error is smooth and the noise
+// lower still, the slope test alone takes 0.02 px V's (the quick step on a resting sphere:
+// RunTrack.AutoStatesItsChoiceOnStderrAndInTheFileWithTheTemplatesOffsets).
+std::vector<ImpactVertex> ImpactsLeavingTheBand(const std::vector<double>& gap, double noise,
+                                                const std::vector<double>& bend, double band) {
+  std::vector<ImpactVertex> impacts = ImpactVertices(gap, noise, bend);
+  std::erase_if(impacts, [band](const ImpactVertex& v) {
+    return std::max(-v.approach, v.rebound) * kImpactArmFrames <= band;
+  });
+  return impacts;
+}
+
 }  // namespace
 
 OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
@@ -605,7 +629,7 @@ OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
   // The impacts: a V's bottom passes through the cluster too, for as many frames as it takes to
   // cross the band (5 at 0.12 px a frame), and is no rest.
   const std::vector<ImpactVertex> impacts =
-      ImpactVertices(series, noise, GapBend(plate_rows, gravity_px));
+      ImpactsLeavingTheBand(series, noise, GapBend(plate_rows, gravity_px), band);
   std::vector<bool> impact_frame(series.size(), false);
   for (const ImpactVertex& v : impacts) impact_frame[v.frame] = true;
   // The longest run of consecutive frames in the cluster without an impact in it: a resting

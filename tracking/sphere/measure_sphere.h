@@ -68,8 +68,8 @@ struct SphereMeasurement {
   // centroid's from the noise of its unclamped weights, a fit's (disc, rim) from its residual
   // and the inverse of its normal matrix; NaN where it cannot be stated. Within 0.86-1.12 of
   // the scatter over noise (SphereLocator.StatedUncertaintyMatchesTheScatterOverNoise). The
-  // template states its registration's bound, which ECC misses by 2-4 times
-  // (SphereLocator.TemplateStatesTheBoundOfItsRegistration).
+  // template states its registration's bound, which the quick step meets and ECC misses by 2-4
+  // times (SphereLocator.TemplateStatesItsScatterAndEccItsBound).
   Eigen::Vector2d sigma_px{std::numeric_limits<double>::quiet_NaN(),
                            std::numeric_limits<double>::quiet_NaN()};
   // How well the sphere matched what the locator expects, 0 to 1: a silhouette's area against

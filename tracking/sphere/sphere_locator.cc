@@ -45,13 +45,14 @@ class SilhouetteLocator final : public SphereLocator {
 class TemplateSphereLocator final : public SphereLocator {
  public:
   TemplateSphereLocator(std::shared_ptr<const std::array<Appearance, 2>> appearances, int which,
-                        const EccStop& stop)
-      : appearances_(std::move(appearances)), which_(which), stop_(stop) {}
+                        const EccStop& ecc, const FollowStop& follow)
+      : appearances_(std::move(appearances)), which_(which), ecc_(ecc), follow_(follow),
+        model_(PrepareFollow((*appearances_)[which_], follow.shifts_per_px)) {}
 
-  // Following: ECC straight from the prediction (no correlation search: the search costs more
-  // than the refinement), the whole-pixel search only when that fails (a prediction more than
-  // a pixel off, e.g. at an impact). Acquisition: the search reaching as far as a coarse match
-  // can be off.
+  // Following: the quick step, then ECC, straight from the prediction (no correlation search:
+  // the search costs more than the refinement), the whole-pixel search only when both fail (a
+  // prediction more than a pixel off, e.g. at an impact). Acquisition: the search reaching as
+  // far as a coarse match can be off, then the quick step from its peak.
   SphereMeasurement Locate(const cv::Mat& frame, const SpherePrediction& p) const override {
     if (!p.precise) {
       return At(frame, p, int(std::lround(Reach(kAcquireSearchPx, kAcquireSearchR, p.radius_px))));
@@ -72,9 +73,8 @@ class TemplateSphereLocator final : public SphereLocator {
       ctx.rod_dir = (p.other - p.position).normalized();
       ctx.other = p.other - p.position;
     }
-    const Located l =
-        LocateAppearance(frame, (*appearances_)[which_], p.position, search_px, ctx, stop_,
-                         p.state_uncertainty);
+    const Located l = FollowAppearance(frame, (*appearances_)[which_], model_, p.position, ctx,
+                                       follow_, ecc_, search_px, p.state_uncertainty);
     SphereMeasurement m;
     m.status = l.clipped ? SphereMeasurement::Status::kClipped
                          : (l.ok && l.score >= kMinTemplateScore ? SphereMeasurement::Status::kFound
@@ -89,7 +89,9 @@ class TemplateSphereLocator final : public SphereLocator {
 
   std::shared_ptr<const std::array<Appearance, 2>> appearances_;
   int which_;
-  EccStop stop_;
+  EccStop ecc_;
+  FollowStop follow_;
+  FollowModel model_;  // the appearance prepared for the quick step
 };
 
 }  // namespace
@@ -99,8 +101,9 @@ std::unique_ptr<SphereLocator> MakeSilhouetteLocator(Method method) {
 }
 
 std::unique_ptr<SphereLocator> MakeTemplateLocator(
-    std::shared_ptr<const std::array<Appearance, 2>> appearances, int which, const EccStop& stop) {
-  return std::make_unique<TemplateSphereLocator>(std::move(appearances), which, stop);
+    std::shared_ptr<const std::array<Appearance, 2>> appearances, int which, const EccStop& ecc,
+    const FollowStop& follow) {
+  return std::make_unique<TemplateSphereLocator>(std::move(appearances), which, ecc, follow);
 }
 
 }  // namespace dimer::tracking

@@ -21,6 +21,7 @@
 #include <memory>
 
 #include "tracking/sphere/measure_sphere.h"
+#include "tracking/sphere/fast_follow.h"
 #include "tracking/sphere/template_locator.h"
 
 namespace dimer::tracking {
@@ -59,8 +60,10 @@ class SphereLocator {
 // centroid, measure_sphere.h).
 std::unique_ptr<SphereLocator> MakeSilhouetteLocator(Method method);
 
-// Appearance `which` of `appearances` (0 left, 1 right) located by ECC with `stop`.
+// Appearance `which` of `appearances` (0 left, 1 right) located by the quick step (`follow`,
+// fast_follow.h) and by ECC with `ecc` where that fails.
 std::unique_ptr<SphereLocator> MakeTemplateLocator(
-    std::shared_ptr<const std::array<Appearance, 2>> appearances, int which, const EccStop& stop);
+    std::shared_ptr<const std::array<Appearance, 2>> appearances, int which, const EccStop& ecc,
+    const FollowStop& follow = {});
 
 }  // namespace dimer::tracking

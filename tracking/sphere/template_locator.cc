@@ -16,8 +16,6 @@ namespace {
 // Rows within this distance above the plate's top surface are left out, px: the pixel's own
 // half extent, motion blur, the lit edge's anti-aliasing and the contact shadow.
 constexpr double kTemplatePlateGuardPx = 1.5;
-// At least this fraction of the template must remain after the cuts, else nothing is located.
-constexpr double kMinMaskedFraction = 0.25;
 // ECC smooths both images with a Gaussian of this size first (OpenCV's default, 5): it cuts
 // the noise and the interpolation error of sharp highlights without biasing the shift (both
 // images are smoothed alike), and widens the basin the first run starts in.
@@ -297,44 +295,69 @@ Eigen::Vector2d RegistrationSigma(const cv::Mat& fixed, const cv::Mat& moving, c
   return {std::sqrt(cov(0, 0)), std::sqrt(cov(1, 1))};
 }
 
-Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
-                         int search_px, const MaskContext& ctx, const EccStop& stop,
-                         bool state_sigma) {
-  Located out;
+namespace {
+
+// LocateAppearance's first stage: the frame's mask for the template at `guess` (*mask) and, with
+// search_px > 0, the whole-pixel correlation peak (out->score) refined by the parabola
+// (out->position; the guess without a search). False: nothing to refine (out says why).
+bool Peak(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess, int search_px,
+          const MaskContext& ctx, Located* out, cv::Mat* mask) {
   const int size = 2 * a.half + 1;
   const cv::Point g(int(std::lround(guess.x())), int(std::lround(guess.y())));
   const cv::Rect search(g.x - a.half - search_px, g.y - a.half - search_px, size + 2 * search_px,
                         size + 2 * search_px);
   const bool at_edge = !Inside(frame, search);
   if (at_edge && !DiscInside(frame, g, a.radius_px + kEdgeMaskGuardPx + search_px)) {
-    out.clipped = true;
-    return out;
+    out->clipped = true;
+    return false;
   }
-  cv::Mat mask = FrameMask(a, guess, ctx);
-  if (at_edge) CutAtTheFramesEdge(frame, g, a.half, search_px + kEdgeMaskGuardPx, &mask);
-  if (cv::countNonZero(mask) < kMinMaskedFraction * size * size) {
-    out.clipped = at_edge;
-    return out;
+  *mask = FrameMask(a, guess, ctx);
+  if (at_edge) CutAtTheFramesEdge(frame, g, a.half, search_px + kEdgeMaskGuardPx, mask);
+  if (cv::countNonZero(*mask) < kTemplateMinMaskedFraction * size * size) {
+    out->clipped = at_edge;
+    return false;
   }
-  out.at_edge = at_edge;
-  Eigen::Vector2d start = guess;
+  out->at_edge = at_edge;
+  out->position = guess;
   if (search_px > 0) {
     // Template pixels outside the mask weigh nothing in the masked correlation: the template,
     // its mask and the window are cut to the mask's bounding box (same map, fewer pixels).
-    const cv::Rect box = cv::boundingRect(mask);
+    const cv::Rect box = cv::boundingRect(*mask);
     const cv::Rect window(search.x + box.x, search.y + box.y, box.width + 2 * search_px,
                           box.height + 2 * search_px);
     cv::Mat res;
     cv::matchTemplate(FloatPatch(frame, window), a.image(box), res, cv::TM_CCOEFF_NORMED,
-                      mask(box));
+                      (*mask)(box));
     KeepCorrelations(&res);
     double best = 0;
     cv::Point at;
     cv::minMaxLoc(res, nullptr, &best, nullptr, &at);
-    out.score = best;
+    out->score = best;
     const Eigen::Vector2d peak = PeakWithVertex(res, at);
-    start = {search.x + peak.x() + a.half, search.y + peak.y() + a.half};
+    out->position = {search.x + peak.x() + a.half, search.y + peak.y() + a.half};
   }
+  return true;
+}
+
+}  // namespace
+
+Located SearchAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
+                         int search_px, const MaskContext& ctx) {
+  Located out;
+  cv::Mat mask;
+  out.ok = Peak(frame, a, guess, search_px, ctx, &out, &mask) && search_px > 0;
+  return out;
+}
+
+Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
+                         int search_px, const MaskContext& ctx, const EccStop& stop,
+                         bool state_sigma) {
+  Located out;
+  cv::Mat mask;
+  if (!Peak(frame, a, guess, search_px, ctx, &out, &mask)) return out;
+  const int size = 2 * a.half + 1;
+  const bool at_edge = out.at_edge;
+  const Eigen::Vector2d start = out.position;
 
   // ECC: the frame patch is ECC's template, the appearance its input image, so that the
   // appearance's mask (input mask) moves with the sphere. It finds t with A(x + t) = F(x): the

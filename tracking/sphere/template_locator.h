@@ -102,6 +102,11 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
                          int search_px, const MaskContext& ctx, const EccStop& stop = {},
                          bool state_sigma = false);
 
+// LocateAppearance's whole-pixel search alone (search_px > 0): the correlation peak refined by
+// the parabola only (`refined` NaN); ok as LocateAppearance's would be before its ECC.
+Located SearchAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
+                         int search_px, const MaskContext& ctx);
+
 // Whole-frame search (acquisition): the best match above `plate_row` (NaN: anywhere), and the
 // best one at least `min_separation_px` from it (if any scores above `min_score`).
 // Sub-pixel refined. Returns 0, 1 or 2 positions, best first.
