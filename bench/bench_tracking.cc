@@ -268,7 +268,7 @@ int main(int argc, char** argv) {
   // against the centroid, on a sequence with a resting and a bouncing sphere.
   std::printf("\nSequences of %d frames (left sphere resting, right one bouncing; learning and "
               "offset estimation included in the rates):\n\n", std::min(n, 800));
-  std::printf("| lighting | method asked | method run | worst |bias| (px) | worst scatter (px) | found | frames/s 1 thread | frames/s %d threads | µs CPU/frame 1 thread | µs CPU/frame %d threads |\n", cores, cores);
+  std::printf("| lighting | method asked | method run | worst \\|bias\\| (px) | worst scatter (px) | found | frames/s 1 thread | frames/s %d threads | µs CPU/frame 1 thread | µs CPU/frame %d threads |\n", cores, cores);
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   for (Lighting l : {Lighting::kReflect, Lighting::kBacklit}) {
     const Sequence q = HopSequence(std::min(n, 800), l);
