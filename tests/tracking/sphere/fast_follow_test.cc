@@ -8,55 +8,24 @@
 #include <cmath>
 #include <random>
 
+#include "tests/tracking/sphere/sphere_pattern.h"
+
 namespace dimer::tracking {
 namespace {
 
-constexpr double kR = 20.0;
+constexpr double kR = testing::kPatternRadius;
+// Highlights dimmer than template_locator_test.cc's.
+constexpr testing::Highlights kSpots{140, 110};
 
-// A sphere-like pattern about (cx, cy), nothing symmetric about its centre: a soft disc, a
-// brighter lower half and two highlights (as template_locator_test.cc's).
-double Pattern(double col, double row, double cx, double cy) {
-  const double dx = col - cx, dy = row - cy;
-  const double r = std::sqrt(dx * dx + dy * dy);
-  const double disc = 1.0 / (1.0 + std::exp((r - kR) / 0.6));
-  const double body = 20.0 + (dy > 0 ? 60.0 * std::min(1.0, dy / 6.0) : 0.0);
-  auto spot = [&](double x0, double y0, double a) {
-    return a * std::exp(-((dx - x0) * (dx - x0) + (dy - y0) * (dy - y0)) / (2 * 1.2 * 1.2));
-  };
-  return 10.0 + disc * body + spot(-6, -9, 140) + spot(5, -7, 110);
-}
-
-// The pattern at (cx, cy) seen with `gain` and `offset`, noise `noise`, 8-bit; a bright plate
-// below `plate_row` (NaN: none).
+// The pattern at (cx, cy) seen with `gain` and `offset`, noise `noise`, 8-bit, 160 x 120; a
+// bright plate below `plate_row` (NaN: none).
 cv::Mat Render(double cx, double cy, double gain, double offset, double noise, uint64_t seed,
                double plate_row = NAN) {
-  cv::Mat img(120, 160, CV_8U);
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> n(0, 1);
-  for (int y = 0; y < img.rows; ++y) {
-    for (int x = 0; x < img.cols; ++x) {
-      double v = std::isfinite(plate_row) && y > plate_row ? 150.0
-                                                           : gain * Pattern(x, y, cx, cy) + offset;
-      v += noise * n(rng);
-      img.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(std::lround(v));
-    }
-  }
-  return img;
+  return testing::RenderPattern(160, 120, cx, cy, gain, offset, noise, seed, plate_row, kSpots);
 }
 
 // The appearance rendered exactly, its reference point at the pattern's centre.
-Appearance Exact() {
-  Appearance a;
-  a.radius_px = kR;
-  a.half = int(std::ceil(kR + 4));
-  const int size = 2 * a.half + 1;
-  a.image = cv::Mat(size, size, CV_32F);
-  for (int y = 0; y < size; ++y) {
-    for (int x = 0; x < size; ++x) a.image.at<float>(y, x) = float(Pattern(x, y, a.half, a.half));
-  }
-  a.mask = cv::Mat::ones(size, size, CV_8U);
-  return a;
-}
+Appearance Exact() { return testing::ExactPattern(kSpots); }
 
 TEST(FollowQuickly, RecoversASubPixelShiftWhateverTheGainAndOffset) {
   const Appearance a = Exact();

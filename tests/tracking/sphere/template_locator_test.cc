@@ -9,6 +9,7 @@
 #include <functional>
 #include <random>
 
+#include "tests/tracking/sphere/sphere_pattern.h"
 #include "tracking/sphere/appearance_mismatch.h"
 #include "tracking/sphere/appearance_model.h"
 #include "tracking/sphere/impact_vertex.h"
@@ -16,50 +17,15 @@
 namespace dimer::tracking {
 namespace {
 
-constexpr double kR = 20.0;
-
-// A smooth sphere-like pattern about (cx, cy): a soft disc (edge blurred over ~1 px), dimmer
-// upper half, a bright lower crescent and two highlights; nothing symmetric about the centre,
-// so a position error cannot hide. Pixel (col, row) samples it at the pixel centre.
-double Pattern(double col, double row, double cx, double cy) {
-  const double dx = col - cx, dy = row - cy;
-  const double r = std::sqrt(dx * dx + dy * dy);
-  const double disc = 1.0 / (1.0 + std::exp((r - kR) / 0.6));
-  const double body = 20.0 + (dy > 0 ? 60.0 * std::min(1.0, dy / 6.0) : 0.0);
-  auto spot = [&](double x0, double y0, double a) {
-    return a * std::exp(-((dx - x0) * (dx - x0) + (dy - y0) * (dy - y0)) / (2 * 1.2 * 1.2));
-  };
-  return 10.0 + disc * body + spot(-6, -9, 180) + spot(5, -7, 140);
-}
+constexpr double kR = testing::kPatternRadius;
 
 cv::Mat Render(int w, int h, double cx, double cy, double noise, uint64_t seed,
                double plate_row = NAN) {
-  cv::Mat img(h, w, CV_8U);
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> n(0, noise > 0 ? noise : 1);
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      double v = std::isfinite(plate_row) && y > plate_row ? 150.0 : Pattern(x, y, cx, cy);
-      if (noise > 0) v += n(rng);
-      img.at<uint8_t>(y, x) = cv::saturate_cast<uint8_t>(std::lround(v));
-    }
-  }
-  return img;
+  return testing::RenderPattern(w, h, cx, cy, 1.0, 0.0, noise, seed, plate_row);
 }
 
 // The exact appearance, reference point at the pattern's centre.
-Appearance Exact() {
-  Appearance a;
-  a.radius_px = kR;
-  a.half = int(std::ceil(kR + 4));
-  const int size = 2 * a.half + 1;
-  a.image = cv::Mat(size, size, CV_32F);
-  for (int y = 0; y < size; ++y) {
-    for (int x = 0; x < size; ++x) a.image.at<float>(y, x) = float(Pattern(x, y, a.half, a.half));
-  }
-  a.mask = cv::Mat::ones(size, size, CV_8U);
-  return a;
-}
+Appearance Exact() { return testing::ExactPattern(); }
 
 TEST(LocateAppearance, RecoversSubPixelShiftsToAFewHundredthsOfAPixel) {
   const Appearance a = Exact();
