@@ -86,7 +86,8 @@ class Objective {
 
   // The trial's observables, released (and so first sampled) `phase_shift` periods later in the
   // drive's phase.
-  std::vector<Observable> Trial(const std::vector<double>& values, double phase_shift, bool* in_mode = nullptr) {
+  std::vector<Observable> Trial(const std::vector<double>& values, double phase_shift,
+                                bool* in_mode = nullptr) {
     if (InterruptRequested()) throw Interrupted();
     ++evaluations_;
     if (fo_.progress) fo_.progress(evaluations_);
@@ -111,12 +112,13 @@ class Objective {
   // of a frame interval. A regular orbit strobed at a whole number of frames per period puts the
   // same phases into each slip bin every period, so a bin that holds a jump of U moves in steps
   // as the jump crosses a frame time (a slip bin by 3 sigma of its floor for a change of eps of
-  // 3e-4 on bench_fit_study's A_r 4.8; Fit.FindsADriftWhoseSlipBinsMoveInSteps); a chaotic orbit gives another realisation (chi2 21 for
-  // 41 dof at eps + 1e-9 on its A_r 2.5). Neither is in the standard errors, which count periods
-  // as independent samples of one sampling. Each observable's variance is kept as the larger of
-  // this and any earlier estimate; none is taken where the unshifted trial settles in another mode
-  // than the track's (there the spread measures that mode: 60,000 floors^2 summed at bench_fit_study's far start on
-  // A_r 3.3, which made a point 0.07 off in eps and 0.2 in mu "acceptable").
+  // 3e-4 on bench_fit_study's A_r 4.8; Fit.FindsADriftWhoseSlipBinsMoveInSteps); a chaotic
+  // orbit gives another realisation (chi2 21 for 41 dof at eps + 1e-9 on its A_r 2.5). Neither
+  // is in the standard errors, which count periods as independent samples of one sampling.
+  // Each observable's variance is kept as the larger of this and any earlier estimate; none is
+  // taken where the unshifted trial settles in another mode than the track's (there the spread
+  // measures that mode: 60,000 floors^2 summed at bench_fit_study's far start on A_r 3.3, which
+  // made a point 0.07 off in eps and 0.2 in mu "acceptable").
   // Returns the standard deviation of chi2 over those trials (0 when none was taken): how far
   // chi2 itself moves between samplings of the same coefficients.
   double AddScatter(const std::vector<double>& values) {
@@ -130,7 +132,8 @@ class Objective {
     for (size_t k = 0; k < observed_.size(); ++k) {
       std::vector<double> v;
       for (const std::vector<Observable>& t : trials)
-        if (k < t.size() && t[k].name == observed_[k].name && std::isfinite(t[k].value)) v.push_back(t[k].value);
+        if (k < t.size() && t[k].name == observed_[k].name && std::isfinite(t[k].value))
+          v.push_back(t[k].value);
       scatter_var_[k] = std::max(scatter_var_[k], Variance(v));
     }
     std::vector<double> chi2;

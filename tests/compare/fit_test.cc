@@ -55,7 +55,7 @@ TEST(Fit, RecoversRestitutionAndImpactFrictionFromASimulatedDrift) {
   EXPECT_LE(mu_hat_s.range_lo, truth.mu_hat_s);
   EXPECT_GE(mu_hat_s.range_hi, truth.mu_hat_s);
   // Correlations (fit_correlation.h): a number for each pair of constrained parameters, read
-  // off both profiles (eps-mu_hat -0.37, eps-mu +0.49, mu_hat-mu -0.44 here), none for the rest.
+  // off both profiles (eps-mu_hat -0.27, eps-mu +0.45, mu_hat-mu -0.46 here), none for the rest.
   const size_t n = r.params.size();
   ASSERT_EQ(r.correlation.size(), n * n);
   for (size_t j = 0; j < n; ++j) {
@@ -211,7 +211,7 @@ TEST(FitCorrelation, ProfilesOfAGaussianChi2GiveItsCorrelations) {
 
 // A scene the fitted model cannot produce: a drift on a plate tilted by 3 degrees (the paper's
 // Fig. 4b), fitted as a level plate (no --tilt-deg). The level model at the true coefficients
-// is off, the tilted one at them is exact; the fit says "no acceptable fit" (chi2/dof 4.4 here),
+// is off, the tilted one at them is exact; the fit says "no acceptable fit" (chi2/dof 3.6 here),
 // gives no coefficient and names what the tilt moves: the slip profile and the impact phase.
 TEST(Fit, SaysWhenATiltedPlateIsFittedAsLevel) {
   sim::SimOptions truth;
