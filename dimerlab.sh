@@ -77,11 +77,12 @@ sanitize() {
     -DDIMERLAB_POVRAY_CACHE_DIR="$ROOT/build/povray_footage_cache"  # the same footage, rendered once
   # The plate, coverage and scatter checks of a POV-Ray case repeat its targets check's tracking
   # run with other assertions (all four run in `test`); under the sanitizers one run per case
-  # covers the same code, at a quarter of the time. Fit.StartedAtTheTruthStaysThere runs the
-  # fit's code as Fit.RecoversRestitution... does, and takes 12 minutes under the sanitizers.
+  # covers the same code, at a quarter of the time. Fit.StartedAtTheTruthStaysThere and
+  # Fit.FindsADriftWhoseSlipBinsMoveInSteps run the fit's code as Fit.RecoversRestitution...
+  # does, and take 12 and about 15 minutes under the sanitizers.
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 DIMERLAB_TEST_SCALE=0.2 \
     ctest --test-dir build-asan --output-on-failure -j "$JOBS" \
-      -E '^povray[.](plate|coverage|scatter)[.]|^Fit[.]StartedAtTheTruthStaysThere$'
+      -E '^povray[.](plate|coverage|scatter)[.]|^Fit[.](StartedAtTheTruthStaysThere|FindsADriftWhoseSlipBinsMoveInSteps)$'
 }
 
 # Every benchmark program; each one's tables also go to bench/results/MACHINE/NAME.tsv
