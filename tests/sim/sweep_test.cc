@@ -110,6 +110,9 @@ TEST(SweepSpec, BadSpecsAreRejectedWithOneClearLine) {
        UsageMessage([] { Spec({{"ar", "3,0.5"}}).Check(); })},
       {"--periods", UsageMessage([] { Spec({{"periods", "0"}}).Check(); })},
       {"--init", UsageMessage([] { Spec({{"init", "hover"}}); })},
+      {"more than 1000000", UsageMessage([] { Spec({{"ar", "2:3:0.0000001"}}); })},
+      {"points; at most 1000000",
+       UsageMessage([] { Spec({{"ar", "2:3:0.001"}, {"gamma", "0.5:1:0.0001"}}).Check(); })},
   };
   for (const auto& [expected, msg] : cases) {
     EXPECT_NE(msg.find(expected), std::string::npos) << "want \"" << expected << "\" in: " << msg;
