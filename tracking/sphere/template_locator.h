@@ -58,13 +58,14 @@ struct Located {
   bool at_edge = false;         // matched on the part in the frame (the rest left out)
   Eigen::Vector2d position{0, 0};  // reference point in the frame (col, row), px
   double score = 0;             // correlation coefficient at the peak (-1..1)
-  // ECC's correlation coefficient at the refined position, where ECC converged (NaN else):
+  // The correlation coefficient at the refined position, where ECC or the quick step
+  // (fast_follow.h) converged (NaN else):
   // after a whole-pixel search `score` is the search's, lower by the fraction of a pixel the
   // peak is off (POV-Ray under-exposed: 0.52 against 0.86 refined), so that only `refined`
   // compares one frame's match with another's (match_scores.h).
   double refined = std::numeric_limits<double>::quiet_NaN();
   // Standard deviation of the refined position (col, row), px (RegistrationSigma); NaN where
-  // ECC did not refine it or it was not asked for.
+  // neither ECC nor the quick step refined it, or it was not asked for.
   Eigen::Vector2d sigma{std::numeric_limits<double>::quiet_NaN(),
                         std::numeric_limits<double>::quiet_NaN()};
 };
