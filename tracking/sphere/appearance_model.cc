@@ -293,25 +293,30 @@ void LeaveGroupsOut(const std::vector<cv::Mat>& images, const std::vector<Learni
 
 namespace {
 
+// How the last pass of LearnOne registers the samples to the final mean.
+enum class LastPass {
+  kEcc,    // ECC alone: these positions become the offsets and decide the horizon cut
+  kQuick,  // the quick step, as the earlier passes: positions only a start for a later LearnOne
+};
+
 // Learns sphere k's appearance from `start` positions (one per used sample): kLearnPasses of
 // averaging and registration to the mean. Invalid appearance if too few samples.
 // Each registration: the whole-pixel search about the last position, then the quick step from
-// its peak (fast_follow.h; ECC where it fails), but ECC alone in the last pass, whose positions
-// become the offsets and the next appearance's start: with the quick step there the
-// quarter-light POV-Ray film's centres scattered 0.27-0.39 px about the truth, with ECC
-// 0.07-0.11 (povray.precision), and fine_scale's right sphere was 0.102 px off, 0.097 with ECC
-// (povray.targets.fine_scale).
+// its peak (fast_follow.h; ECC where it fails). With LastPass::kEcc, ECC alone in the last pass:
+// with the quick step there the quarter-light POV-Ray film's centres scattered 0.27-0.39 px
+// about the truth, with ECC 0.07-0.11 (povray.precision): HorizonMoves, which reads these
+// positions, then cut that film's reflection out of its appearances.
 void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
               const std::vector<size_t>& used, int k, int half, double radius_px,
               int cut_row, std::vector<Eigen::Vector2d> pos, const LearnOptions& learn,
-              LearntSphere* s) {
+              LastPass last, LearntSphere* s) {
   const int search_px = LearnSearchPx(radius_px);
   Appearance a;
   for (int pass = 0; pass <= learn.passes; ++pass) {
     a = Average(images, samples, used, pos, k, half, radius_px, cut_row, learn.plate_slope);
     if (!a.valid()) return;
     s->averaged = pos;
-    const bool ecc_only = pass == learn.passes;
+    const bool ecc_only = pass == learn.passes && last == LastPass::kEcc;
     const FollowModel quick = ecc_only ? FollowModel{} : PrepareFollow(a);
     // Register every sample to the mean (the last pass only to report where they sit); each
     // sample on its own, so any thread count gives the same positions.
@@ -432,7 +437,8 @@ std::array<LearntSphere, 2> CutAtMovingHorizon(const LearningSet& set,
   for (int k = 0; k < 2; ++k) {
     if (horizon[k] < 0) continue;
     LearnOne(images, samples, used, k, half, radius_px,
-             std::max(0, horizon[k] - HorizonGuard(radius_px)), start[k], learn, &cut[k]);
+             std::max(0, horizon[k] - HorizonGuard(radius_px)), start[k], learn, LastPass::kEcc,
+             &cut[k]);
     if (!cut[k].appearance.valid()) return {};
   }
   // Registered with the whole appearance, a sphere follows its own reflection as much as its
@@ -482,7 +488,12 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   for (int k = 0; k < 2; ++k) {
     out[k].samples = used;
     for (size_t j : used) out[k].rough.push_back(samples[j].centre[k]);
-    LearnOne(images, samples, used, k, half, radius_px, -1, out[k].rough, learn, &out[k]);
+    // Recentred, these positions are only the final LearnOne's start (after its own search
+    // and passes) and RestingRowShift's, which clusters them to a pixel: the quick step's
+    // positions do for them (1/3 of the learning's CPU, bench_track_e2e; the POV-Ray targets
+    // and povray.precision hold).
+    LearnOne(images, samples, used, k, half, radius_px, -1, out[k].rough, learn,
+             recentre ? LastPass::kQuick : LastPass::kEcc, &out[k]);
     if (!out[k].appearance.valid()) return {};
   }
   if (!recentre) return out;
@@ -494,7 +505,8 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   for (int k = 0; k < 2; ++k) {
     start[k] = out[k].registered;
     for (Eigen::Vector2d& p : start[k]) p += Eigen::Vector2d(col_shift[k], shift);
-    LearnOne(images, samples, used, k, final_half, radius_px, -1, start[k], learn, &out[k]);
+    LearnOne(images, samples, used, k, final_half, radius_px, -1, start[k], learn, LastPass::kEcc,
+             &out[k]);
     if (!out[k].appearance.valid()) return {};
   }
   MeasureWholeOutlines(radius_px, &out);

@@ -249,30 +249,38 @@ QuickFollow FollowQuickly(const cv::Mat& frame, const FollowModel& m, const cv::
   return out;
 }
 
+std::optional<Located> FollowOnlyQuickly(const cv::Mat& frame, const Appearance& a,
+                                         const FollowModel& m, const Eigen::Vector2d& guess,
+                                         const MaskContext& ctx, const FollowStop& stop,
+                                         int search_px, bool state_sigma) {
+  if (!m.valid() || stop.max_iterations <= 0) return std::nullopt;
+  Located start;
+  start.ok = true;
+  start.position = guess;
+  if (search_px > 0) start = SearchAppearance(frame, a, guess, search_px, ctx);
+  // A sphere at the frame's edge is left to LocateAppearance, which cuts the mask there.
+  if (!start.ok || start.at_edge) return std::nullopt;
+  const cv::Mat mask = FrameMask(a, start.position, ctx);
+  const int size = 2 * a.half + 1;
+  if (cv::countNonZero(mask) < kTemplateMinMaskedFraction * size * size) return std::nullopt;
+  const QuickFollow q = FollowQuickly(frame, m, mask, start.position, stop);
+  if (!q.ok) return std::nullopt;
+  Located l;
+  l.ok = true;
+  l.position = q.position;
+  l.refined = q.correlation;
+  l.score = search_px > 0 ? start.score : q.correlation;  // as LocateAppearance's
+  if (state_sigma) l.sigma = QuickSigma(frame, a, mask, q.position);
+  return l;
+}
+
 Located FollowAppearance(const cv::Mat& frame, const Appearance& a, const FollowModel& m,
                          const Eigen::Vector2d& guess, const MaskContext& ctx,
                          const FollowStop& stop, const EccStop& ecc, int search_px,
                          bool state_sigma) {
-  if (m.valid() && stop.max_iterations > 0) {
-    Located start;
-    start.ok = true;
-    start.position = guess;
-    if (search_px > 0) start = SearchAppearance(frame, a, guess, search_px, ctx);
-    // A sphere at the frame's edge is left to LocateAppearance, which cuts the mask there.
-    const cv::Mat mask = start.ok && !start.at_edge ? FrameMask(a, start.position, ctx) : cv::Mat();
-    const int size = 2 * a.half + 1;
-    if (!mask.empty() && cv::countNonZero(mask) >= kTemplateMinMaskedFraction * size * size) {
-      const QuickFollow q = FollowQuickly(frame, m, mask, start.position, stop);
-      if (q.ok) {
-        Located l;
-        l.ok = true;
-        l.position = q.position;
-        l.refined = q.correlation;
-        l.score = search_px > 0 ? start.score : q.correlation;  // as LocateAppearance's
-        if (state_sigma) l.sigma = QuickSigma(frame, a, mask, q.position);
-        return l;
-      }
-    }
+  if (const std::optional<Located> l =
+          FollowOnlyQuickly(frame, a, m, guess, ctx, stop, search_px, state_sigma)) {
+    return *l;
   }
   return LocateAppearance(frame, a, guess, search_px, ctx, ecc, state_sigma);
 }

@@ -32,6 +32,7 @@
 #include <opencv2/core.hpp>
 
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "tracking/sphere/template_locator.h"
@@ -71,6 +72,14 @@ struct QuickFollow {
 // handles a sphere at the frame's edge). `frame`: CV_8U, CV_16U or CV_32F, one channel.
 QuickFollow FollowQuickly(const cv::Mat& frame, const FollowModel& m, const cv::Mat& mask,
                           const Eigen::Vector2d& guess, const FollowStop& stop);
+
+// The quick step alone, from `guess` or (search_px > 0) from SearchAppearance's peak about it:
+// nothing where it fails its checks, the search finds no sphere, the sphere is at the frame's
+// edge or too little of its mask is left. Answers as FollowAppearance's below.
+std::optional<Located> FollowOnlyQuickly(const cv::Mat& frame, const Appearance& a,
+                                         const FollowModel& m, const Eigen::Vector2d& guess,
+                                         const MaskContext& ctx, const FollowStop& stop,
+                                         int search_px = 0, bool state_sigma = false);
 
 // Following from a prediction: the quick step, from `guess` (search_px 0, the tracker's) or
 // from LocateAppearance's whole-pixel search's peak about it (SearchAppearance: acquisition, the
