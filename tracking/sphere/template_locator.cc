@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tracking/sphere/masked_correlation.h"
 #include "tracking/tolerances.h"
 
 namespace dimer::tracking {
@@ -326,8 +327,13 @@ bool Peak(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& gues
     const cv::Rect window(search.x + box.x, search.y + box.y, box.width + 2 * search_px,
                           box.height + 2 * search_px);
     cv::Mat res;
-    cv::matchTemplate(FloatPatch(frame, window), a.image(box), res, cv::TM_CCOEFF_NORMED,
-                      (*mask)(box));
+    const int places = (2 * search_px + 1) * (2 * search_px + 1);
+    if (places <= kDirectCorrelationMaxPlaces) {
+      MaskedCorrelation(FloatPatch(frame, window), a.image(box), (*mask)(box), &res);
+    } else {
+      cv::matchTemplate(FloatPatch(frame, window), a.image(box), res, cv::TM_CCOEFF_NORMED,
+                        (*mask)(box));
+    }
     KeepCorrelations(&res);
     double best = 0;
     cv::Point at;
