@@ -296,41 +296,57 @@ namespace {
 // How the last pass of LearnOne registers the samples to the final mean.
 enum class LastPass {
   kEcc,    // ECC alone: these positions become the offsets and decide the horizon cut
-  kQuick,  // the quick step, as the earlier passes: positions only a start for a later LearnOne
+  kQuick,  // the quick step, as the earlier passes (RegisterWithEcc can redo it with ECC)
 };
 
+// Registers every sample to appearance `a` from `pos`: the whole-pixel search about it, then the
+// quick step from its peak (fast_follow.h; ECC where it fails), or with `ecc_only` ECC alone.
+// Each sample on its own, so any thread count gives the same positions.
+void RegisterSamples(const std::vector<LearningSample>& samples, const std::vector<size_t>& used,
+                     int k, const Appearance& a, double radius_px, bool ecc_only,
+                     const LearnOptions& learn, std::vector<Eigen::Vector2d>* pos) {
+  const int search_px = LearnSearchPx(radius_px);
+  const FollowModel quick = ecc_only ? FollowModel{} : PrepareFollow(a);
+  ParallelFor(used.size(), learn.threads, [&](size_t i) {
+    const Located l = FollowAppearance(samples[used[i]].image, a, quick, (*pos)[i],
+                                       ContextOf(samples[used[i]], k), FollowStop{}, EccStop{},
+                                       search_px);
+    if (l.ok) (*pos)[i] = l.position;
+  });
+}
+
 // Learns sphere k's appearance from `start` positions (one per used sample): kLearnPasses of
-// averaging and registration to the mean. Invalid appearance if too few samples.
-// Each registration: the whole-pixel search about the last position, then the quick step from
-// its peak (fast_follow.h; ECC where it fails). With LastPass::kEcc, ECC alone in the last pass:
-// with the quick step there the quarter-light POV-Ray film's centres scattered 0.27-0.39 px
-// about the truth, with ECC 0.07-0.11 (povray.precision): HorizonMoves, which reads these
-// positions, then cut that film's reflection out of its appearances.
+// averaging and registration to the mean (RegisterSamples). Invalid appearance if too few
+// samples. The last pass's registration changes no appearance, only s->registered: with
+// LastPass::kEcc, ECC alone there: with the quick step there the quarter-light POV-Ray film's
+// centres scattered 0.27-0.39 px about the truth, with ECC 0.07-0.11 (povray.precision):
+// HorizonMoves, which reads these positions, then cut that film's reflection out of its
+// appearances.
 void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
               const std::vector<size_t>& used, int k, int half, double radius_px,
               int cut_row, std::vector<Eigen::Vector2d> pos, const LearnOptions& learn,
               LastPass last, LearntSphere* s) {
-  const int search_px = LearnSearchPx(radius_px);
   Appearance a;
   for (int pass = 0; pass <= learn.passes; ++pass) {
     a = Average(images, samples, used, pos, k, half, radius_px, cut_row, learn.plate_slope);
     if (!a.valid()) return;
     s->averaged = pos;
-    const bool ecc_only = pass == learn.passes && last == LastPass::kEcc;
-    const FollowModel quick = ecc_only ? FollowModel{} : PrepareFollow(a);
-    // Register every sample to the mean (the last pass only to report where they sit); each
-    // sample on its own, so any thread count gives the same positions.
-    ParallelFor(used.size(), learn.threads, [&](size_t i) {
-      const Located l = FollowAppearance(samples[used[i]].image, a, quick, pos[i],
-                                         ContextOf(samples[used[i]], k), FollowStop{}, EccStop{},
-                                         search_px);
-      if (l.ok) pos[i] = l.position;
-    });
+    RegisterSamples(samples, used, k, a, radius_px,
+                    pass == learn.passes && last == LastPass::kEcc, learn, &pos);
   }
   s->appearance = a;
   s->registered = pos;
   s->cut_row = cut_row;
   s->jackknife.clear();
+}
+
+// The last pass of a LearnOne made with LastPass::kQuick, made again with ECC: s->registered
+// as LastPass::kEcc gives.
+void RegisterWithEcc(const std::vector<LearningSample>& samples, const std::vector<size_t>& used,
+                     int k, const LearnOptions& learn, LearntSphere* s) {
+  std::vector<Eigen::Vector2d> pos = s->averaged;
+  RegisterSamples(samples, used, k, s->appearance, s->appearance.radius_px, true, learn, &pos);
+  s->registered = pos;
 }
 
 }  // namespace
@@ -436,8 +452,9 @@ std::array<LearntSphere, 2> CutAtMovingHorizon(const LearningSet& set,
   std::array<LearntSphere, 2> cut = out;
   for (int k = 0; k < 2; ++k) {
     if (horizon[k] < 0) continue;
+    // The quick step's positions for HorizonMoves below; ECC's only if the cut is kept.
     LearnOne(images, samples, used, k, half, radius_px,
-             std::max(0, horizon[k] - HorizonGuard(radius_px)), start[k], learn, LastPass::kEcc,
+             std::max(0, horizon[k] - HorizonGuard(radius_px)), start[k], learn, LastPass::kQuick,
              &cut[k]);
     if (!cut[k].appearance.valid()) return {};
   }
@@ -451,7 +468,11 @@ std::array<LearntSphere, 2> CutAtMovingHorizon(const LearningSet& set,
                                             cut[k].appearance.half, horizon[k], radius_px,
                                             learn.plate_slope);
   }
-  return moves ? cut : out;
+  if (!moves) return out;
+  for (int k = 0; k < 2; ++k) {
+    if (horizon[k] >= 0) RegisterWithEcc(samples, used, k, learn, &cut[k]);
+  }
+  return cut;
 }
 
 }  // namespace
