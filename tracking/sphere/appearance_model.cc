@@ -134,40 +134,53 @@ namespace {
 // kHorizonMovesPerPx and three standard errors over heights spanning kMinHeightSpanPx. A resting
 // sphere (no span) or a renderer whose reflection is painted on the sphere (no slope) keeps its
 // whole appearance.
-bool HorizonMoves(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
-                  const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
-                  int half, int horizon, double radius_px, double plate_slope) {
+// The horizon's sub-pixel row in one sample's patch at `p` (HorizonMoves); NaN where the patch
+// leaves the frame or shows no step.
+double HorizonRowIn(const cv::Mat& image, const Eigen::Vector2d& p, int half, int horizon,
+                    double radius_px, double plate_slope) {
   const int x0 = std::max(1, half - int(kHorizonHalfWidthR * radius_px));
   const int x1 = std::min(2 * half - 1, half + int(kHorizonHalfWidthR * radius_px));
-  std::vector<double> h, z;
   cv::Mat patch, gy;
-  for (size_t i = 0; i < used.size(); ++i) {
-    const double plate = samples[used[i]].PlateRowAt(pos[i].x());
-    if (!std::isfinite(plate) || !Patch(images[used[i]], pos[i], half, &patch)) continue;
-    cv::Sobel(patch, gy, CV_32F, 0, 1, 3, 1.0 / 8.0);
-    double sw = 0, swy = 0, peak = 0;
-    std::vector<double> step, column_steps;
-    for (int y = horizon - kHorizonWindowPx; y <= horizon + kHorizonWindowPx; ++y) {
-      double across = 0;
-      if (y >= 1 && y < patch.rows - 1) {
-        column_steps.clear();
-        for (int x = x0; x <= x1; ++x) {
-          const int yy = plate_slope == 0 ? y : y + int(std::lround(plate_slope * (x - half)));
-          if (yy >= 1 && yy < patch.rows - 1) column_steps.push_back(gy.at<float>(yy, x));
-        }
-        if (!column_steps.empty()) across = std::abs(MedianOf(column_steps));
+  if (!Patch(image, p, half, &patch)) return std::nan("");
+  cv::Sobel(patch, gy, CV_32F, 0, 1, 3, 1.0 / 8.0);
+  double sw = 0, swy = 0, peak = 0;
+  std::vector<double> step, column_steps;
+  for (int y = horizon - kHorizonWindowPx; y <= horizon + kHorizonWindowPx; ++y) {
+    double across = 0;
+    if (y >= 1 && y < patch.rows - 1) {
+      column_steps.clear();
+      for (int x = x0; x <= x1; ++x) {
+        const int yy = plate_slope == 0 ? y : y + int(std::lround(plate_slope * (x - half)));
+        if (yy >= 1 && yy < patch.rows - 1) column_steps.push_back(gy.at<float>(yy, x));
       }
-      step.push_back(across);
-      peak = std::max(peak, across);
+      if (!column_steps.empty()) across = std::abs(MedianOf(column_steps));
     }
-    for (size_t j = 0; j < step.size(); ++j) {
-      const double w = std::max(0.0, step[j] - 0.5 * peak);
-      sw += w;
-      swy += w * (horizon - kHorizonWindowPx + int(j));
+    step.push_back(across);
+    peak = std::max(peak, across);
+  }
+  for (size_t j = 0; j < step.size(); ++j) {
+    const double w = std::max(0.0, step[j] - 0.5 * peak);
+    sw += w;
+    swy += w * (horizon - kHorizonWindowPx + int(j));
+  }
+  return sw > 0 ? swy / sw : std::nan("");
+}
+
+bool HorizonMoves(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
+                  const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
+                  int half, int horizon, double radius_px, double plate_slope, int threads) {
+  // Each sample on its own (any thread count gives the same rows), gathered in order.
+  std::vector<double> row(used.size(), std::nan(""));
+  ParallelFor(used.size(), threads, [&](size_t i) {
+    if (std::isfinite(samples[used[i]].PlateRowAt(pos[i].x()))) {
+      row[i] = HorizonRowIn(images[used[i]], pos[i], half, horizon, radius_px, plate_slope);
     }
-    if (!(sw > 0)) continue;
-    h.push_back(swy / sw);
-    z.push_back(plate - pos[i].y());
+  });
+  std::vector<double> h, z;
+  for (size_t i = 0; i < used.size(); ++i) {
+    if (!std::isfinite(row[i])) continue;
+    h.push_back(row[i]);
+    z.push_back(samples[used[i]].PlateRowAt(pos[i].x()) - pos[i].y());
   }
   if (h.size() < 3) return false;
   const double n = double(h.size());
@@ -236,20 +249,38 @@ Appearance FromSums(const PatchSums& p, const Appearance& frame, int cut_row) {
   return a;
 }
 
+// Every sample's MaskedPatch (empty where it has none), each on its own: taken on `threads`
+// workers and summed in the samples' order afterwards, the sums are the same for any count.
+struct SamplePatches {
+  std::vector<cv::Mat> patch, mask_f;
+};
+SamplePatches MaskedPatches(const std::vector<cv::Mat>& images,
+                            const std::vector<LearningSample>& samples,
+                            const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
+                            int k, const Appearance& frame, int threads) {
+  SamplePatches p{std::vector<cv::Mat>(used.size()), std::vector<cv::Mat>(used.size())};
+  ParallelFor(used.size(), threads, [&](size_t i) {
+    if (!MaskedPatch(images, samples, used, pos, i, k, frame, &p.patch[i], &p.mask_f[i])) {
+      p.patch[i].release();
+    }
+  });
+  return p;
+}
+
 // Mean of the samples' patches over the pixels that show the sphere; rows from `cut_row` down
 // left out (the plate's reflection, appearance_model.h; -1: none), the cut sloping with the
 // plate by `slope` rows per column.
 Appearance Average(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
                    const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
-                   int k, int half, double radius_px, int cut_row, double slope) {
+                   int k, int half, double radius_px, int cut_row, double slope, int threads) {
   const Appearance frame = Framing(half, radius_px, slope);
   const int size = 2 * half + 1;
   PatchSums p{cv::Mat::zeros(size, size, CV_32F), cv::Mat::zeros(size, size, CV_32F), 0};
-  cv::Mat patch, mask_f;
+  const SamplePatches patches = MaskedPatches(images, samples, used, pos, k, frame, threads);
   for (size_t i = 0; i < used.size(); ++i) {
-    if (!MaskedPatch(images, samples, used, pos, i, k, frame, &patch, &mask_f)) continue;
-    p.sum += patch;
-    p.count += mask_f;
+    if (patches.patch[i].empty()) continue;
+    p.sum += patches.patch[i];
+    p.count += patches.mask_f[i];
     ++p.n;
   }
   return FromSums(p, frame, cut_row);
@@ -259,7 +290,8 @@ Appearance Average(const std::vector<cv::Mat>& images, const std::vector<Learnin
 // i mod groups), at the positions and with the cut it was averaged at. Each is the whole sum
 // less its group's, so the patches are taken once.
 void LeaveGroupsOut(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
-                    const std::vector<size_t>& used, int k, int max_groups, LearntSphere* s) {
+                    const std::vector<size_t>& used, int k, int max_groups, int threads,
+                    LearntSphere* s) {
   s->jackknife.clear();
   const Appearance& a = s->appearance;
   if (!a.valid() || s->averaged.size() != used.size() || max_groups < 3) return;
@@ -272,9 +304,11 @@ void LeaveGroupsOut(const std::vector<cv::Mat>& images, const std::vector<Learni
   PatchSums whole = zeros();
   std::vector<PatchSums> group(groups);
   for (PatchSums& g : group) g = zeros();
-  cv::Mat patch, mask_f;
+  const SamplePatches patches = MaskedPatches(images, samples, used, s->averaged, k, frame, threads);
   for (size_t i = 0; i < used.size(); ++i) {
-    if (!MaskedPatch(images, samples, used, s->averaged, i, k, frame, &patch, &mask_f)) continue;
+    if (patches.patch[i].empty()) continue;
+    const cv::Mat& patch = patches.patch[i];
+    const cv::Mat& mask_f = patches.mask_f[i];
     PatchSums& g = group[i % groups];
     g.sum += patch;
     g.count += mask_f;
@@ -328,7 +362,8 @@ void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSamp
               LastPass last, LearntSphere* s) {
   Appearance a;
   for (int pass = 0; pass <= learn.passes; ++pass) {
-    a = Average(images, samples, used, pos, k, half, radius_px, cut_row, learn.plate_slope);
+    a = Average(images, samples, used, pos, k, half, radius_px, cut_row, learn.plate_slope,
+                learn.threads);
     if (!a.valid()) return;
     s->averaged = pos;
     RegisterSamples(samples, used, k, a, radius_px,
@@ -447,7 +482,7 @@ std::array<LearntSphere, 2> CutAtMovingHorizon(const LearningSet& set,
     horizon[k] = ReflectionHorizon(a.image, a.mask, a.half, radius_px, learn.plate_slope);
     moves = moves || (horizon[k] >= 0 && HorizonMoves(images, samples, used, out[k].registered,
                                                       a.half, horizon[k], radius_px,
-                                                      learn.plate_slope));
+                                                      learn.plate_slope, learn.threads));
   }
   std::array<LearntSphere, 2> cut = out;
   for (int k = 0; k < 2; ++k) {
@@ -466,7 +501,7 @@ std::array<LearntSphere, 2> CutAtMovingHorizon(const LearningSet& set,
   for (int k = 0; k < 2 && !moves; ++k) {
     moves = horizon[k] >= 0 && HorizonMoves(images, samples, used, cut[k].registered,
                                             cut[k].appearance.half, horizon[k], radius_px,
-                                            learn.plate_slope);
+                                            learn.plate_slope, learn.threads);
   }
   if (!moves) return out;
   for (int k = 0; k < 2; ++k) {
@@ -534,7 +569,7 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   std::array<LearntSphere, 2> learnt = CutAtMovingHorizon(set, out, start, final_half, radius_px);
   if (!learnt[0].appearance.valid()) return {};
   for (int k = 0; k < 2; ++k) {
-    LeaveGroupsOut(images, samples, used, k, learn.jackknife_groups, &learnt[k]);
+    LeaveGroupsOut(images, samples, used, k, learn.jackknife_groups, learn.threads, &learnt[k]);
   }
   return learnt;
 }
