@@ -139,14 +139,14 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
   std::vector<LearningSample>& samples = probes.samples;
   m.choice = ChooseMethod(probes.tracks, probes.clean, requested);
   if (m.choice.method != Method::kTemplate) {
-    m.plate_shift = EstimatePlateShift(samples, reference.radius_px);
+    m.plate_shift = EstimatePlateShift(samples, reference.radius_px, learn.threads);
     return m;
   }
   m.choice.reason += SeedFromHighlights(reference.radius_px, learn, &samples);
   // Before learning, which frames the templates on the plate contact: the learning frames'
   // plate rows are moved to the contact line where the plate's top is in view (rough centres of
   // highlights-only footage are seeded by now).
-  m.plate_shift = EstimatePlateShift(samples, reference.radius_px);
+  m.plate_shift = EstimatePlateShift(samples, reference.radius_px, learn.threads);
   if (m.plate_shift.applied) {
     for (LearningSample& s : samples) s.plate_row += m.plate_shift.value;
   }
@@ -169,7 +169,7 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
     if (m.plate_shift.applied) {
       for (LearningSample& s : samples) s.plate_row -= m.plate_shift.value;
     }
-    m.plate_shift = EstimatePlateShift(samples, m.learnt[0].appearance.radius_px);
+    m.plate_shift = EstimatePlateShift(samples, m.learnt[0].appearance.radius_px, learn.threads);
   }
   m.appearance = std::make_shared<const std::array<Appearance, 2>>(
       std::array<Appearance, 2>{m.learnt[0].appearance, m.learnt[1].appearance});

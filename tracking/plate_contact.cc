@@ -1,11 +1,13 @@
 #include "tracking/plate_contact.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "common/median.h"
+#include "common/parallel_for.h"
 
 namespace dimer::tracking {
 namespace {
@@ -153,7 +155,8 @@ MirroredContact FitMirroredContact(const cv::Mat& frame, double col_guess, doubl
   return out;
 }
 
-PlateShift EstimatePlateShift(const std::vector<LearningSample>& samples, double radius_px) {
+PlateShift EstimatePlateShift(const std::vector<LearningSample>& samples, double radius_px,
+                              int threads) {
   PlateShift out;
   // A probe first, every stride-th sample (spread over the sequence), then the rest only where
   // the probe sees a plate to move: each fit costs ~2 ms, and footage whose plate edge is the
@@ -166,25 +169,40 @@ PlateShift EstimatePlateShift(const std::vector<LearningSample>& samples, double
   for (size_t i = 0; i < samples.size(); ++i) {
     if (i % stride != 0) order.push_back(i);
   }
+  // Each sample's two fits on its own (any thread count gives the same fits), gathered in order.
+  struct Fit {
+    std::array<double, 2> d{NAN, NAN};
+  };
+  const auto fit_range = [&](size_t from, size_t to) {
+    std::vector<Fit> fits(to - from);
+    ParallelFor(to - from, threads, [&](size_t j) {
+      const LearningSample& s = samples[order[from + j]];
+      if (!std::isfinite(s.plate_row)) return;
+      for (int k = 0; k < 2; ++k) {
+        if (!s.found[k]) continue;
+        const double plate = s.PlateRowAt(s.centre[k].x());
+        const MirroredContact c = FitMirroredContact(s.image, s.centre[k].x(), radius_px, plate);
+        if (c.ok && c.reflection_chi2 >= kMinReflectionChi2) fits[j].d[k] = c.row - plate;
+      }
+    });
+    return fits;
+  };
   std::vector<double> d, edges;
-  bool probe_only = false;
-  for (size_t j = 0; j < order.size(); ++j) {
-    if (j == probe && (d.size() < kMinContactFits ||
-                       std::abs(MedianOf(d)) < kProbeShiftFraction * kMinPlateShiftPx)) {
-      probe_only = true;
-      break;
-    }
-    const LearningSample& s = samples[order[j]];
-    if (!std::isfinite(s.plate_row)) continue;
-    for (int k = 0; k < 2; ++k) {
-      if (!s.found[k]) continue;
-      const double plate = s.PlateRowAt(s.centre[k].x());
-      const MirroredContact c = FitMirroredContact(s.image, s.centre[k].x(), radius_px, plate);
-      if (c.ok && c.reflection_chi2 >= kMinReflectionChi2) {
-        d.push_back(c.row - plate);
-        edges.push_back(s.plate_row);
+  const auto gather = [&](size_t from, const std::vector<Fit>& fits) {
+    for (size_t j = 0; j < fits.size(); ++j) {
+      for (int k = 0; k < 2; ++k) {
+        if (!std::isfinite(fits[j].d[k])) continue;
+        d.push_back(fits[j].d[k]);
+        edges.push_back(samples[order[from + j]].plate_row);
       }
     }
+  };
+  gather(0, fit_range(0, probe));
+  bool probe_only = false;
+  if (probe < order.size()) {
+    probe_only = d.size() < kMinContactFits ||
+                 std::abs(MedianOf(d)) < kProbeShiftFraction * kMinPlateShiftPx;
+    if (!probe_only) gather(probe, fit_range(probe, order.size()));
   }
   out.fits = d.size();
   if (d.size() < kMinContactFits) {

@@ -126,7 +126,9 @@ inline double ContactRow(const PlateShift& p, const PlateMotionScale& m, double 
 }
 
 // From the learning samples (their plate rows and rough centres): the median of
-// contact line - found edge over the fits with a mirror image.
-PlateShift EstimatePlateShift(const std::vector<LearningSample>& samples, double radius_px);
+// contact line - found edge over the fits with a mirror image. The fits on `threads` workers
+// (the same answer for any count).
+PlateShift EstimatePlateShift(const std::vector<LearningSample>& samples, double radius_px,
+                              int threads = 1);
 
 }  // namespace dimer::tracking

@@ -256,8 +256,9 @@ struct SamplePatches {
 };
 SamplePatches MaskedPatches(const std::vector<cv::Mat>& images,
                             const std::vector<LearningSample>& samples,
-                            const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
-                            int k, const Appearance& frame, int threads) {
+                            const std::vector<size_t>& used,
+                            const std::vector<Eigen::Vector2d>& pos, int k,
+                            const Appearance& frame, int threads) {
   SamplePatches p{std::vector<cv::Mat>(used.size()), std::vector<cv::Mat>(used.size())};
   ParallelFor(used.size(), threads, [&](size_t i) {
     if (!MaskedPatch(images, samples, used, pos, i, k, frame, &p.patch[i], &p.mask_f[i])) {
@@ -304,7 +305,8 @@ void LeaveGroupsOut(const std::vector<cv::Mat>& images, const std::vector<Learni
   PatchSums whole = zeros();
   std::vector<PatchSums> group(groups);
   for (PatchSums& g : group) g = zeros();
-  const SamplePatches patches = MaskedPatches(images, samples, used, s->averaged, k, frame, threads);
+  const SamplePatches patches =
+      MaskedPatches(images, samples, used, s->averaged, k, frame, threads);
   for (size_t i = 0; i < used.size(); ++i) {
     if (patches.patch[i].empty()) continue;
     const cv::Mat& patch = patches.patch[i];
