@@ -155,6 +155,36 @@ MirroredContact FitMirroredContact(const cv::Mat& frame, double col_guess, doubl
   return out;
 }
 
+namespace {
+
+// The contact line less the edge (d) and the edge, of every fit with a mirror image among the
+// samples order[from..to), appended in that order. Each sample's two fits on its own: any
+// thread count gives the same list.
+void ContactShifts(const std::vector<LearningSample>& samples, const std::vector<size_t>& order,
+                   size_t from, size_t to, double radius_px, int threads, std::vector<double>* d,
+                   std::vector<double>* edges) {
+  std::vector<std::array<double, 2>> fits(to - from, {NAN, NAN});
+  ParallelFor(to - from, threads, [&](size_t j) {
+    const LearningSample& s = samples[order[from + j]];
+    if (!std::isfinite(s.plate_row)) return;
+    for (int k = 0; k < 2; ++k) {
+      if (!s.found[k]) continue;
+      const double plate = s.PlateRowAt(s.centre[k].x());
+      const MirroredContact c = FitMirroredContact(s.image, s.centre[k].x(), radius_px, plate);
+      if (c.ok && c.reflection_chi2 >= kMinReflectionChi2) fits[j][k] = c.row - plate;
+    }
+  });
+  for (size_t j = 0; j < fits.size(); ++j) {
+    for (int k = 0; k < 2; ++k) {
+      if (!std::isfinite(fits[j][k])) continue;
+      d->push_back(fits[j][k]);
+      edges->push_back(samples[order[from + j]].plate_row);
+    }
+  }
+}
+
+}  // namespace
+
 PlateShift EstimatePlateShift(const std::vector<LearningSample>& samples, double radius_px,
                               int threads) {
   PlateShift out;
@@ -169,40 +199,15 @@ PlateShift EstimatePlateShift(const std::vector<LearningSample>& samples, double
   for (size_t i = 0; i < samples.size(); ++i) {
     if (i % stride != 0) order.push_back(i);
   }
-  // Each sample's two fits on its own (any thread count gives the same fits), gathered in order.
-  struct Fit {
-    std::array<double, 2> d{NAN, NAN};
-  };
-  const auto fit_range = [&](size_t from, size_t to) {
-    std::vector<Fit> fits(to - from);
-    ParallelFor(to - from, threads, [&](size_t j) {
-      const LearningSample& s = samples[order[from + j]];
-      if (!std::isfinite(s.plate_row)) return;
-      for (int k = 0; k < 2; ++k) {
-        if (!s.found[k]) continue;
-        const double plate = s.PlateRowAt(s.centre[k].x());
-        const MirroredContact c = FitMirroredContact(s.image, s.centre[k].x(), radius_px, plate);
-        if (c.ok && c.reflection_chi2 >= kMinReflectionChi2) fits[j].d[k] = c.row - plate;
-      }
-    });
-    return fits;
-  };
   std::vector<double> d, edges;
-  const auto gather = [&](size_t from, const std::vector<Fit>& fits) {
-    for (size_t j = 0; j < fits.size(); ++j) {
-      for (int k = 0; k < 2; ++k) {
-        if (!std::isfinite(fits[j].d[k])) continue;
-        d.push_back(fits[j].d[k]);
-        edges.push_back(samples[order[from + j]].plate_row);
-      }
-    }
-  };
-  gather(0, fit_range(0, probe));
+  ContactShifts(samples, order, 0, probe, radius_px, threads, &d, &edges);
   bool probe_only = false;
   if (probe < order.size()) {
     probe_only = d.size() < kMinContactFits ||
                  std::abs(MedianOf(d)) < kProbeShiftFraction * kMinPlateShiftPx;
-    if (!probe_only) gather(probe, fit_range(probe, order.size()));
+    if (!probe_only) {
+      ContactShifts(samples, order, probe, order.size(), radius_px, threads, &d, &edges);
+    }
   }
   out.fits = d.size();
   if (d.size() < kMinContactFits) {
