@@ -548,8 +548,9 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
     for (size_t j : used) out[k].rough.push_back(samples[j].centre[k]);
     // Recentred, these positions are only the final LearnOne's start (after its own search
     // and passes) and RestingRowShift's, which clusters them to a pixel: the quick step's
-    // positions do for them (1/3 of the learning's CPU, bench_track_e2e; the POV-Ray targets
-    // and povray.precision hold).
+    // positions do for them (ECC there costs 1/3 of the learning's CPU, bench_track_e2e;
+    // povray.precision holds either way, and fine_scale and pincushion_lens sit at the 0.1 px
+    // target whichever registers here: tests/tracking/CMakeLists.txt).
     LearnOne(images, samples, used, k, half, radius_px, -1, out[k].rough, learn,
              recentre ? LastPass::kQuick : LastPass::kEcc, &out[k]);
     if (!out[k].appearance.valid()) return {};

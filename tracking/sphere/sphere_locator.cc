@@ -52,8 +52,8 @@ class TemplateSphereLocator final : public SphereLocator {
 
   // Following: the quick step from the prediction; where it fails (a prediction more than a
   // pixel off, at an impact), the whole-pixel search, the quick step from its peak and ECC
-  // only if that fails too: ECC from the prediction first cost as much as all the quick steps
-  // of a 2,000-frame film for its 51 such sphere-frames (bench_track_e2e). With the quick step
+  // only if that fails too: ECC from the prediction costs as much for a 2,000-frame film's 51
+  // such sphere-frames as all its quick steps (bench_track_e2e). With the quick step
   // off (FollowStop::max_iterations 0), ECC from the prediction, then after the search.
   // Acquisition: the search reaching as far as a coarse match can be off, then the quick step
   // from its peak.
