@@ -5,8 +5,9 @@
 // spheres (both methods end with the rim fit on mirror spheres); in-memory tracking rate on 1
 // and all cores for uniform and mirror spheres; the sequence-level methods (template, auto)
 // against the centroid on a resting + bouncing sequence, reflect and backlit (worst bias and
-// scatter over both spheres and axes after the template's offset, rates with the learning
-// included); and PNG decode-only vs end-to-end rates. It also
+// scatter over both spheres and axes after the template's offset, the resting sphere's locking
+// to the pixel grid, rates with the learning included), and `auto` on spheres of half that
+// radius; and PNG decode-only vs end-to-end rates. It also
 // prints the load average and how many cores a busy loop really gets, since the machine may be
 // shared.
 #include <opencv2/imgcodecs.hpp>
@@ -142,26 +143,32 @@ double InMemoryRate(Method method, const std::vector<cv::Mat>& frames, int threa
   return best;
 }
 
-// A sequence in memory for the sequence-level methods (template, auto): the left sphere rests
-// on the plate, the right one lifts up to 14 px and lands every 80 frames, the dimer creeps
-// 0.05 px per frame. Truth per frame.
+// A sequence in memory for the sequence-level methods (template, auto): the plate moves up and
+// down by kPlateSwingPx every 80 frames (25 Hz at 2000 frames/s), the left sphere rests on it,
+// the right one lifts up to 14 px (at R = 23.75 px; scaled with the radius) and lands every 80
+// frames, the dimer creeps 0.05 px per frame: both fractions of the resting sphere's position
+// sweep every value (its locking to the pixel grid shows). Truth per frame.
+constexpr double kPlateSwingPx = 1.0;
 struct Sequence {
+  double radius = kRadius;
   std::vector<cv::Mat> frames;
   std::vector<SceneGeometry> truth;
 };
-Sequence HopSequence(int n, Lighting l) {
+Sequence HopSequence(int n, Lighting l, double radius = kRadius) {
   RenderOptions o;
   o.lighting = l;
   o.noise = kSigma;
   Sequence q;
+  q.radius = radius;
+  const double scale = radius / kRadius;
   for (int i = 0; i < n; ++i) {
     SceneGeometry s;
-    s.radius_px = kRadius;
-    s.rod_half_width_px = kRodHalf;
-    s.plate_row = 200;
-    s.left = {150 + 0.05 * i, 200 - kRadius};
-    const double lift = 14.0 * std::abs(std::sin(M_PI * i / 80.0));
-    const double d = 137.75;
+    s.radius_px = radius;
+    s.rod_half_width_px = kRodHalf * scale;
+    s.plate_row = 200 + kPlateSwingPx * std::sin(2 * M_PI * i / 80.0);
+    s.left = {150 + 0.05 * i, s.plate_row - radius};
+    const double lift = 14.0 * scale * std::abs(std::sin(M_PI * i / 80.0));
+    const double d = 137.75 * scale;
     s.right = s.left + Eigen::Vector2d(std::sqrt(d * d - lift * lift), -lift);
     q.truth.push_back(s);
     q.frames.push_back(RenderFrame({s}, o, i));
@@ -169,8 +176,29 @@ Sequence HopSequence(int n, Lighting l) {
   return q;
 }
 
+// Peak to peak of the mean error (less the overall mean) in 10 bins of the true position's
+// fractional part: the locking to the pixel grid.
+double Locking(const std::vector<double>& truth, const std::vector<double>& error) {
+  std::vector<double> sum(10, 0), count(10, 0);
+  double mean = 0;
+  for (double e : error) mean += e / double(error.size());
+  for (size_t i = 0; i < truth.size(); ++i) {
+    const int b = std::min(9, int((truth[i] - std::floor(truth[i])) * 10));
+    sum[b] += error[i] - mean;
+    count[b] += 1;
+  }
+  double lo = 1e9, hi = -1e9;
+  for (int b = 0; b < 10; ++b) {
+    if (count[b] == 0) continue;
+    lo = std::min(lo, sum[b] / count[b]);
+    hi = std::max(hi, sum[b] / count[b]);
+  }
+  return hi - lo;
+}
+
 struct SequenceAccuracy {
   double worst_bias = 0, worst_scatter = 0, found = 0, rate1 = 0, rate2 = 0;
+  double locking_col = 0, locking_row = 0;  // the resting (left) sphere's, px
   // CPU microseconds per frame (user + system, all threads; least over the runs): unlike the
   // rates, it hardly depends on what else runs on a shared machine.
   double cpu_us1 = 1e30, cpu_us2 = 1e30;
@@ -196,7 +224,7 @@ SequenceAccuracy MeasureSequence(Method method, const Sequence& q, int cores,
       SequenceOptions opts;
       opts.follower.method = method;
       opts.threads = threads;
-      opts.contact_radius_px = kRadius;  // the scale is known
+      opts.contact_radius_px = q.radius;  // the scale is known
       opts.follower.ecc = ecc;
       opts.follower.follow = follow;
       const auto t0 = Clock::now();
@@ -211,6 +239,7 @@ SequenceAccuracy MeasureSequence(Method method, const Sequence& q, int cores,
     a.method = ToString(r.method);
     double sum[2][2] = {}, sum2[2][2] = {};
     size_t n = 0;
+    std::vector<double> truth_col, truth_row, error_col, error_row;  // the resting sphere's
     for (size_t i = 0; i < r.frames.size(); ++i) {
       const FrameTrack& t = r.frames[i];
       if (!t.found[0] || !t.found[1]) continue;
@@ -219,7 +248,12 @@ SequenceAccuracy MeasureSequence(Method method, const Sequence& q, int cores,
         const Eigen::Vector2d e = t.centre[k] - (k == 0 ? q.truth[i].left : q.truth[i].right);
         for (int ax = 0; ax < 2; ++ax) sum[k][ax] += e(ax), sum2[k][ax] += e(ax) * e(ax);
       }
+      const Eigen::Vector2d e = t.centre[0] - q.truth[i].left;
+      truth_col.push_back(q.truth[i].left.x()), error_col.push_back(e.x());
+      truth_row.push_back(q.truth[i].left.y()), error_row.push_back(e.y());
     }
+    a.locking_col = Locking(truth_col, error_col);
+    a.locking_row = Locking(truth_row, error_row);
     for (int k = 0; k < 2; ++k) {
       for (int ax = 0; ax < 2; ++ax) {
         const double b = sum[k][ax] / double(n);
@@ -266,17 +300,28 @@ int main(int argc, char** argv) {
   }
   // Sequence-level methods: learnt appearance (template) and the per-footage choice (auto),
   // against the centroid, on a sequence with a resting and a bouncing sphere.
-  std::printf("\nSequences of %d frames (left sphere resting, right one bouncing; learning and "
-              "offset estimation included in the rates):\n\n", std::min(n, 800));
-  std::printf("| lighting | method asked | method run | worst \\|bias\\| (px) | worst scatter (px) | found | frames/s 1 thread | frames/s %d threads | µs CPU/frame 1 thread | µs CPU/frame %d threads |\n", cores, cores);
-  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
-  for (Lighting l : {Lighting::kReflect, Lighting::kBacklit}) {
-    const Sequence q = HopSequence(std::min(n, 800), l);
-    for (Method m : {Method::kCentroid, Method::kTemplate, Method::kAuto}) {
-      const SequenceAccuracy a = MeasureSequence(m, q, cores);
-      std::printf("| %s | %s | %s | %.4f | %.4f | %.1f %% | %.0f | %.0f | %.0f | %.0f |\n",
-                  ToString(l).c_str(), ToString(m).c_str(), a.method.c_str(), a.worst_bias,
-                  a.worst_scatter, 100 * a.found, a.rate1, a.rate2, a.cpu_us1, a.cpu_us2);
+  std::printf("\nSequences of %d frames (the plate moving +-1 px, left sphere resting, right one "
+              "bouncing; learning and offset estimation included in the rates):\n\n",
+              std::min(n, 800));
+  std::printf("| lighting | method asked | method run | worst \\|bias\\| (px) | worst scatter (px) | resting sphere's locking p-p, col / row (px) | found | frames/s 1 thread | frames/s %d threads | µs CPU/frame 1 thread | µs CPU/frame %d threads |\n", cores, cores);
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  // Each lighting at R = 23.75 px by every method, and `auto` at half that radius (9.5 mm
+  // spheres at 0.4 mm/px), where the template locks to the pixel grid.
+  for (const double radius : {kRadius, 0.5 * kRadius}) {
+    for (Lighting l : {Lighting::kReflect, Lighting::kBacklit}) {
+      const Sequence q = HopSequence(std::min(n, 800), l, radius);
+      for (Method m : {Method::kCentroid, Method::kTemplate, Method::kAuto}) {
+        if (radius != kRadius && m != Method::kAuto) continue;
+        const SequenceAccuracy a = MeasureSequence(m, q, cores);
+        char label[64];
+        std::snprintf(label, sizeof label, "%s%s", ToString(l).c_str(),
+                      radius == kRadius ? "" : ", R 11.9 px");
+        std::printf("| %s | %s | %s | %.4f | %.4f | %.3f / %.3f | %.1f %% | %.0f | %.0f | %.0f | %.0f |\n",
+                    label, ToString(m).c_str(), a.method.c_str(), a.worst_bias, a.worst_scatter,
+                    a.locking_col, a.locking_row, 100 * a.found, a.rate1, a.rate2, a.cpu_us1,
+                    a.cpu_us2);
+        std::fflush(stdout);
+      }
     }
   }
   // The quick step that follows from the prediction before ECC (tracking/sphere/fast_follow.h,
