@@ -69,6 +69,26 @@ double CramerRao(double contrast, double sigma_eff) {
   return std::sqrt(fisher.inverse()(0, 0));
 }
 
+// Peak to peak of the mean error (less the overall mean) in 10 bins of the true position's
+// fractional part: the locking to the pixel grid.
+double Locking(const std::vector<double>& truth, const std::vector<double>& error) {
+  std::vector<double> sum(10, 0), count(10, 0);
+  double mean = 0;
+  for (double e : error) mean += e / double(error.size());
+  for (size_t i = 0; i < truth.size(); ++i) {
+    const int b = std::min(9, int((truth[i] - std::floor(truth[i])) * 10));
+    sum[b] += error[i] - mean;
+    count[b] += 1;
+  }
+  double lo = 1e9, hi = -1e9;
+  for (int b = 0; b < 10; ++b) {
+    if (count[b] == 0) continue;
+    lo = std::min(lo, sum[b] / count[b]);
+    hi = std::max(hi, sum[b] / count[b]);
+  }
+  return hi - lo;
+}
+
 struct Accuracy {
   double rms = 0, scatter = 0, locking = 0;
 };
@@ -82,7 +102,7 @@ Accuracy MeasureAccuracy(Method method, Lighting lighting, int n) {
   o.gradient = 0;
   std::mt19937_64 rng(1);
   std::uniform_real_distribution<double> u(0, 1);
-  std::vector<double> ex, ey, frac;
+  std::vector<double> ex, ey, col;
   for (int i = 0; i < n; ++i) {
     const SceneGeometry s = Dimer(150 + 20 * u(rng), 150 + 10 * u(rng), 200);
     const cv::Mat img = RenderFrame({s}, o, i);
@@ -94,28 +114,18 @@ Accuracy MeasureAccuracy(Method method, Lighting lighting, int n) {
     if (!m.found()) continue;
     ex.push_back(m.centre.x() - s.left.x());
     ey.push_back(m.centre.y() - s.left.y());
-    frac.push_back(s.left.x() - std::floor(s.left.x()));
+    col.push_back(s.left.x());
   }
   Accuracy a;
   double mx = 0, my = 0;
   for (size_t i = 0; i < ex.size(); ++i) mx += ex[i] / ex.size(), my += ey[i] / ey.size();
-  std::vector<double> bin_sum(10, 0), bin_n(10, 0);
   for (size_t i = 0; i < ex.size(); ++i) {
     a.rms += (ex[i] * ex[i] + ey[i] * ey[i]) / ex.size();
     a.scatter += ((ex[i] - mx) * (ex[i] - mx) + (ey[i] - my) * (ey[i] - my)) / ex.size();
-    const int b = std::min(9, int(frac[i] * 10));
-    bin_sum[b] += ex[i];
-    bin_n[b] += 1;
-  }
-  double lo = 1e9, hi = -1e9;
-  for (int b = 0; b < 10; ++b) {
-    if (bin_n[b] == 0) continue;
-    lo = std::min(lo, bin_sum[b] / bin_n[b]);
-    hi = std::max(hi, bin_sum[b] / bin_n[b]);
   }
   a.rms = std::sqrt(a.rms);
   a.scatter = std::sqrt(a.scatter);
-  a.locking = hi - lo;
+  a.locking = Locking(col, ex);
   return a;
 }
 
@@ -174,26 +184,6 @@ Sequence HopSequence(int n, Lighting l, double radius = kRadius) {
     q.frames.push_back(RenderFrame({s}, o, i));
   }
   return q;
-}
-
-// Peak to peak of the mean error (less the overall mean) in 10 bins of the true position's
-// fractional part: the locking to the pixel grid.
-double Locking(const std::vector<double>& truth, const std::vector<double>& error) {
-  std::vector<double> sum(10, 0), count(10, 0);
-  double mean = 0;
-  for (double e : error) mean += e / double(error.size());
-  for (size_t i = 0; i < truth.size(); ++i) {
-    const int b = std::min(9, int((truth[i] - std::floor(truth[i])) * 10));
-    sum[b] += error[i] - mean;
-    count[b] += 1;
-  }
-  double lo = 1e9, hi = -1e9;
-  for (int b = 0; b < 10; ++b) {
-    if (count[b] == 0) continue;
-    lo = std::min(lo, sum[b] / count[b]);
-    hi = std::max(hi, sum[b] / count[b]);
-  }
-  return hi - lo;
 }
 
 struct SequenceAccuracy {
