@@ -127,13 +127,6 @@ int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, doubl
 
 namespace {
 
-// Whether the horizon at template row `horizon` moves within the sphere with its height above
-// the plate: per sample, the horizon's sub-pixel row (centroid of the vertical step across the
-// central columns, their median as in ReflectionHorizon, within kHorizonWindowPx rows) against
-// the height (plate - row), fitted by a straight line; it moves when the slope exceeds
-// kHorizonMovesPerPx and three standard errors over heights spanning kMinHeightSpanPx. A resting
-// sphere (no span) or a renderer whose reflection is painted on the sphere (no slope) keeps its
-// whole appearance.
 // The horizon's sub-pixel row in one sample's patch at `p` (HorizonMoves); NaN where the patch
 // leaves the frame or shows no step.
 double HorizonRowIn(const cv::Mat& image, const Eigen::Vector2d& p, int half, int horizon,
@@ -166,6 +159,13 @@ double HorizonRowIn(const cv::Mat& image, const Eigen::Vector2d& p, int half, in
   return sw > 0 ? swy / sw : std::nan("");
 }
 
+// Whether the horizon at template row `horizon` moves within the sphere with its height above
+// the plate: per sample, the horizon's sub-pixel row (centroid of the vertical step across the
+// central columns, their median as in ReflectionHorizon, within kHorizonWindowPx rows) against
+// the height (plate - row), fitted by a straight line; it moves when the slope exceeds
+// kHorizonMovesPerPx and three standard errors over heights spanning kMinHeightSpanPx. A resting
+// sphere (no span) or a renderer whose reflection is painted on the sphere (no slope) keeps its
+// whole appearance.
 bool HorizonMoves(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
                   const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
                   int half, int horizon, double radius_px, double plate_slope, int threads) {
