@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "tracking/sphere/appearance_mismatch.h"
+#include "tracking/sphere/clipped_highlights.h"
 #include "tracking/sphere/highlight_seed.h"
 #include "common/parallel_for.h"
 #include "tracking/plate/plate_edge.h"
@@ -171,8 +172,16 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
     }
     m.plate_shift = EstimatePlateShift(samples, m.learnt[0].appearance.radius_px, learn.threads);
   }
-  m.appearance = std::make_shared<const std::array<Appearance, 2>>(
-      std::array<Appearance, 2>{m.learnt[0].appearance, m.learnt[1].appearance});
+  // Following leaves a sphere's clipped highlights out where the learning frames show that they
+  // lock its position to the pixel grid (clipped_highlights.h); the offsets are measured on the
+  // learnt appearances, whose reference point is the same.
+  std::array<Appearance, 2> follow;
+  for (int k = 0; k < 2; ++k) {
+    const ClipDecision clip = DecideClippedHighlights(m.learnt[k], samples, k, learn.threads);
+    follow[size_t(k)] = clip.appearance;
+    m.choice.reason += "; " + clip.reason;
+  }
+  m.appearance = std::make_shared<const std::array<Appearance, 2>>(follow);
   return m;
 }
 

@@ -76,7 +76,9 @@ void CutBelow(int row, double slope, Appearance* a) {
   }
 }
 
-MaskContext ContextOf(const LearningSample& s, int k) {
+}  // namespace
+
+MaskContext LearningContext(const LearningSample& s, int k) {
   MaskContext ctx;
   ctx.plate_row = s.PlateRowAt(s.centre[k].x());
   ctx.plate_slope = s.plate_slope;
@@ -87,8 +89,6 @@ MaskContext ContextOf(const LearningSample& s, int k) {
   }
   return ctx;
 }
-
-}  // namespace
 
 int ReflectionHorizon(const cv::Mat& image, const cv::Mat& mask, int half, double radius_px,
                       double slope) {
@@ -214,7 +214,7 @@ bool MaskedPatch(const std::vector<cv::Mat>& images, const std::vector<LearningS
                  const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
                  size_t i, int k, const Appearance& frame, cv::Mat* patch, cv::Mat* mask_f) {
   if (!Patch(images[used[i]], pos[i], frame.half, patch)) return false;
-  FrameMask(frame, pos[i], ContextOf(samples[used[i]], k)).convertTo(*mask_f, CV_32F);
+  FrameMask(frame, pos[i], LearningContext(samples[used[i]], k)).convertTo(*mask_f, CV_32F);
   *patch = patch->mul(*mask_f);
   return true;
 }
@@ -345,7 +345,7 @@ void RegisterSamples(const std::vector<LearningSample>& samples, const std::vect
   const FollowModel quick = ecc_only ? FollowModel{} : PrepareFollow(a);
   ParallelFor(used.size(), learn.threads, [&](size_t i) {
     const Located l = FollowAppearance(samples[used[i]].image, a, quick, (*pos)[i],
-                                       ContextOf(samples[used[i]], k), FollowStop{}, EccStop{},
+                                       LearningContext(samples[used[i]], k), FollowStop{}, EccStop{},
                                        search_px);
     if (l.ok) (*pos)[i] = l.position;
   });

@@ -109,6 +109,10 @@ struct LearningSample {
   std::array<Eigen::Vector2d, 2> centre{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
 };
 
+// Where the rod, the plate and the other sphere are relative to sphere k (0 left, 1 right) in a
+// learning sample, from its rough centres: the cuts its registrations make.
+MaskContext LearningContext(const LearningSample& s, int k);
+
 // The jackknife estimate of the standard error of `values` (one per left-out group, NaN where
 // the quantity could not be measured without that group): sqrt((g - 1) / g * sum (v - mean)^2)
 // over the g finite ones; NaN with fewer than 3.
