@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <optional>
 
+#include <opencv2/imgproc.hpp>
+
 #include "common/parallel_for.h"
 #include "tracking/io/full_scale.h"
 #include "tracking/sphere/fast_follow.h"
@@ -27,6 +29,16 @@ struct Pair {
 };
 
 }  // namespace
+
+Appearance ShiftContent(const Appearance& a, const Eigen::Vector2d& by) {
+  // Lanczos, as the quick step shifts the appearance; the edge repeated as there.
+  Appearance out = a;
+  out.image = cv::Mat();  // a new image: `a`'s, shared by the copy, is left as it is
+  const cv::Matx23d shift(1, 0, by.x(), 0, 1, by.y());
+  cv::warpAffine(a.image, out.image, shift, a.image.size(), cv::INTER_LANCZOS4,
+                 cv::BORDER_REPLICATE);
+  return out;
+}
 
 cv::Mat ClippedZone(const LearntSphere& s, const std::vector<LearningSample>& samples) {
   const Appearance& a = s.appearance;
@@ -99,9 +111,10 @@ ClipDecision DecideClippedHighlights(const LearntSphere& s,
     if (!p.ok) continue;
     ++out.n;
     out.mean_d2 += p.d.squaredNorm();
+    out.mean_d += p.d;
     out.mean_delta += p.delta;
   }
-  char numbers[160];
+  char numbers[256];
   if (out.n < kClipMinSamples) {
     std::snprintf(numbers, sizeof numbers,
                   " sphere: %d px shaped by clipping kept (%zu samples registered without them)",
@@ -111,16 +124,17 @@ ClipDecision DecideClippedHighlights(const LearntSphere& s,
   }
   out.mean_d2 /= double(out.n);
   out.mean_delta /= double(out.n);
+  out.mean_d /= double(out.n);
   // Delta <= 0: the clipped pixels add more mismatch than information (the residual's variance
   // in RegistrationSigma holds both), so leaving them out costs nothing.
   out.leave_out = out.mean_d2 > kClipLeaveOutRatio * std::max(0.0, out.mean_delta);
   std::snprintf(numbers, sizeof numbers,
                 " sphere: %d px shaped by clipping %s (mean |d|^2 %.3g px^2 against %.3g from "
-                "noise, %zu samples)",
+                "noise, mean d %+.4f, %+.4f px, %zu samples)",
                 out.zone_px, out.leave_out ? "left out" : "kept", out.mean_d2, out.mean_delta,
-                out.n);
+                out.mean_d.x(), out.mean_d.y(), out.n);
   out.reason = side + std::string(numbers);
-  if (out.leave_out) out.appearance = cut;
+  if (out.leave_out) out.appearance = ShiftContent(cut, out.mean_d);
   return out;
 }
 

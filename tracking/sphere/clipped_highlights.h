@@ -22,6 +22,12 @@
 //
 // The clipped zone is fixed to the appearance, not taken from each frame: a zone that moved
 // with the frame's own clipped pixels changed its shape with the phase too.
+//
+// The reference point. The learnt appearance's reference is where the whole appearance
+// registers (the offsets to the centre, from its outline, rest on that); the part left out of
+// it registers the same frames shifted by the mean of d. The followed appearance is shifted by
+// that mean, so that positions keep the reference (the mean is 0.001-0.004 px on the project's
+// mirror-lit renders at R = 11.9 px; ClippedHighlights.ShiftedContentRegistersByTheShift).
 #include <opencv2/core.hpp>
 
 #include <cstddef>
@@ -57,6 +63,7 @@ struct ClipDecision {
   size_t n = 0;           // samples registered both ways
   double mean_d2 = 0;     // mean |d|^2 over them, px^2
   double mean_delta = 0;  // mean Delta (sigma_out^2 - sigma_in^2 over both axes), px^2
+  Eigen::Vector2d mean_d{0, 0};  // mean d, px: what the followed appearance is shifted by
   std::string reason;     // one clause for the track file's method reason
 };
 
@@ -64,6 +71,10 @@ struct ClipDecision {
 // clipped frame pixel of any learning sample fell on (each sample's frame read at its registered
 // position; the pixels either side of a fraction both).
 cv::Mat ClippedZone(const LearntSphere& s, const std::vector<LearningSample>& samples);
+
+// The appearance's image moved by `by` px (its mask kept, a fraction of a pixel): a frame then
+// registers `by` lower against it.
+Appearance ShiftContent(const Appearance& a, const Eigen::Vector2d& by);
 
 // The decision for sphere `k` (0 left, 1 right), its samples registered on `threads` threads
 // (each on its own: the result does not depend on the count).
