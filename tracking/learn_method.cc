@@ -9,6 +9,7 @@
 #include "tracking/sphere/appearance_mismatch.h"
 #include "tracking/sphere/clipped_highlights.h"
 #include "tracking/sphere/highlight_seed.h"
+#include "tracking/sphere/impact_vertex.h"
 #include "common/parallel_for.h"
 #include "tracking/plate/plate_edge.h"
 
@@ -188,6 +189,14 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
 TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<FrameTrack>& frames,
                                 double contact_radius_px, double gravity_px) {
   TemplateOffsets o;
+  // The dimer's length in frame order (NaN where a sphere is missing): its second differences
+  // are the tracker's noise whatever the motion (ContactRowOffset's noise_cap).
+  std::vector<double> length;
+  for (const FrameTrack& f : frames) {
+    length.push_back(f.found[0] && f.found[1] ? (f.centre[1] - f.centre[0]).norm()
+                                              : std::nan(""));
+  }
+  const double length_noise = GapNoise(length);
   for (int k = 0; k < 2; ++k) {
     if (m.choice.silhouettes) {
       o.col[k] = SilhouetteOffset(m.learnt[k], 0);
@@ -203,7 +212,8 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
     // above the plate's row at its column (0.23 px at 8 degrees and R = 23.75 px).
     const double slope = frames.empty() ? 0.0 : frames.front().plate_slope;
     o.row[k] =
-        ContactRowOffset(rows, plate, contact_radius_px * std::hypot(1.0, slope), gravity_px);
+        ContactRowOffset(rows, plate, contact_radius_px * std::hypot(1.0, slope), gravity_px,
+                         length_noise);
   }
   if (m.choice.silhouettes) return o;
   // The sphere that rests longer (more frames in its contact cluster) sets the contact; the

@@ -694,11 +694,12 @@ TEST(PovrayLeavingTheFrame, OneSphereLeavesThenTheOtherAndNeitherIsSwappedOrInve
 // own, sharp), the left sphere on the plate, the right lifted by 0 to 3 degrees, the dimer moved
 // by up to 6 mm between poses. A lab's film of this kind put both spheres' rows 2.2-2.4 px low
 // in every frame, stating 0.5 px. Per sphere and axis: |bias| within max(0.1 px, 2 x the stated
-// uncertainty), which is at most 0.3 px. Missed (CTest `povray.still_plate_poses`, an expected
-// failure): the rows show no such offset (the frames searched afresh: -0.06 and -0.03 px), but
-// where a frame's pose is followed from the last one's the right sphere, which changes height
-// between poses, is matched 7-11 px off in its row and kept (its mean row error +1.0 px); and
-// the columns read the dimer 0.27 px long (-0.14 and +0.13 px, the right's stated +-0.06).
+// uncertainty), which is at most 0.3 px. Two things held it back: following from one pose to
+// the next matched the lifted sphere 7-11 px off (an unrefined whole-pixel peak, now searched
+// for afresh: frame_follower.cc), and the lifted sphere's contact band, three times its gap's
+// second differences (here the poses' changes), held every pose (now capped by the length's:
+// ContactRowOffset's noise_cap). The columns read the dimer 0.27 px long (-0.15 and +0.13 px,
+// the right's stated +-0.065): the right's is the case's least margin.
 TEST(PovrayStillPlatePoses, CalibrationPosesAreUnbiasedWithinTheirStatedUncertainty) {
   FootageOptions o = FootageOptions::For(Lighting::kFrontPoint);
   o.exposure_s = 0;

@@ -651,7 +651,7 @@ std::vector<ImpactVertex> ImpactsLeavingTheBand(const std::vector<double>& gap, 
 
 OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
                                 const std::vector<double>& plate_rows, double radius_px,
-                                double gravity_px) {
+                                double gravity_px, double noise_cap) {
   OffsetEstimate e;
   e.source = "plate_contact";
   std::vector<double> series(reference_rows.size());  // the same in frame order, NaN kept
@@ -672,7 +672,8 @@ OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
   // below its level, and one fixed window of 0.3 px about them found there a cluster of seven.
   // The window never rises past kContactCeilingBands bands above the lowest value: there a
   // sphere that never rests spends its flights, slowest at their tops.
-  const double noise = GapNoise(series);
+  double noise = GapNoise(series);
+  if (noise_cap > 0 && noise > noise_cap) noise = noise_cap;
   const double band =
       std::isfinite(noise) ? std::max(kContactBandPx, kContactBandNoise * noise) : kContactBandPx;
   std::sort(gap.begin(), gap.end());

@@ -209,9 +209,15 @@ OffsetEstimate SilhouetteOffset(const LearntSphere& s, int axis);
 // acceleration and by gravity, `gravity_px` = g in px per frame^2, NaN: left out), source
 // "plate_contact_impacts". Where no impact draws a clear V, the source is
 // "plate_contact_bounces" and the uncertainty at least the cluster's standard deviation.
+// `noise_cap` (px, NaN: none): the tracker's own noise where the motion does not enter it (the
+// dimer's length from frame to frame, which a rigid body keeps); the gap's noise is taken as at
+// most that. On a film of separate poses the gap's second differences are the poses' changes,
+// not noise: a band of three of them held every pose of a lifted sphere, and its row came out
+// 3.4 px off (povray.still_plate_poses).
 OffsetEstimate ContactRowOffset(const std::vector<double>& reference_rows,
                                 const std::vector<double>& plate_rows, double radius_px,
-                                double gravity_px = std::numeric_limits<double>::quiet_NaN());
+                                double gravity_px = std::numeric_limits<double>::quiet_NaN(),
+                                double noise_cap = std::numeric_limits<double>::quiet_NaN());
 // Centre column of the appearance's outline (limb_fit.h), relative to its reference column;
 // `row_offset` (reference -> centre, NaN: unknown) holds the circle's row where only one side of
 // the outline shows. Its uncertainty: the outline model's (LimbFit::col_model_err) with the

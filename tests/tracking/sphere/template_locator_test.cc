@@ -210,6 +210,26 @@ TEST(AppearanceOffset, PlateContactIsTheRestingCluster) {
   EXPECT_TRUE(std::isnan(none.err));
 }
 
+TEST(AppearanceOffset, SeparatePosesAreMotionNotNoiseWithTheLengthsNoiseGiven) {
+  // A still-plate calibration film: 16 poses, the sphere lifted by 0 to 7 px (one pose at rest,
+  // one 0.5 px up); each frame is its own pose, so the gap's second differences are the poses'
+  // changes. A band of three of them held every pose, and the mean of all was the offset.
+  const ContactSeries c = RowsAbovePlate(16, 5, [](int i) { return 7.0 * ((i * 7) % 16) / 15; });
+  const OffsetEstimate blind = ContactRowOffset(c.rows, c.plate, kContactR);
+  EXPECT_GT(blind.value - kContactOffset, 1.0) << "every pose in the band";
+  // The dimer's length from frame to frame shows the tracker's noise (0.02 px here): the band is
+  // the least one, and holds the resting pose alone. One pose rests: not a resting sphere
+  // (kMinRestingFrames), said so, and the film's other sphere will give the row.
+  const OffsetEstimate e = ContactRowOffset(c.rows, c.plate, kContactR, NAN, 0.02);
+  EXPECT_EQ(e.n, 1u);
+  EXPECT_EQ(e.source, "plate_contact_bounces");
+  EXPECT_NEAR(e.value, kContactOffset, 0.1);
+  // A cap above the gap's own noise changes nothing.
+  const OffsetEstimate same = ContactRowOffset(c.rows, c.plate, kContactR, NAN, 1e3);
+  EXPECT_EQ(same.value, blind.value);
+  EXPECT_EQ(same.n, blind.n);
+}
+
 // A mirror sphere's appearance drawn `col` px right of the reference column: a soft disc, the
 // plate reflected below, two lamps placed symmetrically about the centre; `light_from_right`
 // makes its reflections brighter on the right and keeps only the right lamp.
