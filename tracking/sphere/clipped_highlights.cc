@@ -25,6 +25,7 @@ double PixelValue(const cv::Mat& frame, int row, int col) {
 struct Pair {
   bool ok = false;
   Eigen::Vector2d d{0, 0};
+  bool has_delta = false;  // the variances stated (every kClipSigmaEvery-th sample)
   double delta = 0;
 };
 
@@ -98,22 +99,28 @@ ClipDecision DecideClippedHighlights(const LearntSphere& s,
   ParallelFor(pairs.size(), threads, [&](size_t i) {
     const LearningSample& sample = samples[s.samples[i]];
     const MaskContext ctx = LearningContext(sample, k);
+    const bool sigma = i % kClipSigmaEvery == 0;
     const std::optional<Located> in = FollowOnlyQuickly(
-        sample.image, s.appearance, whole, s.registered[i], ctx, FollowStop{}, 0, true);
+        sample.image, s.appearance, whole, s.registered[i], ctx, FollowStop{}, 0, sigma);
     const std::optional<Located> left_out =
-        FollowOnlyQuickly(sample.image, cut, part, s.registered[i], ctx, FollowStop{}, 0, true);
-    if (!in || !left_out || !in->sigma.allFinite() || !left_out->sigma.allFinite()) return;
+        FollowOnlyQuickly(sample.image, cut, part, s.registered[i], ctx, FollowStop{}, 0, sigma);
+    if (!in || !left_out) return;
     pairs[i].ok = true;
     pairs[i].d = left_out->position - in->position;
-    pairs[i].delta = left_out->sigma.squaredNorm() - in->sigma.squaredNorm();
+    if (sigma && in->sigma.allFinite() && left_out->sigma.allFinite()) {
+      pairs[i].has_delta = true;
+      pairs[i].delta = left_out->sigma.squaredNorm() - in->sigma.squaredNorm();
+    }
   });
+  size_t with_delta = 0;
   for (const Pair& p : pairs) {
     if (!p.ok) continue;
     ++out.n;
     out.mean_d2 += p.d.squaredNorm();
     out.mean_d += p.d;
-    out.mean_delta += p.delta;
+    if (p.has_delta) ++with_delta, out.mean_delta += p.delta;
   }
+  if (with_delta == 0) out.n = 0;  // no variance to weigh d by: kept
   char numbers[256];
   if (out.n < kClipMinSamples) {
     std::snprintf(numbers, sizeof numbers,
@@ -123,7 +130,7 @@ ClipDecision DecideClippedHighlights(const LearntSphere& s,
     return out;
   }
   out.mean_d2 /= double(out.n);
-  out.mean_delta /= double(out.n);
+  out.mean_delta /= double(with_delta);
   out.mean_d /= double(out.n);
   // Delta <= 0: the clipped pixels add more mismatch than information (the residual's variance
   // in RegistrationSigma holds both), so leaving them out costs nothing.
