@@ -13,14 +13,6 @@
 namespace dimer::tracking {
 namespace {
 
-double PixelValue(const cv::Mat& frame, int row, int col) {
-  switch (frame.depth()) {
-    case CV_8U: return frame.at<uint8_t>(row, col);
-    case CV_16U: return frame.at<uint16_t>(row, col);
-    default: return frame.at<float>(row, col);
-  }
-}
-
 // One sample registered both ways: the difference of the positions and of the variances.
 struct Pair {
   bool ok = false;
@@ -55,9 +47,13 @@ cv::Mat ClippedZone(const LearntSphere& s, const std::vector<LearningSample>& sa
     const int y0 = std::max(0, int(std::floor(origin.y())));
     const int x1 = std::min(frame.cols - 1, int(std::ceil(origin.x())) + size - 1);
     const int y1 = std::min(frame.rows - 1, int(std::ceil(origin.y())) + size - 1);
+    if (x1 < x0 || y1 < y0) continue;
+    cv::Mat clipped;  // 255 where the frame is at the clip
+    cv::compare(frame(cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1)), level, clipped, cv::CMP_GE);
     for (int y = y0; y <= y1; ++y) {
+      const uint8_t* c = clipped.ptr<uint8_t>(y - y0);
       for (int x = x0; x <= x1; ++x) {
-        if (PixelValue(frame, y, x) < level) continue;
+        if (!c[x - x0]) continue;
         const int u = int(std::floor(x - origin.x())), v = int(std::floor(y - origin.y()));
         for (int dv = 0; dv <= 1; ++dv) {
           for (int du = 0; du <= 1; ++du) {
