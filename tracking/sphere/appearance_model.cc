@@ -344,9 +344,9 @@ void RegisterSamples(const std::vector<LearningSample>& samples, const std::vect
   const int search_px = LearnSearchPx(radius_px);
   const FollowModel quick = ecc_only ? FollowModel{} : PrepareFollow(a);
   ParallelFor(used.size(), learn.threads, [&](size_t i) {
-    const Located l = FollowAppearance(samples[used[i]].image, a, quick, (*pos)[i],
-                                       LearningContext(samples[used[i]], k), FollowStop{}, EccStop{},
-                                       search_px);
+    const Located l =
+        FollowAppearance(samples[used[i]].image, a, quick, (*pos)[i],
+                         LearningContext(samples[used[i]], k), FollowStop{}, EccStop{}, search_px);
     if (l.ok) (*pos)[i] = l.position;
   });
 }
