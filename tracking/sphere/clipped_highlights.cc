@@ -116,12 +116,12 @@ ClipDecision DecideClippedHighlights(const LearntSphere& s,
     out.mean_d += p.d;
     if (p.has_delta) ++with_delta, out.mean_delta += p.delta;
   }
-  if (with_delta == 0) out.n = 0;  // no variance to weigh d by: kept
   char numbers[256];
-  if (out.n < kClipMinSamples) {
+  if (out.n < kClipMinSamples || with_delta == 0) {  // nothing to weigh d by: kept
     std::snprintf(numbers, sizeof numbers,
-                  " sphere: %d px shaped by clipping kept (%zu samples registered without them)",
-                  out.zone_px, out.n);
+                  " sphere: %d px shaped by clipping kept (%zu samples registered both ways, "
+                  "%zu with variances)",
+                  out.zone_px, out.n, with_delta);
     out.reason = side + std::string(numbers);
     return out;
   }

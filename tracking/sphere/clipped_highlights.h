@@ -64,7 +64,7 @@ struct ClipDecision {
   Appearance appearance;  // the one to follow: the learnt one, its mask cut where left out
   bool leave_out = false;
   int zone_px = 0;        // the appearance's pixels shaped by clipping (in its mask)
-  size_t n = 0;           // samples registered both ways (0: too few, or no variance stated)
+  size_t n = 0;           // samples registered both ways
   double mean_d2 = 0;     // mean |d|^2 over them, px^2
   double mean_delta = 0;  // mean Delta (sigma_out^2 - sigma_in^2 over both axes), px^2
   Eigen::Vector2d mean_d{0, 0};  // mean d, px: what the followed appearance is shifted by
