@@ -52,7 +52,7 @@ class Namer {
       swap = cross < keep;
     }
     if (swap) {
-      SwapSpheres(f);
+      f->SwapSpheres();
       ++out->renamed;
     }
     if (IsDimer(*f)) {
@@ -74,7 +74,7 @@ class Namer {
       return;
     }
     if (name != seen) {
-      SwapSpheres(f);
+      f->SwapSpheres();
       ++out->renamed;
     }
     dimer_.end[name] = c;
@@ -86,14 +86,6 @@ class Namer {
 };
 
 }  // namespace
-
-void SwapSpheres(FrameTrack* f) {
-  std::swap(f->found[0], f->found[1]);
-  std::swap(f->centre[0], f->centre[1]);
-  std::swap(f->radius_px[0], f->radius_px[1]);
-  std::swap(f->score[0], f->score[1]);
-  std::swap(f->appearance[0], f->appearance[1]);
-}
 
 DimerNames NameSpheresByTheDimer(std::vector<FrameTrack>* frames) {
   DimerNames out;
@@ -112,7 +104,7 @@ DimerNames NameSpheresByTheDimer(std::vector<FrameTrack>* frames) {
   for (const FrameTrack& f : *frames) out.pair_frames += is_dimer(f);
   // The first pair fixes the names: left is the smaller column.
   if (anchor->centre[1].x() < anchor->centre[0].x()) {
-    SwapSpheres(&*anchor);
+    anchor->SwapSpheres();
     ++out.renamed;
   }
   const RigidDimer start{anchor->centre, anchor->centre[1] - anchor->centre[0]};

@@ -32,9 +32,6 @@ struct DimerNames {
   size_t unnamed = 0;      // lone spheres left unnamed (found = false) as ambiguous
 };
 
-// The two spheres of a frame exchange names (and everything measured of them).
-void SwapSpheres(FrameTrack* f);
-
 // Names the found spheres of `frames` (in film order) by the rigid dimer. Frames are unchanged
 // when no pair of found spheres stands a dimer's length apart (pair_frames = 0).
 DimerNames NameSpheresByTheDimer(std::vector<FrameTrack>* frames);

@@ -15,7 +15,7 @@ namespace dimer::tracking {
 double MedianDimerLength(const std::vector<FrameTrack>& frames, size_t* used) {
   std::vector<double> len;
   for (const FrameTrack& f : frames) {
-    if (f.found[0] && f.found[1]) len.push_back((f.centre[1] - f.centre[0]).norm());
+    if (f.whole(0) && f.whole(1)) len.push_back((f.centre[1] - f.centre[0]).norm());
   }
   if (used) *used = len.size();
   return len.size() < kLengthScaleMinFrames ? std::numeric_limits<double>::quiet_NaN()
@@ -44,7 +44,7 @@ double CheckRadius(const SequenceResult& r) {
   std::vector<double> radii;
   for (const FrameTrack& f : r.frames) {
     for (int k = 0; k < 2; ++k) {
-      if (f.found[k] && f.radius_px[k] > 0) radii.push_back(f.radius_px[k]);
+      if (f.whole(k) && f.radius_px[k] > 0) radii.push_back(f.radius_px[k]);
     }
   }
   return MedianOf(radii);

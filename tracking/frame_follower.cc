@@ -16,12 +16,28 @@
 namespace dimer::tracking {
 namespace {
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
 // Before the radius is known, windows are sized from the distance-transform radius with this
 // headroom (the silhouette of a mirror sphere can look smaller than the sphere).
 constexpr double kProvisionalRadiusScale = 1.25;
 // Acquisition by template: a second match is another sphere when at least this far away (in
 // radii) and scoring at least kMinTemplateScore.
 constexpr double kTemplateSeparationR = 1.5;
+// A sphere cut by the frame's edge is measured where at least this fraction of its disc's
+// followed pixels is in view (the "at least half in view", less the edge's guard).
+constexpr double kCutMinInView = 0.3;
+// ... and where its centre lies this close to the dimer's length from the other's: the rod is
+// rigid (its length scatters by hundredths of a pixel), and a registration that slid along the
+// cut is further off (DimerIdentity walks; povray.leaving_the_frame).
+constexpr double kCutLengthTolerancePx = 0.5;
+// The dimer's vector is carried over at most this many frames without both spheres.
+constexpr int kCutMaxDimerAgeFrames = 4;
+// Without it, the other sphere is looked for on the circle of the dimer's length tilted up to
+// this much (the flights of a jump tilt the dimer by < 25 degrees; DimerIdentity walks 9),
+// where its centre is within this margin of being wholly in view or further out.
+constexpr double kCutMaxTiltRad = 0.6;
+constexpr double kCutWholeMarginPx = 6.0;
 
 RefineContext Context(int polarity, double plate_row, const Eigen::Vector2d& self,
                       const Eigen::Vector2d* other) {
@@ -92,6 +108,24 @@ std::array<int, 2> SlotsOf(const std::vector<SphereMeasurement>& found,
 
 }  // namespace
 
+void FrameTrack::SwapSpheres() {
+  std::swap(found[0], found[1]);
+  std::swap(cut[0], cut[1]);
+  std::swap(centre[0], centre[1]);
+  std::swap(radius_px[0], radius_px[1]);
+  std::swap(sigma_px[0], sigma_px[1]);
+  std::swap(score[0], score[1]);
+  std::swap(appearance[0], appearance[1]);
+}
+
+void FrameTrack::Drop(int k) {
+  found[k] = false;
+  cut[k] = false;
+  centre[k] = Eigen::Vector2d(0, 0);
+  score[k] = kNaN;
+  sigma_px[k] = Eigen::Vector2d::Constant(kNaN);
+}
+
 void FollowerOptions::Check() const {
   std::string bad;
   if (polarity < -1 || polarity > 1) bad += "polarity must be -1, 0 or +1; ";
@@ -156,10 +190,16 @@ bool FrameFollower::Follow(const cv::Mat& frame, FrameTrack* out) {
   out->plate_row =
       PlateRow(frame, plate_row_, plate_col_, predicted, 2, &out->clipped_plate, &out->plate_col);
   if (!std::isfinite(out->plate_row)) return false;
+  std::array<bool, 2> cut{false, false};
   for (int k = 0; k < 2; ++k) {
     // A constant-velocity prediction: < 1 px per frame at 2000 frames/s.
     const SphereMeasurement m =
         locator_[k]->Locate(frame, Prediction(predicted[k], &predicted[1 - k], *out, true));
+    // A sphere cut by the frame's edge is placed by the dimer once the other is found.
+    if (uses_template() && m.status == SphereMeasurement::Status::kClipped) {
+      cut[k] = true;
+      continue;
+    }
     // A learnt appearance that neither the quick step nor ECC could refine from the prediction
     // is a whole-pixel peak beside the sphere, not the sphere: on a still-plate film of separate
     // poses the lifted sphere, followed from the last pose, was matched so 7-11 px off
@@ -172,7 +212,147 @@ bool FrameFollower::Follow(const cv::Mat& frame, FrameTrack* out) {
     out->radius_px[k] = m.radius_px;
     out->sigma_px[k] = m.sigma_px;
   }
+  if (cut[0] && cut[1]) return false;
+  MeasureCuts(frame, out);
   return true;
+}
+
+bool FrameFollower::PlaceCut(const cv::Mat& frame, int k, const Eigen::Vector2d& guess,
+                             double length, FrameTrack* out) const {
+  if (!uses_template() || out->found[k]) return false;
+  const bool pair = out->found[1 - k];
+  MaskContext ctx;
+  ctx.plate_row = out->PlateRowAt(guess.x());
+  ctx.plate_slope = options_.plate_slope;
+  if (pair && (out->centre[1 - k] - guess).norm() > 0) {
+    ctx.rod_dir = (out->centre[1 - k] - guess).normalized();
+    ctx.other = out->centre[1 - k] - guess;
+  }
+  const Located l = LocateCutAppearance(frame, (*options_.appearance)[k], guess, ctx,
+                                        kCutMinInView, options_.ecc);
+  if (!l.ok || !(l.score >= kMinTemplateScore)) return false;
+  if (pair && !(std::abs((l.position - out->centre[1 - k]).norm() - length) <=
+                kCutLengthTolerancePx)) {
+    return false;
+  }
+  out->found[k] = true;
+  out->cut[k] = true;
+  out->centre[k] = l.position;
+  out->score[k] = l.refined;
+  out->radius_px[k] = radius_px_;
+  out->sigma_px[k] = CutSigma(frame, k, l, *out);
+  out->appearance[k] = k;
+  return true;
+}
+
+Eigen::Vector2d FrameFollower::CutSigma(const cv::Mat& frame, int k, const Located& l,
+                                        const FrameTrack& t) const {
+  const int j = 1 - k;
+  if (!t.found[j] || t.cut[j] || !l.sigma.allFinite()) return Eigen::Vector2d::Constant(kNaN);
+  // The frame as the cut sphere sees it, moved to the whole one by whole pixels.
+  const Eigen::Vector2d gk(std::round(l.position.x()), std::round(l.position.y()));
+  const Eigen::Vector2d gj(std::round(t.centre[j].x()), std::round(t.centre[j].y()));
+  const cv::Rect view(int(gj.x() - gk.x()), int(gj.y() - gk.y()), frame.cols, frame.rows);
+  MaskContext ctx;
+  ctx.plate_row = t.PlateRowAt(t.centre[j].x());
+  ctx.plate_slope = options_.plate_slope;
+  if ((l.position - t.centre[j]).norm() > 0) {
+    ctx.rod_dir = (l.position - t.centre[j]).normalized();
+    ctx.other = l.position - t.centre[j];
+  }
+  const Located w = LocateCutAppearance(frame, (*options_.appearance)[j], t.centre[j], ctx,
+                                        kCutMinInView, options_.ecc, &view);
+  if (!w.ok) return Eigen::Vector2d::Constant(kNaN);
+  const Eigen::Vector2d shift = w.position - t.centre[j];
+  return (l.sigma.cwiseProduct(l.sigma) + shift.cwiseProduct(shift)).cwiseSqrt();
+}
+
+bool FrameFollower::MeasureCut(const cv::Mat& frame, int k, const Eigen::Vector2d& dimer,
+                               double length, FrameTrack* out) const {
+  if (!out->found[1 - k]) return false;
+  const Eigen::Vector2d guess = k == 1 ? Eigen::Vector2d(out->centre[0] + dimer)
+                                       : Eigen::Vector2d(out->centre[1] - dimer);
+  return PlaceCut(frame, k, guess, length, out);
+}
+
+void FrameFollower::SearchCutOnCircle(const cv::Mat& frame, FrameTrack* out) const {
+  const double length = options_.dimer_length_px;
+  if (!uses_template() || out->found[0] == out->found[1] || !std::isfinite(length)) return;
+  const int j = out->found[0] ? 0 : 1;  // the one found
+  const Eigen::Vector2d c = out->centre[j];
+  const Appearance* best_a = nullptr;
+  Located best;
+  int best_side = 0;
+  for (int side : {+1, -1}) {  // +1: the one found is the left
+    const Appearance& a = (*options_.appearance)[side > 0 ? 1 : 0];
+    // Candidates a pixel apart along the circle, tilted up to kCutMaxTiltRad either way.
+    const double step = 1.0 / length;
+    for (double theta = -kCutMaxTiltRad; theta <= kCutMaxTiltRad; theta += step) {
+      const Eigen::Vector2d p = c + side * length * Eigen::Vector2d(std::cos(theta),
+                                                                    std::sin(theta));
+      if (p.y() > out->PlateRowAt(p.x()) - 0.5 * a.radius_px) continue;  // below the plate
+      const double in_col = std::min(p.x() + 0.5, frame.cols - 0.5 - p.x());
+      const double in_row = std::min(p.y() + 0.5, frame.rows - 0.5 - p.y());
+      // Cut by the frame's edge (whole ones are acquired) and not mostly out of it.
+      const double in = std::min(in_col, in_row);
+      if (in > a.radius_px + kCutWholeMarginPx || in < -0.2 * a.radius_px) continue;
+      MaskContext ctx;
+      ctx.plate_row = out->PlateRowAt(p.x());
+      ctx.plate_slope = options_.plate_slope;
+      ctx.rod_dir = (c - p).normalized();
+      ctx.other = c - p;
+      const Located l = SearchCutAppearance(frame, a, p, ctx, kCutMinInView);
+      if (l.ok && l.score > best.score) best = l, best_a = &a, best_side = side;
+    }
+  }
+  if (!best_a || !(best.score >= kMinTemplateScore)) return;
+  const int k = best_side > 0 ? 1 : 0;  // the cut sphere's name
+  FrameTrack trial = *out;
+  if (k == j) trial.SwapSpheres();  // the one found is the other
+  trial.appearance[k] = k;
+  const Eigen::Vector2d d = (best.position - c) * (k == 1 ? 1.0 : -1.0);  // right - left
+  if (MeasureCut(frame, k, d, length, &trial)) *out = trial;
+}
+
+void FrameFollower::MeasureCuts(const cv::Mat& frame, FrameTrack* out) const {
+  if (!uses_template()) return;
+  if (out->found[0] != out->found[1]) {
+    if (!dimer_known_) {
+      SearchCutOnCircle(frame, out);
+      return;
+    }
+    // The dimer's vector now: the last one moved on by its rate over the frames since.
+    const Eigen::Vector2d d = dimer_ + double(dimer_age_ + 1) * dimer_rate_;
+    MeasureCut(frame, out->found[0] ? 1 : 0, d, dimer_.norm(), out);
+    return;
+  }
+  // Alone in view: a sphere followed into the last frame, from its own motion.
+  for (int k = 0; k < 2; ++k) {
+    if (!out->found[k] && !out->found[1 - k] && locked_[k]) {
+      PlaceCut(frame, k, last_[k] + velocity_[k], kNaN, out);
+    }
+  }
+}
+
+bool FrameFollower::PlaceCutBeside(const cv::Mat& frame, const FrameTrack& adjacent,
+                                   const FrameTrack* beyond, FrameTrack* t) const {
+  bool placed = false;
+  if (adjacent.found[0] && adjacent.found[1] && t->found[0] != t->found[1]) {
+    const Eigen::Vector2d d = adjacent.centre[1] - adjacent.centre[0];
+    const Eigen::Vector2d rate = beyond && beyond->found[0] && beyond->found[1]
+                                     ? Eigen::Vector2d(beyond->centre[1] - beyond->centre[0] - d)
+                                     : Eigen::Vector2d(0, 0);
+    placed = MeasureCut(frame, t->found[0] ? 1 : 0, d - rate, d.norm(), t);
+  } else if (!t->found[0] && !t->found[1]) {
+    for (int k = 0; k < 2; ++k) {
+      if (!adjacent.found[k] || adjacent.found[1 - k]) continue;
+      const Eigen::Vector2d v = beyond && beyond->found[k] && !beyond->found[1 - k]
+                                    ? Eigen::Vector2d(beyond->centre[k] - adjacent.centre[k])
+                                    : Eigen::Vector2d(0, 0);
+      placed = PlaceCut(frame, k, adjacent.centre[k] - v, kNaN, t) || placed;
+    }
+  }
+  return placed;
 }
 
 void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
@@ -235,12 +415,23 @@ void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
     out->radius_px[slot_of[i]] = found[i].radius_px;
     out->sigma_px[slot_of[i]] = found[i].sigma_px;
   }
+  MeasureCuts(frame, out);
 }
 
 void FrameFollower::Commit(const FrameTrack& t) {
   if (std::isfinite(t.plate_row)) {
     plate_row_ = t.plate_row;
     plate_col_ = t.plate_col;
+  }
+  if (t.found[0] && t.found[1]) {
+    const Eigen::Vector2d d = t.centre[1] - t.centre[0];
+    dimer_rate_ = dimer_known_ && dimer_age_ == 0 ? Eigen::Vector2d(d - dimer_)
+                                                  : Eigen::Vector2d(0, 0);
+    dimer_ = d;
+    dimer_known_ = true;
+    dimer_age_ = 0;
+  } else if (dimer_known_ && ++dimer_age_ > kCutMaxDimerAgeFrames) {
+    dimer_known_ = false;
   }
   for (int k = 0; k < 2; ++k) {
     velocity_[k] = (t.found[k] && locked_[k]) ? Eigen::Vector2d(t.centre[k] - last_[k])

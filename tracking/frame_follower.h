@@ -6,9 +6,12 @@
 //   3. measure each sphere in a window around its prediction with the film's locator
 //      (sphere_locator.h: the silhouette or the learnt appearance), which masks the rod toward
 //      the other sphere, the plate, and the other sphere's disc where the two touch (A_r ~2);
-//   4. if a sphere is lost (missing, clipped) or nothing is locked yet, acquire on the whole
-//      frame (detector.h) and give each detection the identity of the nearest last position;
-//      with no history, `left` is the one with the smaller column (docs/FORMATS.md).
+//   4. if a sphere is lost (missing) or nothing is locked yet, acquire on the whole frame
+//      (detector.h) and give each detection the identity of the nearest last position; with no
+//      history, `left` is the one with the smaller column (docs/FORMATS.md);
+//   5. a sphere cut by the frame's edge (template method): predicted from the other sphere,
+//      found in this frame, and the dimer's vector of the last frames (the rod is rigid), or
+//      alone in view from its own motion, then registered on its part in view (MeasureCuts).
 // The tracker keeps only the last positions, so memory does not depend on sequence length.
 #include <opencv2/core.hpp>
 
@@ -55,6 +58,11 @@ struct FollowerOptions {
   // default, as nothing downstream of the follower reads it and it costs ~25 % of a uniform
   // sphere's centroid.
   bool state_uncertainty = false;
+  // Method::kTemplate: the distance between the two appearances' reference points on the
+  // learning frames (their median), px: where a frame shows one sphere and no earlier frame of
+  // the chunk gave the dimer's vector, the other is looked for, cut by the frame's edge, on the
+  // circle of this radius about it (FrameFollower::SearchCutOnCircle). NaN: not looked for.
+  double dimer_length_px = std::numeric_limits<double>::quiet_NaN();
 
   void Check() const;  // InputError listing every invalid field
 };
@@ -63,6 +71,9 @@ struct FollowerOptions {
 struct FrameTrack {
   size_t index = 0;                                // position in the frame list
   std::array<bool, 2> found{false, false};
+  // Found though cut by the frame's edge: placed by the rigid dimer's prediction and its part in
+  // view (FrameFollower::MeasureCut), with its own stated uncertainty in sigma_px.
+  std::array<bool, 2> cut{false, false};
   std::array<Eigen::Vector2d, 2> centre{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};  // px
   std::array<double, 2> radius_px{0, 0};           // measured radius (for calibration), px
   // Each found sphere's stated standard deviation (col, row), px, from its locator
@@ -94,6 +105,13 @@ struct FrameTrack {
   // Template method: the learnt appearance each sphere was measured with (the chunk's name for
   // it); the film's names (dimer_identity.h) may differ, and the appearance's offsets follow it.
   std::array<int, 2> appearance{0, 1};
+
+  // Found and whole: not cut by the frame's edge (film-level measures rest on these).
+  bool whole(int k) const { return found[k] && !cut[k]; }
+  // Every per-sphere field exchanged between the two names.
+  void SwapSpheres();
+  // Sphere k taken for no match: not found, its centre cleared, no score.
+  void Drop(int k);
 };
 
 class FrameFollower {
@@ -101,6 +119,14 @@ class FrameFollower {
   explicit FrameFollower(const FollowerOptions& options);
   FrameTrack Process(const cv::Mat& frame, size_t index);
   int polarity() const { return polarity_; }
+  // A chunk's first frames have no history to place a cut sphere by, nor its last frames a
+  // future: the chunk goes back over them from the first frame that placed it, and the film
+  // over its chunks' seams both ways (cut_spheres.h). Places the missing sphere of *t, in
+  // `frame`, by the frame next to it (`adjacent`) and the one next to that (`beyond`, null:
+  // none), before or after it: where *t shows one sphere and `adjacent` both, by the dimer's
+  // vector; where *t shows none, a sphere alone in `adjacent` by its own motion. True: placed.
+  bool PlaceCutBeside(const cv::Mat& frame, const FrameTrack& adjacent, const FrameTrack* beyond,
+                      FrameTrack* t) const;
   double radius_px() const { return radius_px_; }
 
  private:
@@ -117,6 +143,32 @@ class FrameFollower {
                   const std::array<Eigen::Vector2d, 2>& centres, int n,
                   std::shared_ptr<const ClippedEdgeProfile>* clipped, double* col) const;
   void Commit(const FrameTrack& t);
+  // Sphere k, not found in *out, placed from `guess` if at least kCutMinInView of its disc is
+  // in view and its appearance registers there; where the other is found, only if its distance
+  // from it is within kCutLengthTolerancePx of `length`. True: *out has it, marked cut.
+  bool PlaceCut(const cv::Mat& frame, int k, const Eigen::Vector2d& guess, double length,
+                FrameTrack* out) const;
+  // A cut sphere k's stated uncertainty (col, row), px: its registration's on the pixels in
+  // view, with what cutting a sphere alike does: the whole sphere beside it in `t`, cut as k
+  // is by the frame's edge (the same part of it in view), moves by `shift`, which is added in
+  // quadrature. NaN where the other is not found whole: the film states the sphere's mean
+  // (StateCutUncertainty, cut_spheres.h).
+  Eigen::Vector2d CutSigma(const cv::Mat& frame, int k, const Located& l,
+                           const FrameTrack& t) const;
+  // Step 5 for sphere k, not found in *out while the other is: PlaceCut where `dimer` (right -
+  // left centre) puts it.
+  bool MeasureCut(const cv::Mat& frame, int k, const Eigen::Vector2d& dimer, double length,
+                  FrameTrack* out) const;
+  // Step 5 for both spheres with the dimer's vector of the last frames, or without it, on the
+  // circle of options_.dimer_length_px about the one found (SearchCutOnCircle); a sphere alone
+  // in view, followed into the last frame, from its own motion (no length to referee it).
+  void MeasureCuts(const cv::Mat& frame, FrameTrack* out) const;
+  // One sphere found in *out and no dimer's vector known: the other is looked for cut by the
+  // frame's edge on either side, its centre on the circle of the dimer's length about the one
+  // found and above the plate; the best match by its part in view, if it registers there and
+  // scores kMinTemplateScore, is the other sphere, and the pair's names follow from their
+  // places on the dimer (left: the smaller column).
+  void SearchCutOnCircle(const cv::Mat& frame, FrameTrack* out) const;
 
   FollowerOptions options_;
   // Sphere k's locator (sphere_locator.h): the learnt appearance k, or the silhouette for both.
@@ -133,6 +185,11 @@ class FrameFollower {
   std::array<bool, 2> locked_{false, false};   // found in the previous frame
   std::array<Eigen::Vector2d, 2> last_{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
   std::array<Eigen::Vector2d, 2> velocity_{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
+  // The dimer's vector (right - left centre) in the last frame both were found in, its change
+  // per frame where the frame before had both too, and how many frames ago it was seen.
+  Eigen::Vector2d dimer_{0, 0}, dimer_rate_{0, 0};
+  bool dimer_known_ = false;
+  int dimer_age_ = 0;
 };
 
 }  // namespace dimer::tracking

@@ -193,7 +193,7 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
   // are the tracker's noise whatever the motion (ContactRowOffset's noise_cap).
   std::vector<double> length;
   for (const FrameTrack& f : frames) {
-    length.push_back(f.found[0] && f.found[1] ? (f.centre[1] - f.centre[0]).norm()
+    length.push_back(f.whole(0) && f.whole(1) ? (f.centre[1] - f.centre[0]).norm()
                                               : std::nan(""));
   }
   const double length_noise = GapNoise(length);
@@ -205,7 +205,7 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
     }
     std::vector<double> rows, plate;
     for (const FrameTrack& f : frames) {
-      rows.push_back(f.found[k] && f.appearance[k] == k ? f.centre[k].y() : std::nan(""));
+      rows.push_back(f.whole(k) && f.appearance[k] == k ? f.centre[k].y() : std::nan(""));
       plate.push_back(f.PlateRowAt(f.centre[k].x()));  // (the plate under this sphere)
     }
     // On a sloping plate the centre stands R along the plate's normal: R sqrt(1 + slope^2)

@@ -12,7 +12,7 @@ MatchScores DropOutlyingMatches(std::vector<FrameTrack>* frames) {
   for (int k = 0; k < 2; ++k) {
     std::vector<double> s;
     for (const FrameTrack& f : *frames) {
-      if (f.found[k] && std::isfinite(f.score[k])) s.push_back(f.score[k]);
+      if (f.whole(k) && std::isfinite(f.score[k])) s.push_back(f.score[k]);
     }
     if (s.size() < kMinScoredFrames) continue;
     const double median = MedianOf(s);
@@ -22,9 +22,7 @@ MatchScores DropOutlyingMatches(std::vector<FrameTrack>* frames) {
     out.floor[k] = median - std::max(kScoreDropSigmas * sigma, kMinScoreDrop);
     for (FrameTrack& f : *frames) {
       if (f.found[k] && std::isfinite(f.score[k]) && f.score[k] < out.floor[k]) {
-        f.found[k] = false;
-        f.centre[k] = Eigen::Vector2d(0, 0);
-        f.score[k] = std::numeric_limits<double>::quiet_NaN();
+        f.Drop(k);
         ++out.dropped[k];
       }
     }
@@ -32,7 +30,7 @@ MatchScores DropOutlyingMatches(std::vector<FrameTrack>* frames) {
   // The dimer's length.
   std::vector<double> len;
   for (const FrameTrack& f : *frames) {
-    if (f.found[0] && f.found[1]) len.push_back((f.centre[1] - f.centre[0]).norm());
+    if (f.whole(0) && f.whole(1)) len.push_back((f.centre[1] - f.centre[0]).norm());
   }
   if (len.size() < kMinScoredFrames) return out;
   const double median = MedianOf(len);
@@ -49,9 +47,7 @@ MatchScores DropOutlyingMatches(std::vector<FrameTrack>* frames) {
                  : std::numeric_limits<double>::infinity();
     };
     const int k = below(1) > below(0) ? 1 : 0;
-    f.found[k] = false;
-    f.centre[k] = Eigen::Vector2d(0, 0);
-    f.score[k] = std::numeric_limits<double>::quiet_NaN();
+    f.Drop(k);
     ++out.dropped_length[k];
   }
   return out;

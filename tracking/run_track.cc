@@ -192,13 +192,19 @@ void RequireADimer(const std::string& input, const SequenceResult& r) {
 // progress only).
 void Summarize(const TrackArgs& args, const SequenceResult& r, const Calibration& cal) {
   if (!args.on_summary) return;
-  size_t both = 0;
-  for (const auto& f : r.frames) both += f.found[0] && f.found[1];
-  args.on_summary(Format("%s: %zu frames tracked, %zu skipped, both spheres found in %zu, %s, "
+  size_t both = 0, cut = 0;
+  for (const auto& f : r.frames) {
+    both += f.found[0] && f.found[1];
+    cut += (f.found[0] && f.cut[0]) || (f.found[1] && f.cut[1]);
+  }
+  const std::string cut_text =
+      cut ? Format(" (%zu with a sphere cut by the frame's edge)", cut) : std::string();
+  args.on_summary(Format("%s: %zu frames tracked, %zu skipped, both spheres found in %zu%s, %s, "
                          "%.4g m/px%s",
                          (args.output_label.empty() ? args.output : args.output_label).c_str(),
-                         r.frames.size(), r.skipped.size(), both, ToString(r.method).c_str(),
-                         cal.m_per_px, r.complete ? "" : " (interrupted: partial)"));
+                         r.frames.size(), r.skipped.size(), both, cut_text.c_str(),
+                         ToString(r.method).c_str(), cal.m_per_px,
+                         r.complete ? "" : " (interrupted: partial)"));
 }
 
 }  // namespace

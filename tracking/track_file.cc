@@ -141,6 +141,7 @@ void WriteTemplateGroup(H5Writer& w, const SequenceResult& r) {
 struct TrackColumns {
   Trajectory traj;
   std::vector<double> px[2], plate_row;
+  std::vector<double> cut_err[2];  // a cut sphere's stated uncertainty (col, row), NaN elsewhere
   std::vector<int64_t> index;
   std::vector<uint8_t> found;
 };
@@ -168,7 +169,17 @@ TrackColumns ColumnsOf(const SequenceResult& r, const Calibration& cal, double f
       px[k].push_back(c.x());
       px[k].push_back(c.y());
       tip[k] = cal.ToMetres(c);
-      found[2 * i + k] = f.found[k];
+      found[2 * i + k] = f.found[k] ? (f.cut[k] ? 2 : 1) : 0;
+      // A cut sphere's own uncertainty with its appearance's offset's, which it shares with
+      // every frame of the film (NaN for methods without one: no sphere is found cut there).
+      Eigen::Vector2d err = Eigen::Vector2d::Constant(kNaN);
+      if (f.found[k] && f.cut[k]) {
+        const int a = f.appearance[k];
+        const Eigen::Vector2d off(r.offsets.col[a].err, r.offsets.row[a].err);
+        err = (f.sigma_px[k].cwiseProduct(f.sigma_px[k]) + off.cwiseProduct(off)).cwiseSqrt();
+      }
+      out.cut_err[k].push_back(err.x());
+      out.cut_err[k].push_back(err.y());
     }
     const Eigen::Vector2d axis = tip[1] - tip[0];
     // The plate under the dimer: midway between the spheres (where it was read if one is lost).
@@ -357,8 +368,18 @@ void WriteColumns(H5Writer& w, const TrackColumns& columns, const SequenceResult
   w.SetAttr("/frame_files", "description", "file name of each tracked frame (FILE#PAGE in a stack)");
   w.WriteUint8("/found", found, {n, 2});
   w.SetAttr("/found", "columns", "left,right");
-  w.SetAttr("/found", "codes", "0=not found (its tips and pixels are NaN),1=found");
+  w.SetAttr("/found", "codes",
+            "0=not found (its tips and pixels are NaN),1=found,2=found cut by the frame's edge");
   w.SetAttr("/found", "description", "whether each sphere was found in the frame");
+  w.WriteDoubles("/pixels/left_cut_err", columns.cut_err[0], {n, 2}, "px", "col,row");
+  w.WriteDoubles("/pixels/right_cut_err", columns.cut_err[1], {n, 2}, "px", "col,row");
+  for (const char* name : {"/pixels/left_cut_err", "/pixels/right_cut_err"}) {
+    w.SetAttr(name, "description",
+              "standard uncertainty of a centre found cut by the frame's edge (found = 2): its "
+              "registration on the part in view, the shift of the whole sphere beside it cut "
+              "alike, and the appearance's offset's; NaN for a whole sphere (its scatter is "
+              "/precision/scatter, its offset's uncertainty /template/offset_err)");
+  }
   if (r.method == Method::kTemplate) WriteTemplateGroup(w, r);
   WritePrecisionGroup(w, r);
   WriteMethodTrial(w, r);

@@ -12,7 +12,7 @@ std::array<SpherePrecision, 2> MeasurePrecision(const std::vector<FrameTrack>& f
   std::vector<double> length;
   length.reserve(frames.size());
   for (const FrameTrack& f : frames) {
-    length.push_back(f.found[0] && f.found[1] ? (f.centre[1] - f.centre[0]).norm()
+    length.push_back(f.whole(0) && f.whole(1) ? (f.centre[1] - f.centre[0]).norm()
                                               : std::numeric_limits<double>::quiet_NaN());
   }
   const double length_measured = GapNoise(length);
@@ -25,7 +25,7 @@ std::array<SpherePrecision, 2> MeasurePrecision(const std::vector<FrameTrack>& f
       std::vector<double> v;
       v.reserve(frames.size());
       for (const FrameTrack& f : frames) {
-        v.push_back(f.found[k] ? f.centre[k][axis] : std::numeric_limits<double>::quiet_NaN());
+        v.push_back(f.whole(k) ? f.centre[k][axis] : std::numeric_limits<double>::quiet_NaN());
       }
       // The second difference of a flight or a rest is ~0.01 px at most (gravity at 0.2 mm/px,
       // 2000 frames/s); an impact's kink is a few frames of hundreds, which the median passes.

@@ -9,6 +9,8 @@
 
 #include "common/error.h"
 #include "common/interrupt.h"
+#include "common/median.h"
+#include "tracking/cut_spheres.h"
 #include "tracking/method_trial.h"
 #include "tracking/sphere/precision_bound.h"
 
@@ -27,6 +29,9 @@ struct ChunkResult {
   std::vector<std::string> names;
   std::vector<SkippedFrame> skipped;
   bool interrupted = false;
+  // Frames at the chunk's start and end that missed a sphere, indices in `frames`: placed across
+  // the seams with the neighbouring chunks (cut_spheres.h).
+  std::vector<HeldFrame> head, tail;
 };
 
 std::string SizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
@@ -48,6 +53,7 @@ ChunkResult TrackChunk(const FrameSource& source, size_t start, size_t count,
   o.polarity = ref.polarity;
   o.radius_px = ref.radius_px;
   FrameFollower tracker(o);
+  ChunkCuts cuts;  // frames held back for the spheres cut by the frame's edge
   const size_t n = prefetched.empty() ? count : prefetched.size();
   for (size_t j = 0; j < n; ++j) {
     if (InterruptRequested()) {
@@ -63,9 +69,13 @@ ChunkResult TrackChunk(const FrameSource& source, size_t start, size_t count,
       out.skipped.push_back({f.index, f.name, f.error});
       continue;
     }
-    out.frames.push_back(tracker.Process(CleanFrame(f.image, defects, lens), f.index));
+    cv::Mat clean = CleanFrame(f.image, defects, lens);
+    out.frames.push_back(tracker.Process(clean, f.index));
     out.names.push_back(f.name);
+    cuts.Add(tracker, std::move(clean), &out.frames);
   }
+  out.head = std::move(cuts.head);
+  out.tail = cuts.Tail(out.frames.size());
   return out;
 }
 
@@ -175,6 +185,20 @@ void TryTheSilhouettes(const FrameAt& frame_at, size_t available, int threads, F
   film->chunk_opts.appearance.reset();
 }
 
+// The median distance of the two appearances' reference points over the learning frames that
+// registered both (NaN: none).
+double ReferenceLength(const std::array<LearntSphere, 2>& learnt) {
+  std::vector<double> d;
+  for (size_t i = 0; i < learnt[0].samples.size() && i < learnt[0].registered.size(); ++i) {
+    const auto& s1 = learnt[1].samples;
+    const auto at = std::find(s1.begin(), s1.end(), learnt[0].samples[i]);
+    const size_t j = size_t(at - s1.begin());
+    if (at == s1.end() || j >= learnt[1].registered.size()) continue;
+    d.push_back((learnt[1].registered[j] - learnt[0].registered[i]).norm());
+  }
+  return d.empty() ? kNaN : MedianOf(d);
+}
+
 // Stage "choose method, learn" (template and auto): the learning frames, `learning_at(i)` for i
 // in LearningIndices(available), by index only (sequential sources: within the first chunk,
 // which is decoded ahead anyway); the method and appearances are fixed before any chunk runs.
@@ -203,6 +227,7 @@ void LearnFilm(const FrameAt& learning_at, size_t available, const SequenceOptio
                                                       options.seed_agreement_px});
   film->chunk_opts.method = film->prepared.choice.method;
   film->chunk_opts.appearance = film->prepared.appearance;
+  film->chunk_opts.dimer_length_px = ReferenceLength(film->prepared.learnt);
   // The template's radius (the scale's, or its outline's) is every frame's radius, which
   // calibrates the scale when it is not given.
   if (film->prepared.appearance) {
@@ -229,7 +254,7 @@ void PlaceContactLine(const SequenceMethod& prepared, const SequenceOptions& opt
   std::array<std::vector<double>, 2> rows;
   for (const FrameTrack& f : result->frames) {
     edge.push_back(f.plate_row);
-    for (int k = 0; k < 2; ++k) rows[k].push_back(f.found[k] ? f.centre[k].y() : std::nan(""));
+    for (int k = 0; k < 2; ++k) rows[k].push_back(f.whole(k) ? f.centre[k].y() : std::nan(""));
   }
   result->plate_scale =
       scale_given ? GivenPlateMotionScale(options.plate_motion_scale, edge, prepared.plate_shift)
@@ -263,6 +288,7 @@ void FinishFilm(const Film& film, const SequenceOptions& options, bool sequence_
   // names made the film's, then the matches that are not a sphere dropped.
   result->dimer_names = NameSpheresByTheDimer(&result->frames);
   result->scores = DropOutlyingMatches(&result->frames);
+  StateCutUncertainty(&result->frames);
   result->plate_clip = RefitClippedPlate(options.follower.psf_sigma_px,
                                          options.follower.fit_psf_sigma, &result->frames);
   PlaceContactLine(film.prepared, options, result);
@@ -271,6 +297,33 @@ void FinishFilm(const Film& film, const SequenceOptions& options, bool sequence_
   result->polarity = film.ref.polarity;
   result->width = film.ref.width;
   result->height = film.ref.height;
+}
+
+// What joining the chunks keeps between them.
+struct Seams {
+  std::optional<FrameFollower> follower;  // places cut spheres across the chunks' seams
+  std::vector<HeldFrame> tail;            // the last chunk joined's (cut_spheres.h)
+};
+
+// Stage "join": a chunk's frames appended to the film's, and the spheres cut by the frame's edge
+// that neither chunk could place, placed across the seam between them.
+void JoinChunk(const Film& film, ChunkResult* chunk, Seams* seams, SequenceResult* result) {
+  const size_t seam = result->frames.size();
+  result->frames.insert(result->frames.end(), chunk->frames.begin(), chunk->frames.end());
+  for (HeldFrame& h : chunk->head) h.index += seam;
+  for (HeldFrame& h : chunk->tail) h.index += seam;
+  if (seam > 0) {
+    if (!seams->follower) {
+      FollowerOptions o = film.chunk_opts;
+      o.polarity = film.ref.polarity;
+      o.radius_px = film.ref.radius_px;
+      seams->follower.emplace(o);
+    }
+    PlaceAcrossSeam(*seams->follower, seams->tail, chunk->head, &result->frames, seam);
+  }
+  seams->tail = std::move(chunk->tail);
+  result->names.insert(result->names.end(), chunk->names.begin(), chunk->names.end());
+  if (chunk->interrupted) result->complete = false;
 }
 
 // The frames of `source` as they are (levels already scaled): opened, learnt, followed in
@@ -289,6 +342,7 @@ SequenceResult TrackFramesAsGiven(FrameSource& source, const SequenceOptions& op
   const bool sequence_level = options.follower.method == Method::kTemplate ||
                               options.follower.method == Method::kAuto;
   std::deque<std::future<ChunkResult>> inflight;
+  Seams seams;
   auto launch = [&]() {
     std::vector<Frame> buffer;
     size_t count = options.chunk_frames;
@@ -334,9 +388,7 @@ SequenceResult TrackFramesAsGiven(FrameSource& source, const SequenceOptions& op
       result.skipped.push_back(s);
     }
     if (!result.complete) continue;  // after an interruption keep only whole prefixes
-    result.frames.insert(result.frames.end(), chunk.frames.begin(), chunk.frames.end());
-    result.names.insert(result.names.end(), chunk.names.begin(), chunk.names.end());
-    if (chunk.interrupted) result.complete = false;
+    JoinChunk(film, &chunk, &seams, &result);
     if (on_progress) on_progress(result.frames.size() + result.skipped.size());
   }
   FinishFilm(film, options, sequence_level, &result);

@@ -62,6 +62,13 @@ Walk RandomWalk(uint64_t seed, size_t n, Lighting lighting) {
   return w;
 }
 
+// A sphere placed cut by the frame's edge lies within kCutWorstPx of where its whole frames
+// put it (the film's offset taken out), and its error in units of its stated uncertainty has an
+// rms of at most kCutRmsSigmas: measured 0.25 px and 1.4 on the mirror-lit walks (268 cut
+// spheres, 30-100 % of their disc in view).
+constexpr double kCutWorstPx = 0.35;
+constexpr double kCutRmsSigmas = 2.0;
+
 // How much of a sphere's disc is inside the frame's columns (0..1, by width).
 double InView(const Eigen::Vector2d& c) {
   const double lo = std::max(0.0, c.x() - kRadiusPx), hi = std::min(double(kWidth), c.x() + kRadiusPx);
@@ -69,11 +76,25 @@ double InView(const Eigen::Vector2d& c) {
 }
 
 struct Counts {
-  size_t swaps = 0, beside = 0, whole = 0, whole_found = 0;
+  size_t swaps = 0, beside = 0, whole = 0, whole_found = 0, half = 0, half_found = 0, cut = 0;
+  // A sphere found cut by the frame's edge: its worst error from the truth less the sphere's
+  // mean error where it is whole (the film's offset, which every frame shares), px, and the
+  // sum of its squares in units of the stated uncertainty, per axis.
+  double cut_worst = 0, cut_z2 = 0;
 };
 
 Counts Judge(const Walk& w, const SequenceResult& r) {
   Counts c;
+  std::array<Eigen::Vector2d, 2> bias{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
+  for (int k = 0; k < 2; ++k) {
+    size_t n = 0;
+    for (const FrameTrack& f : r.frames) {
+      if (!f.whole(k)) continue;
+      const Eigen::Vector2d t = k == 0 ? w.poses[f.index].left : w.poses[f.index].right;
+      bias[k] += f.centre[k] - t, ++n;
+    }
+    if (n) bias[k] /= double(n);
+  }
   for (size_t i = 0; i < r.frames.size(); ++i) {
     const FrameTrack& f = r.frames[i];
     const std::array<Eigen::Vector2d, 2> truth{w.poses[f.index].left, w.poses[f.index].right};
@@ -81,8 +102,15 @@ Counts Judge(const Walk& w, const SequenceResult& r) {
       if (InView(truth[k]) >= 1.0) {
         ++c.whole, c.whole_found += f.found[k];
       }
+      if (InView(truth[k]) >= 0.5) ++c.half, c.half_found += f.found[k];
       if (!f.found[k]) continue;
       const double own = (f.centre[k] - truth[k]).norm();
+      if (f.cut[k]) {
+        const Eigen::Vector2d e = f.centre[k] - truth[k] - bias[k];
+        ++c.cut;
+        c.cut_worst = std::max(c.cut_worst, e.norm());
+        c.cut_z2 += e.cwiseQuotient(f.sigma_px[k]).squaredNorm();
+      }
       const double other = (f.centre[k] - truth[1 - k]).norm();
       if (other < own) {
         ++c.swaps;
@@ -123,7 +151,7 @@ TEST(DimerNames, RandomlyExchangedNamesAreUndoneOverWalksOutOfTheFrame) {
         f.found[k] = InView(truth.back()[k]) >= 0.5 && u(rng) > 0.05;
         if (!f.found[k]) f.centre[k].setZero();
       }
-      if (u(rng) < 0.5) SwapSpheres(&f);
+      if (u(rng) < 0.5) f.SwapSpheres();
       frames.push_back(f);
     }
     const DimerNames names = NameSpheresByTheDimer(&frames);
@@ -181,6 +209,7 @@ TEST_P(DimerIdentity, NeverSwappedOverRandomWalksOutOfEitherEdge) {
   const auto [lighting, method] = GetParam();
   const int walks = std::max(1, int(std::lround(4 * testing::TestScale())));
   Counts total;
+  size_t template_half = 0, template_half_found = 0;
   for (int s = 0; s < walks; ++s) {
     const Walk w = RandomWalk(1000 + s, 400, lighting);
     MemorySource source(w.frames);
@@ -192,18 +221,40 @@ TEST_P(DimerIdentity, NeverSwappedOverRandomWalksOutOfEitherEdge) {
     const SequenceResult r = TrackSequence(source, o);
     ASSERT_EQ(r.frames.size(), w.frames.size());
     const Counts c = Judge(w, r);
+    if (r.method == Method::kTemplate) {
+      template_half += c.half;
+      template_half_found += c.half_found;
+    } else {
+      EXPECT_EQ(c.cut, 0u) << "only the template places a sphere cut by the frame's edge";
+    }
     total.swaps += c.swaps;
     total.beside += c.beside;
     total.whole += c.whole;
     total.whole_found += c.whole_found;
+    total.half += c.half;
+    total.half_found += c.half_found;
+    total.cut += c.cut;
+    total.cut_worst = std::max(total.cut_worst, c.cut_worst);
+    total.cut_z2 += c.cut_z2;
   }
-  std::printf("[ stats    ] %s %s: swaps %zu, beside %zu, whole spheres found %zu of %zu\n",
+  const double cut_z = total.cut ? std::sqrt(total.cut_z2 / (2.0 * double(total.cut))) : 0.0;
+  std::printf("[ stats    ] %s %s: swaps %zu, beside %zu, whole spheres found %zu of %zu, at "
+              "least half in view %zu of %zu (followed by the template: %zu of %zu), found cut "
+              "%zu (worst %.3f px from the whole sphere's bias, rms %.2f stated sigmas)\n",
               ToString(lighting).c_str(), ToString(method).c_str(), total.swaps, total.beside,
-              total.whole_found, total.whole);
+              total.whole_found, total.whole, total.half_found, total.half, template_half_found,
+              template_half, total.cut, total.cut_worst, cut_z);
   EXPECT_EQ(total.swaps, 0u);
   EXPECT_EQ(total.beside, 0u);
-  // Found in the frames where a sphere is wholly in view is printed, not held: a sphere within
-  // a few px of the frame's edge, or cut by it, is not measured (93-98 % found here).
+  // The target, >= 99 % of the spheres at least half in view found, where the template
+  // follows (it places a sphere cut by the frame's edge: tracking/cut_spheres.h; 16-frame
+  // chunks put a seam in most of the walks' exits). The silhouette methods measure whole
+  // spheres only, and are printed: on mirror-lit walks `auto` chose the centroid for one.
+  if (template_half > 0) {
+    EXPECT_GE(double(template_half_found), 0.99 * double(template_half));
+    EXPECT_LE(total.cut_worst, kCutWorstPx);
+    EXPECT_LE(cut_z, kCutRmsSigmas);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(

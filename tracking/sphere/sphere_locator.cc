@@ -32,7 +32,12 @@ class SilhouetteLocator final : public SphereLocator {
     RefineContext ctx;
     ctx.polarity = p.polarity;
     ctx.plate_row = p.plate_row;
-    if (Distinct(p.other, p.position)) ctx.rod_dir = (p.other - p.position).normalized();
+    // A sphere alone in view: its rod, toward the other out of view, is cut as a level one (the
+    // mask cuts the corridor on both sides; a dimer on the plate tilts far less than the
+    // corridor's half width at the sphere's rim, 0.3 R). Measured with it, the centroid of a
+    // mirror-lit sphere alone lay up to 3 px toward the rod (DimerIdentity walks).
+    ctx.rod_dir = Distinct(p.other, p.position) ? Eigen::Vector2d((p.other - p.position).normalized())
+                                                : Eigen::Vector2d(1, 0);
     ctx.other = p.other;  // left out where the spheres touch (measure_sphere.h)
     ctx.precise_guess = p.precise;
     if (p.state_uncertainty) ctx.noise_sigma = p.noise_sigma;

@@ -64,29 +64,30 @@ cv::Mat FloatPatch(const cv::Mat& frame, const cv::Rect& r) {
   return out;
 }
 
-// Whether the disc of `radius` px about pixel `g` is in the frame. A sphere cut by the edge is
+// Whether the disc of `radius` px about pixel `g` is in the frame (`view`). A sphere cut by the edge is
 // not matched: on partly cut mirror-lit spheres the template's columns scattered 1.4 px, up to
 // 7.6 px off, against 0.09 px while the disc was whole (DimerIdentity tests' walks).
-bool DiscInside(const cv::Mat& frame, const cv::Point& g, double radius) {
+bool DiscInside(const cv::Rect& view, const cv::Point& g, double radius) {
   const int r = int(std::ceil(radius));
-  return g.x - r >= 0 && g.y - r >= 0 && g.x + r < frame.cols && g.y + r < frame.rows;
+  return g.x - r >= view.x && g.y - r >= view.y && g.x + r < view.x + view.width &&
+         g.y + r < view.y + view.height;
 }
 
-// A sphere at the frame's edge: the template's pixels that fall beyond the frame, or within
-// `guard` px of its edge (the search's and ECC's reach), when the template's reference point is
+// A sphere at the frame's edge: the template's pixels that fall beyond the frame (`view`), or
+// within `guard` px of its edge (the search's and ECC's reach), when the template's reference point is
 // at frame pixel `g`, are left out; what shows of the sphere is matched.
-void CutAtTheFramesEdge(const cv::Mat& frame, const cv::Point& g, int half, int guard,
+void CutAtTheFramesEdge(const cv::Rect& view, const cv::Point& g, int half, int guard,
                         cv::Mat* mask) {
   for (int y = 0; y < mask->rows; ++y) {
     const int row = g.y - half + y;
     uint8_t* m = mask->ptr<uint8_t>(y);
-    if (row < guard || row >= frame.rows - guard) {
+    if (row < view.y + guard || row >= view.y + view.height - guard) {
       std::fill(m, m + mask->cols, uint8_t(0));
       continue;
     }
     for (int x = 0; x < mask->cols; ++x) {
       const int col = g.x - half + x;
-      if (col < guard || col >= frame.cols - guard) m[x] = 0;
+      if (col < view.x + guard || col >= view.x + view.width - guard) m[x] = 0;
     }
   }
 }
@@ -298,23 +299,45 @@ Eigen::Vector2d RegistrationSigma(const cv::Mat& fixed, const cv::Mat& moving, c
 
 namespace {
 
+// The mask's pixels within `radius` of its centre pixel (`half`, `half`): the sphere's disc.
+int DiscPixels(const cv::Mat& mask, int half, double radius) {
+  int n = 0;
+  for (int y = 0; y < mask.rows; ++y) {
+    const uint8_t* m = mask.ptr<uint8_t>(y);
+    for (int x = 0; x < mask.cols; ++x) {
+      n += m[x] && (x - half) * (x - half) + (y - half) * (y - half) <= radius * radius;
+    }
+  }
+  return n;
+}
+
 // LocateAppearance's first stage: the frame's mask for the template at `guess` (*mask) and, with
 // search_px > 0, the whole-pixel correlation peak (out->score) refined by the parabola
-// (out->position; the guess without a search). False: nothing to refine (out says why).
+// (out->position; the guess without a search). A sphere cut by the frame's edge is refused
+// unless `min_in_view` > 0, and then kept where at least that fraction of its appearance's
+// pixels is in view. False: nothing to refine (out says why).
 bool Peak(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess, int search_px,
-          const MaskContext& ctx, Located* out, cv::Mat* mask) {
+          const MaskContext& ctx, Located* out, cv::Mat* mask, double min_in_view = 0,
+          const cv::Rect* cut_view = nullptr) {
+  const cv::Rect view = cut_view ? *cut_view : cv::Rect(0, 0, frame.cols, frame.rows);
   const int size = 2 * a.half + 1;
   const cv::Point g(int(std::lround(guess.x())), int(std::lround(guess.y())));
   const cv::Rect search(g.x - a.half - search_px, g.y - a.half - search_px, size + 2 * search_px,
                         size + 2 * search_px);
-  const bool at_edge = !Inside(frame, search);
-  if (at_edge && !DiscInside(frame, g, a.radius_px + kEdgeMaskGuardPx + search_px)) {
+  const bool at_edge = (search & view) != search;
+  const bool cut = at_edge && !DiscInside(view, g, a.radius_px + kEdgeMaskGuardPx + search_px);
+  if (cut && !(min_in_view > 0)) {
     out->clipped = true;
     return false;
   }
   *mask = FrameMask(a, guess, ctx);
-  if (at_edge) CutAtTheFramesEdge(frame, g, a.half, search_px + kEdgeMaskGuardPx, mask);
-  if (cv::countNonZero(*mask) < kTemplateMinMaskedFraction * size * size) {
+  const int whole = cut ? DiscPixels(*mask, a.half, a.radius_px) : 0;
+  if (at_edge) CutAtTheFramesEdge(view, g, a.half, search_px + kEdgeMaskGuardPx, mask);
+  if (cut && !(DiscPixels(*mask, a.half, a.radius_px) >= min_in_view * whole)) {
+    out->clipped = true;
+    return false;
+  }
+  if (cv::countNonZero(*mask) < kTemplateMinMaskedFraction * size * size * (cut ? 0.5 : 1.0)) {
     out->clipped = at_edge;
     return false;
   }
@@ -375,7 +398,10 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   const cv::Mat frame_patch = FloatPatch(frame, patch);
   // Following (no search) refines from the guess itself, whose mask is already cut.
   cv::Mat refine_mask = start == guess ? mask : FrameMask(a, start, ctx);
-  if (at_edge && start != guess) CutAtTheFramesEdge(frame, g2, a.half, kEdgeMaskGuardPx, &refine_mask);
+  if (at_edge && start != guess) {
+    CutAtTheFramesEdge(cv::Rect(0, 0, frame.cols, frame.rows), g2, a.half, kEdgeMaskGuardPx,
+                       &refine_mask);
+  }
   Eigen::Vector2d t(g2.x - start.x(), g2.y - start.y());
   double rho = 0;
   if (!RegisterTranslation(frame_patch, a.image, refine_mask, &t, &rho, kEccFrameGaussSize,
@@ -393,6 +419,39 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   }
   return out;
 }
+Located SearchCutAppearance(const cv::Mat& frame, const Appearance& a,
+                            const Eigen::Vector2d& guess, const MaskContext& ctx,
+                            double min_in_view) {
+  Located out;
+  cv::Mat mask;
+  out.ok = Peak(frame, a, guess, 1, ctx, &out, &mask, min_in_view);
+  return out;
+}
+
+Located LocateCutAppearance(const cv::Mat& frame, const Appearance& a,
+                            const Eigen::Vector2d& guess, const MaskContext& ctx,
+                            double min_in_view, const EccStop& stop, const cv::Rect* view) {
+  Located out;
+  cv::Mat mask;
+  if (!Peak(frame, a, guess, 0, ctx, &out, &mask, min_in_view, view)) return out;
+  const int size = 2 * a.half + 1;
+  const cv::Point g(int(std::lround(guess.x())), int(std::lround(guess.y())));
+  const cv::Mat frame_patch = FloatPatch(frame, cv::Rect(g.x - a.half, g.y - a.half, size, size));
+  Eigen::Vector2d t(g.x - guess.x(), g.y - guess.y());
+  double rho = 0;
+  if (!RegisterTranslation(frame_patch, a.image, mask, &t, &rho, kEccFrameGaussSize, stop)) {
+    return out;
+  }
+  const Eigen::Vector2d refined(g.x - t.x(), g.y - t.y());
+  if (!((refined - guess).norm() <= kEccMaxMovePx)) return out;
+  out.ok = true;
+  out.position = refined;
+  out.score = rho;
+  out.refined = rho;
+  out.sigma = RegistrationSigma(frame_patch, a.image, mask, t, kEccFrameGaussSize);
+  return out;
+}
+
 std::vector<Located> FindAppearance(const cv::Mat& frame, const Appearance& a, double plate_row,
                                     double min_separation_px, double min_score) {
   std::vector<Located> found;

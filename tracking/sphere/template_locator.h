@@ -108,6 +108,24 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
 Located SearchAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
                          int search_px, const MaskContext& ctx);
 
+// A sphere cut by the frame's edge, placed from `guess` (the rigid dimer's prediction, within
+// a pixel) by ECC on its pixels in view alone, with no whole-pixel search: the peak of a search
+// beside a cut sphere lay 3-7 px off (the DimerIdentity walks). Not ok where under
+// `min_in_view` of the appearance's pixels are in view, or ECC does not converge within a pixel
+// of the guess; `sigma` always stated (RegistrationSigma on the pixels in view). `view`: the
+// part of the frame taken for in view (null: all of it), to cut a whole sphere alike.
+Located LocateCutAppearance(const cv::Mat& frame, const Appearance& a,
+                            const Eigen::Vector2d& guess, const MaskContext& ctx,
+                            double min_in_view, const EccStop& stop = {},
+                            const cv::Rect* view = nullptr);
+
+// The correlation of a sphere cut by the frame's edge with its appearance, over its pixels in
+// view, at the whole pixels next to `guess` (the best, by the parabola; `refined` NaN); not ok
+// where under `min_in_view` of them are in view. A candidate's score, for LocateCutAppearance.
+Located SearchCutAppearance(const cv::Mat& frame, const Appearance& a,
+                            const Eigen::Vector2d& guess, const MaskContext& ctx,
+                            double min_in_view);
+
 // Whole-frame search (acquisition): the best match above `plate_row` (NaN: anywhere), and the
 // best one at least `min_separation_px` from it (if any scores above `min_score`).
 // Sub-pixel refined. Returns 0, 1 or 2 positions, best first.
