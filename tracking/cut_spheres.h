@@ -5,8 +5,9 @@
 // holds back the frames that missed a sphere (their images, at most kCutHeldFrames in a run)
 // and goes back over them from the first frame that finds it; the frames it could not place at
 // its start and its end are handed to the film, which places them across the seam from the
-// neighbouring chunk's frames (PlaceAcrossSeam). With 16-frame chunks, spheres at least half in
-// view were found in 93 % of frames without the seams, 9x % with them (DimerIdentity walks).
+// neighbouring chunk's frames (PlaceAcrossSeam). With 16-frame chunks every sphere at least
+// half in view of the mirror-lit walks that the template followed was found, 1,465 of 1,465
+// (DimerIdentity.NeverSwappedOverRandomWalksOutOfEitherEdge/reflect_auto).
 #include <opencv2/core.hpp>
 
 #include <cstddef>
@@ -46,7 +47,7 @@ class ChunkCuts {
 
 // From frames[from] through `held` (nearest first, each next to the one before), placing each
 // one's missing spheres by the frames before it on the way (PlaceCutBeside); stops at the first
-// frame that places nothing.
+// frame that still misses a sphere the one before it has.
 void PlaceAlong(const FrameFollower& follower, const std::vector<const HeldFrame*>& held,
                 std::vector<FrameTrack>* frames, size_t from);
 

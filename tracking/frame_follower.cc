@@ -336,23 +336,23 @@ void FrameFollower::MeasureCuts(const cv::Mat& frame, FrameTrack* out) const {
 
 bool FrameFollower::PlaceCutBeside(const cv::Mat& frame, const FrameTrack& adjacent,
                                    const FrameTrack* beyond, FrameTrack* t) const {
-  bool placed = false;
-  if (adjacent.found[0] && adjacent.found[1] && t->found[0] != t->found[1]) {
-    const Eigen::Vector2d d = adjacent.centre[1] - adjacent.centre[0];
-    const Eigen::Vector2d rate = beyond && beyond->found[0] && beyond->found[1]
-                                     ? Eigen::Vector2d(beyond->centre[1] - beyond->centre[0] - d)
-                                     : Eigen::Vector2d(0, 0);
-    placed = MeasureCut(frame, t->found[0] ? 1 : 0, d - rate, d.norm(), t);
-  } else if (!t->found[0] && !t->found[1]) {
-    for (int k = 0; k < 2; ++k) {
-      if (!adjacent.found[k] || adjacent.found[1 - k]) continue;
-      const Eigen::Vector2d v = beyond && beyond->found[k] && !beyond->found[1 - k]
+  for (int k = 0; k < 2; ++k) {
+    if (!adjacent.found[k] || t->found[k]) continue;
+    if (t->found[1 - k] && adjacent.found[1 - k]) {  // by the dimer's vector
+      const Eigen::Vector2d d = adjacent.centre[1] - adjacent.centre[0];
+      const Eigen::Vector2d rate = beyond && beyond->found[0] && beyond->found[1]
+                                       ? Eigen::Vector2d(beyond->centre[1] - beyond->centre[0] - d)
+                                       : Eigen::Vector2d(0, 0);
+      MeasureCut(frame, k, d - rate, d.norm(), t);
+    } else {  // by its own motion (and the dimer's length where the other is in *t)
+      const Eigen::Vector2d v = beyond && beyond->found[k]
                                     ? Eigen::Vector2d(beyond->centre[k] - adjacent.centre[k])
                                     : Eigen::Vector2d(0, 0);
-      placed = PlaceCut(frame, k, adjacent.centre[k] - v, kNaN, t) || placed;
+      PlaceCut(frame, k, adjacent.centre[k] - v,
+               t->found[1 - k] ? options_.dimer_length_px : kNaN, t);
     }
   }
-  return placed;
+  return !(adjacent.found[0] && !t->found[0]) && !(adjacent.found[1] && !t->found[1]);
 }
 
 void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {

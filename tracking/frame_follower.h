@@ -121,10 +121,11 @@ class FrameFollower {
   int polarity() const { return polarity_; }
   // A chunk's first frames have no history to place a cut sphere by, nor its last frames a
   // future: the chunk goes back over them from the first frame that placed it, and the film
-  // over its chunks' seams both ways (cut_spheres.h). Places the missing sphere of *t, in
-  // `frame`, by the frame next to it (`adjacent`) and the one next to that (`beyond`, null:
-  // none), before or after it: where *t shows one sphere and `adjacent` both, by the dimer's
-  // vector; where *t shows none, a sphere alone in `adjacent` by its own motion. True: placed.
+  // over its chunks' seams both ways (cut_spheres.h). Places each sphere of `adjacent` (the
+  // frame next to *t, before or after it) that *t misses, in `frame`: where *t shows the other
+  // and `adjacent` both, by the dimer's vector (changing as from `beyond`, the frame next to
+  // `adjacent`; null: none); else by its own motion from `adjacent` and `beyond`. True: *t has
+  // every sphere `adjacent` has.
   bool PlaceCutBeside(const cv::Mat& frame, const FrameTrack& adjacent, const FrameTrack* beyond,
                       FrameTrack* t) const;
   double radius_px() const { return radius_px_; }

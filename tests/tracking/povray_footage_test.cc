@@ -660,6 +660,7 @@ TEST(PovrayLeavingTheFrame, OneSphereLeavesThenTheOtherAndNeitherIsSwappedOrInve
   so.threads = 2;
   const tracking::SequenceResult r = tracking::TrackSequence(source, so);
   ASSERT_EQ(r.frames.size(), kDriftFrames);
+  tracking::SequenceResult chunked_one;
   const int width = frames[0].cols;
   const char* names[2] = {"left", "right"};
   for (int k = 0; k < 2; ++k) {
@@ -703,6 +704,34 @@ TEST(PovrayLeavingTheFrame, OneSphereLeavesThenTheOtherAndNeitherIsSwappedOrInve
     EXPECT_EQ(found_out, 0u) << names[k];
     EXPECT_GT(out, 0u) << names[k] << " sphere never leaves: the film is not what it says";
     EXPECT_LE(bias.norm(), kBiasTargetPx) << names[k];
+  }
+  // The cut spheres placed across chunks' seams (7-frame chunks put seams among the cut frames
+  // of both exits) are the same for 1 and 2 threads, and as many as in one chunk.
+  for (const int threads : {1, 2}) {
+    tracking::SequenceOptions short_chunks = so;
+    short_chunks.threads = threads;
+    short_chunks.chunk_frames = 7;
+    tracking::MemorySource again(frames);
+    const tracking::SequenceResult c = tracking::TrackSequence(again, short_chunks);
+    ASSERT_EQ(c.frames.size(), kDriftFrames);
+    size_t cut_long = 0, cut_short = 0;
+    for (size_t i = 0; i < kDriftFrames; ++i) {
+      for (int k = 0; k < 2; ++k) {
+        cut_long += r.frames[i].found[k] && r.frames[i].cut[k];
+        cut_short += c.frames[i].found[k] && c.frames[i].cut[k];
+        EXPECT_EQ(c.frames[i].found[k], r.frames[i].found[k]) << threads << " frame " << i;
+      }
+    }
+    EXPECT_EQ(cut_short, cut_long) << threads << " threads";
+    if (threads == 1) {
+      chunked_one = c;
+    } else {
+      for (size_t i = 0; i < kDriftFrames; ++i) {
+        for (int k = 0; k < 2; ++k) {
+          EXPECT_EQ(c.frames[i].centre[k], chunked_one.frames[i].centre[k]) << "frame " << i;
+        }
+      }
+    }
   }
 }
 
