@@ -164,6 +164,18 @@ bool FrameFollower::uses_template() const {
   return options_.method == Method::kTemplate && options_.appearance;
 }
 
+bool FrameFollower::places_cuts() const {
+  return uses_template() || options_.cut_appearance;
+}
+
+const Appearance& FrameFollower::CutAppearance(int k) const {
+  return uses_template() ? (*options_.appearance)[k] : (*options_.cut_appearance)[k];
+}
+
+Eigen::Vector2d FrameFollower::CutOffset(int k) const {
+  return uses_template() ? Eigen::Vector2d(0, 0) : options_.cut_offset[k];
+}
+
 double FrameFollower::PlateRow(const cv::Mat& frame, double guess, double guess_col,
                                  const std::array<Eigen::Vector2d, 2>& centres, int n,
                                  std::shared_ptr<const ClippedEdgeProfile>* clipped,
@@ -182,21 +194,41 @@ double FrameFollower::PlateRow(const cv::Mat& frame, double guess, double guess_
   return row;
 }
 
+bool FrameFollower::OutOfViewByTheDimer(const cv::Mat& frame, int j) const {
+  if (!places_cuts() || !dimer_seen_) return false;
+  const Eigen::Vector2d other = j == 0 ? Eigen::Vector2d(last_[0] + dimer_)
+                                       : Eigen::Vector2d(last_[1] - dimer_);
+  const double in = std::min(std::min(other.x() + 0.5, frame.cols - 0.5 - other.x()),
+                             std::min(other.y() + 0.5, frame.rows - 0.5 - other.y()));
+  return in < radius_px_ + kCutWholeMarginPx;
+}
+
 bool FrameFollower::Follow(const cv::Mat& frame, FrameTrack* out) {
-  if (!locked_[0] || !locked_[1] || !std::isfinite(plate_row_)) return false;
-  const std::array<Eigen::Vector2d, 2> predicted{last_[0] + velocity_[0],
-                                                 last_[1] + velocity_[1]};
+  if (!std::isfinite(plate_row_)) return false;
+  // One sphere followed: the other is searched for on the whole frame unless the dimer's last
+  // vector puts it out of view or cut by the edge (then step 5 places it if it shows): a frame
+  // with one sphere in view costs a following, not an acquisition.
+  if (!locked_[0] && !locked_[1]) return false;
+  if (!(locked_[0] && locked_[1]) && !OutOfViewByTheDimer(frame, locked_[0] ? 0 : 1)) {
+    return false;
+  }
+  std::array<Eigen::Vector2d, 2> predicted{last_[0] + velocity_[0], last_[1] + velocity_[1]};
+  for (int k = 0; k < 2; ++k) {
+    if (!locked_[k]) predicted[k] = k == 1 ? Eigen::Vector2d(predicted[0] + dimer_)
+                                           : Eigen::Vector2d(predicted[1] - dimer_);
+  }
   out->plate_slope = options_.plate_slope;
   out->plate_row =
       PlateRow(frame, plate_row_, plate_col_, predicted, 2, &out->clipped_plate, &out->plate_col);
   if (!std::isfinite(out->plate_row)) return false;
-  std::array<bool, 2> cut{false, false};
+  std::array<bool, 2> cut{!locked_[0], !locked_[1]};
   for (int k = 0; k < 2; ++k) {
+    if (!locked_[k]) continue;
     // A constant-velocity prediction: < 1 px per frame at 2000 frames/s.
     const SphereMeasurement m =
         locator_[k]->Locate(frame, Prediction(predicted[k], &predicted[1 - k], *out, true));
     // A sphere cut by the frame's edge is placed by the dimer once the other is found.
-    if (uses_template() && m.status == SphereMeasurement::Status::kClipped) {
+    if (places_cuts() && m.status == SphereMeasurement::Status::kClipped) {
       cut[k] = true;
       continue;
     }
@@ -219,7 +251,7 @@ bool FrameFollower::Follow(const cv::Mat& frame, FrameTrack* out) {
 
 bool FrameFollower::PlaceCut(const cv::Mat& frame, int k, const Eigen::Vector2d& guess,
                              double length, FrameTrack* out) const {
-  if (!uses_template() || out->found[k]) return false;
+  if (!places_cuts() || out->found[k]) return false;
   const bool pair = out->found[1 - k];
   MaskContext ctx;
   ctx.plate_row = out->PlateRowAt(guess.x());
@@ -228,9 +260,10 @@ bool FrameFollower::PlaceCut(const cv::Mat& frame, int k, const Eigen::Vector2d&
     ctx.rod_dir = (out->centre[1 - k] - guess).normalized();
     ctx.other = out->centre[1 - k] - guess;
   }
-  const Located l = LocateCutAppearance(frame, (*options_.appearance)[k], guess, ctx,
-                                        kCutMinInView, options_.ecc);
+  Located l = LocateCutAppearance(frame, CutAppearance(k), guess - CutOffset(k), ctx,
+                                  kCutMinInView, options_.ecc);
   if (!l.ok || !(l.score >= kMinTemplateScore)) return false;
+  l.position += CutOffset(k);  // the method's centre
   if (pair && !(std::abs((l.position - out->centre[1 - k]).norm() - length) <=
                 kCutLengthTolerancePx)) {
     return false;
@@ -260,11 +293,19 @@ Eigen::Vector2d FrameFollower::CutSigma(const cv::Mat& frame, int k, const Locat
     ctx.rod_dir = (l.position - t.centre[j]).normalized();
     ctx.other = l.position - t.centre[j];
   }
-  const Located w = LocateCutAppearance(frame, (*options_.appearance)[j], t.centre[j], ctx,
-                                        kCutMinInView, options_.ecc, &view);
-  if (!w.ok) return Eigen::Vector2d::Constant(kNaN);
-  const Eigen::Vector2d shift = w.position - t.centre[j];
-  return (l.sigma.cwiseProduct(l.sigma) + shift.cwiseProduct(shift)).cwiseSqrt();
+  // The whole sphere's reference point where it was found (for the silhouette methods, its
+  // centre less the appearance's offset: registered there, whole, it moves by what the
+  // offset's scatter says).
+  const Eigen::Vector2d at = t.centre[j] - CutOffset(j);
+  const Located whole = LocateCutAppearance(frame, CutAppearance(j), at, ctx, kCutMinInView,
+                                            options_.ecc);
+  const Located w = LocateCutAppearance(frame, CutAppearance(j), at, ctx, kCutMinInView,
+                                        options_.ecc, &view);
+  if (!w.ok || !whole.ok) return Eigen::Vector2d::Constant(kNaN);
+  const Eigen::Vector2d shift = w.position - whole.position;
+  const Eigen::Vector2d off = uses_template() ? Eigen::Vector2d(0, 0) : options_.cut_offset_err[k];
+  return (l.sigma.cwiseProduct(l.sigma) + shift.cwiseProduct(shift) + off.cwiseProduct(off))
+      .cwiseSqrt();
 }
 
 bool FrameFollower::MeasureCut(const cv::Mat& frame, int k, const Eigen::Vector2d& dimer,
@@ -277,14 +318,15 @@ bool FrameFollower::MeasureCut(const cv::Mat& frame, int k, const Eigen::Vector2
 
 void FrameFollower::SearchCutOnCircle(const cv::Mat& frame, FrameTrack* out) const {
   const double length = options_.dimer_length_px;
-  if (!uses_template() || out->found[0] == out->found[1] || !std::isfinite(length)) return;
+  if (!places_cuts() || out->found[0] == out->found[1] || !std::isfinite(length)) return;
   const int j = out->found[0] ? 0 : 1;  // the one found
   const Eigen::Vector2d c = out->centre[j];
   const Appearance* best_a = nullptr;
   Located best;
   int best_side = 0;
   for (int side : {+1, -1}) {  // +1: the one found is the left
-    const Appearance& a = (*options_.appearance)[side > 0 ? 1 : 0];
+    const int name = side > 0 ? 1 : 0;
+    const Appearance& a = CutAppearance(name);
     // Candidates a pixel apart along the circle, tilted up to kCutMaxTiltRad either way.
     const double step = 1.0 / length;
     for (double theta = -kCutMaxTiltRad; theta <= kCutMaxTiltRad; theta += step) {
@@ -301,7 +343,8 @@ void FrameFollower::SearchCutOnCircle(const cv::Mat& frame, FrameTrack* out) con
       ctx.plate_slope = options_.plate_slope;
       ctx.rod_dir = (c - p).normalized();
       ctx.other = c - p;
-      const Located l = SearchCutAppearance(frame, a, p, ctx, kCutMinInView);
+      Located l = SearchCutAppearance(frame, a, p - CutOffset(name), ctx, kCutMinInView);
+      l.position += CutOffset(name);
       if (l.ok && l.score > best.score) best = l, best_a = &a, best_side = side;
     }
   }
@@ -315,7 +358,7 @@ void FrameFollower::SearchCutOnCircle(const cv::Mat& frame, FrameTrack* out) con
 }
 
 void FrameFollower::MeasureCuts(const cv::Mat& frame, FrameTrack* out) const {
-  if (!uses_template()) return;
+  if (!places_cuts()) return;
   if (out->found[0] != out->found[1]) {
     if (!dimer_known_) {
       SearchCutOnCircle(frame, out);
@@ -424,6 +467,7 @@ void FrameFollower::Commit(const FrameTrack& t) {
     plate_col_ = t.plate_col;
   }
   if (t.found[0] && t.found[1]) {
+    dimer_seen_ = true;
     const Eigen::Vector2d d = t.centre[1] - t.centre[0];
     dimer_rate_ = dimer_known_ && dimer_age_ == 0 ? Eigen::Vector2d(d - dimer_)
                                                   : Eigen::Vector2d(0, 0);

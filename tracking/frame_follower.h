@@ -8,7 +8,9 @@
 //      the other sphere, the plate, and the other sphere's disc where the two touch (A_r ~2);
 //   4. if a sphere is lost (missing) or nothing is locked yet, acquire on the whole frame
 //      (detector.h) and give each detection the identity of the nearest last position; with no
-//      history, `left` is the one with the smaller column (docs/FORMATS.md);
+//      history, `left` is the one with the smaller column (docs/FORMATS.md). Not where one
+//      sphere is followed and the dimer's last vector puts the other out of view or cut by the
+//      frame's edge (template method: OutOfViewByTheDimer);
 //   5. a sphere cut by the frame's edge (template method): predicted from the other sphere,
 //      found in this frame, and the dimer's vector of the last frames (the rod is rigid), or
 //      alone in view from its own motion, then registered on its part in view (MeasureCuts).
@@ -63,6 +65,13 @@ struct FollowerOptions {
   // the chunk gave the dimer's vector, the other is looked for, cut by the frame's edge, on the
   // circle of this radius about it (FrameFollower::SearchCutOnCircle). NaN: not looked for.
   double dimer_length_px = std::numeric_limits<double>::quiet_NaN();
+  // The silhouette methods (where `auto` chose one over the learnt template): the learnt
+  // appearances that place a sphere cut by the frame's edge, each one's offset from its
+  // reference point to the centre the method measures, and that offset's uncertainty (col,
+  // row; SilhouetteOffset over the learning frames). Null: a cut sphere is not measured.
+  std::shared_ptr<const std::array<Appearance, 2>> cut_appearance;
+  std::array<Eigen::Vector2d, 2> cut_offset{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
+  std::array<Eigen::Vector2d, 2> cut_offset_err{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
 
   void Check() const;  // InputError listing every invalid field
 };
@@ -132,8 +141,19 @@ class FrameFollower {
 
  private:
   bool Follow(const cv::Mat& frame, FrameTrack* out);
+  // Template method: where the dimer's last vector puts the sphere other than j, followed at
+  // its last position, its disc is out of `frame` or within kCutWholeMarginPx of its edge (no
+  // whole-frame search could find it there).
+  bool OutOfViewByTheDimer(const cv::Mat& frame, int j) const;
   void Acquire(const cv::Mat& frame, FrameTrack* out);
   bool uses_template() const;
+  // A sphere cut by the frame's edge is placed by a learnt appearance: the method's own, or
+  // options_.cut_appearance with the silhouette methods (step 5).
+  bool places_cuts() const;
+  const Appearance& CutAppearance(int k) const;
+  // From appearance k's reference point to the centre the method measures (0 for the template,
+  // whose offsets come after the film: ApplyOffsets).
+  Eigen::Vector2d CutOffset(int k) const;
   // What a locator is told of sphere at `at`: the other sphere (null: none), the plate under it
   // in `frame`'s track, and whether `at` is a follower's prediction or a coarse detection.
   SpherePrediction Prediction(const Eigen::Vector2d& at, const Eigen::Vector2d* other,
@@ -190,6 +210,7 @@ class FrameFollower {
   // per frame where the frame before had both too, and how many frames ago it was seen.
   Eigen::Vector2d dimer_{0, 0}, dimer_rate_{0, 0};
   bool dimer_known_ = false;
+  bool dimer_seen_ = false;  // dimer_ was measured in this follower's frames (maybe long ago)
   int dimer_age_ = 0;
 };
 

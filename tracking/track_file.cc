@@ -171,11 +171,13 @@ TrackColumns ColumnsOf(const SequenceResult& r, const Calibration& cal, double f
       tip[k] = cal.ToMetres(c);
       found[2 * i + k] = f.found[k] ? (f.cut[k] ? 2 : 1) : 0;
       // A cut sphere's own uncertainty with its appearance's offset's, which it shares with
-      // every frame of the film (NaN for methods without one: no sphere is found cut there).
+      // every frame of the film (the silhouette methods' cut spheres state theirs in sigma_px).
       Eigen::Vector2d err = Eigen::Vector2d::Constant(kNaN);
       if (f.found[k] && f.cut[k]) {
         const int a = f.appearance[k];
-        const Eigen::Vector2d off(r.offsets.col[a].err, r.offsets.row[a].err);
+        const Eigen::Vector2d off = r.method == Method::kTemplate
+                                        ? Eigen::Vector2d(r.offsets.col[a].err, r.offsets.row[a].err)
+                                        : Eigen::Vector2d(0, 0);
         err = (f.sigma_px[k].cwiseProduct(f.sigma_px[k]) + off.cwiseProduct(off)).cwiseSqrt();
       }
       out.cut_err[k].push_back(err.x());

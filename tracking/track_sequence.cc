@@ -160,6 +160,22 @@ bool OpenFilm(const FrameAt& frame_at, size_t count, const SequenceOptions& opti
   return true;
 }
 
+// The median distance of the two appearances' reference points over the learning frames that
+// registered both, each moved by its `offset` (NaN: none).
+double ReferenceLength(const std::array<LearntSphere, 2>& learnt,
+                       const std::array<Eigen::Vector2d, 2>& offset = {Eigen::Vector2d(0, 0),
+                                                                     Eigen::Vector2d(0, 0)}) {
+  std::vector<double> d;
+  for (size_t i = 0; i < learnt[0].samples.size() && i < learnt[0].registered.size(); ++i) {
+    const auto& s1 = learnt[1].samples;
+    const auto at = std::find(s1.begin(), s1.end(), learnt[0].samples[i]);
+    const size_t j = size_t(at - s1.begin());
+    if (at == s1.end() || j >= learnt[1].registered.size()) continue;
+    d.push_back((learnt[1].registered[j] + offset[1] - learnt[0].registered[i] - offset[0]).norm());
+  }
+  return d.empty() ? kNaN : MedianOf(d);
+}
+
 // Stage "trial" (auto, where the template was learnt): the silhouette locator beside the
 // template on the film's first consecutive frames (method_trial.h); the lower noise is run.
 void TryTheSilhouettes(const FrameAt& frame_at, size_t available, int threads, Film* film,
@@ -182,21 +198,19 @@ void TryTheSilhouettes(const FrameAt& frame_at, size_t available, int threads, F
   if (trial.chosen != Method::kCentroid) return;
   film->prepared.choice.method = Method::kCentroid;
   film->chunk_opts.method = Method::kCentroid;
-  film->chunk_opts.appearance.reset();
-}
-
-// The median distance of the two appearances' reference points over the learning frames that
-// registered both (NaN: none).
-double ReferenceLength(const std::array<LearntSphere, 2>& learnt) {
-  std::vector<double> d;
-  for (size_t i = 0; i < learnt[0].samples.size() && i < learnt[0].registered.size(); ++i) {
-    const auto& s1 = learnt[1].samples;
-    const auto at = std::find(s1.begin(), s1.end(), learnt[0].samples[i]);
-    const size_t j = size_t(at - s1.begin());
-    if (at == s1.end() || j >= learnt[1].registered.size()) continue;
-    d.push_back((learnt[1].registered[j] - learnt[0].registered[i]).norm());
+  // The learnt appearances still place a sphere cut by the frame's edge, moved to the centroid's
+  // centre by their silhouette offsets (cut_spheres.h).
+  FollowerOptions& c = film->chunk_opts;
+  c.cut_appearance = c.appearance;
+  for (int k = 0; k < 2; ++k) {
+    const OffsetEstimate col = SilhouetteOffset(film->prepared.learnt[k], 0);
+    const OffsetEstimate row = SilhouetteOffset(film->prepared.learnt[k], 1);
+    c.cut_offset[k] = {col.value, row.value};
+    c.cut_offset_err[k] = {col.err, row.err};
+    if (!c.cut_offset[k].allFinite() || !c.cut_offset_err[k].allFinite()) c.cut_appearance.reset();
   }
-  return d.empty() ? kNaN : MedianOf(d);
+  c.dimer_length_px = ReferenceLength(film->prepared.learnt, c.cut_offset);
+  c.appearance.reset();
 }
 
 // Stage "choose method, learn" (template and auto): the learning frames, `learning_at(i)` for i

@@ -209,7 +209,7 @@ TEST_P(DimerIdentity, NeverSwappedOverRandomWalksOutOfEitherEdge) {
   const auto [lighting, method] = GetParam();
   const int walks = std::max(1, int(std::lround(4 * testing::TestScale())));
   Counts total;
-  size_t template_half = 0, template_half_found = 0;
+  size_t learnt_half = 0, learnt_half_found = 0;
   for (int s = 0; s < walks; ++s) {
     const Walk w = RandomWalk(1000 + s, 400, lighting);
     MemorySource source(w.frames);
@@ -221,11 +221,13 @@ TEST_P(DimerIdentity, NeverSwappedOverRandomWalksOutOfEitherEdge) {
     const SequenceResult r = TrackSequence(source, o);
     ASSERT_EQ(r.frames.size(), w.frames.size());
     const Counts c = Judge(w, r);
-    if (r.method == Method::kTemplate) {
-      template_half += c.half;
-      template_half_found += c.half_found;
+    // An appearance was learnt where the template follows, or where the trial beside it chose
+    // the centroid (a walk that starts with the dimer out of view learns none).
+    if (r.method == Method::kTemplate || !r.method_trial.empty()) {
+      learnt_half += c.half;
+      learnt_half_found += c.half_found;
     } else {
-      EXPECT_EQ(c.cut, 0u) << "only the template places a sphere cut by the frame's edge";
+      EXPECT_EQ(c.cut, 0u) << "only a learnt appearance places a sphere cut by the frame's edge";
     }
     total.swaps += c.swaps;
     total.beside += c.beside;
@@ -239,19 +241,19 @@ TEST_P(DimerIdentity, NeverSwappedOverRandomWalksOutOfEitherEdge) {
   }
   const double cut_z = total.cut ? std::sqrt(total.cut_z2 / (2.0 * double(total.cut))) : 0.0;
   std::printf("[ stats    ] %s %s: swaps %zu, beside %zu, whole spheres found %zu of %zu, at "
-              "least half in view %zu of %zu (followed by the template: %zu of %zu), found cut "
+              "least half in view %zu of %zu (with an appearance learnt: %zu of %zu), found cut "
               "%zu (worst %.3f px from the whole sphere's bias, rms %.2f stated sigmas)\n",
               ToString(lighting).c_str(), ToString(method).c_str(), total.swaps, total.beside,
-              total.whole_found, total.whole, total.half_found, total.half, template_half_found,
-              template_half, total.cut, total.cut_worst, cut_z);
+              total.whole_found, total.whole, total.half_found, total.half, learnt_half_found,
+              learnt_half, total.cut, total.cut_worst, cut_z);
   EXPECT_EQ(total.swaps, 0u);
   EXPECT_EQ(total.beside, 0u);
-  // The target, >= 99 % of the spheres at least half in view found, where the template
-  // follows (it places a sphere cut by the frame's edge: tracking/cut_spheres.h; 16-frame
-  // chunks put a seam in most of the walks' exits). The silhouette methods measure whole
-  // spheres only, and are printed: on mirror-lit walks `auto` chose the centroid for one.
-  if (template_half > 0) {
-    EXPECT_GE(double(template_half_found), 0.99 * double(template_half));
+  // The target, >= 99 % of the spheres at least half in view found, where an appearance
+  // is learnt (`auto`: it places a sphere cut by the frame's edge, tracking/cut_spheres.h, also
+  // where the centroid follows the whole ones; 16-frame chunks put a seam in most of the walks'
+  // exits). The silhouette methods asked for by name measure whole spheres only: printed.
+  if (learnt_half > 0) {
+    EXPECT_GE(double(learnt_half_found), 0.99 * double(learnt_half));
     EXPECT_LE(total.cut_worst, kCutWorstPx);
     EXPECT_LE(cut_z, kCutRmsSigmas);
   }
