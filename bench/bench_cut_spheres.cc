@@ -147,7 +147,7 @@ void Row(const char* label, const Film& f, const Run& run, int width, double wid
   }
   const double per_frame = run.seconds / double(r.frames.size());
   const double wide_per_frame = wide_seconds / double(r.frames.size());
-  std::printf(" %zu | %.0f | %.0f |\n", cut_frames, 1e6 * per_frame, 1e6 * wide_per_frame);
+  std::printf(" %zu | %.2f | %.2f |\n", cut_frames, 1e3 * per_frame, 1e3 * wide_per_frame);
 }
 
 }  // namespace
@@ -186,8 +186,8 @@ int main(int argc, char** argv) {
               "and worst distance from its whole frames' bias (px) / rms error in stated "
               "sigmas.\n\n");
   std::printf("| film | method | spheres >= half in view | found (%%) | swaps | cut 0.3-0.5 | "
-              "cut 0.5-0.7 | cut 0.7-0.9 | cut 0.9-1 | frames with a cut sphere | µs a frame "
-              "(wall) | µs a frame, nothing cut (wall) |\n");
+              "cut 0.5-0.7 | cut 0.7-0.9 | cut 0.9-1 | frames with a cut sphere | ms a frame "
+              "(wall) | ms a frame, nothing cut (wall) |\n");
   std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   struct Setup {
     Lighting lighting;
