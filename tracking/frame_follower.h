@@ -172,8 +172,9 @@ class FrameFollower {
   // A cut sphere k's stated uncertainty (col, row), px: its registration's on the pixels in
   // view, with what cutting a sphere alike does: the whole sphere beside it in `t`, cut as k
   // is by the frame's edge (the same part of it in view), moves by `shift`, which is added in
-  // quadrature. NaN where the other is not found whole: the film states the sphere's mean
-  // (StateCutUncertainty, cut_spheres.h).
+  // quadrature (PlaceCut adds how far the pair's distance misses the dimer's length). NaN where
+  // the other is not found whole: the film states the sphere's mean (StateCutUncertainty,
+  // cut_spheres.h).
   Eigen::Vector2d CutSigma(const cv::Mat& frame, int k, const Located& l,
                            const FrameTrack& t) const;
   // Step 5 for sphere k, not found in *out while the other is: PlaceCut where `dimer` (right -

@@ -25,7 +25,8 @@ namespace dimer::tracking {
 // A match is dropped when its score is below the sphere's median over the sequence by more than
 // kScoreDropSigmas robust sigmas of those scores, and by at least kMinScoreDrop (a sphere's
 // scores vary a little with its height, the blur, an impact; no match of the POV-Ray test
-// footage is dropped). Fewer than kMinScoredFrames matches: none dropped.
+// footage is dropped). The median and the dimer's length are taken over whole spheres (a cut
+// one, FrameTrack::cut, is matched on part of its appearance); every match is judged by them. Fewer than kMinScoredFrames matches: none dropped.
 inline constexpr double kScoreDropSigmas = 8.0;
 inline constexpr double kMinScoreDrop = 0.15;
 inline constexpr size_t kMinScoredFrames = 10;

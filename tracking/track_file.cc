@@ -379,7 +379,8 @@ void WriteColumns(H5Writer& w, const TrackColumns& columns, const SequenceResult
     w.SetAttr(name, "description",
               "standard uncertainty of a centre found cut by the frame's edge (found = 2): its "
               "registration on the part in view, the shift of the whole sphere beside it cut "
-              "alike, and the appearance's offset's; NaN for a whole sphere (its scatter is "
+              "alike, the pair's miss of the dimer's length, and the appearance's offset's; NaN "
+              "for a whole sphere (its scatter is "
               "/precision/scatter, its offset's uncertainty /template/offset_err)");
   }
   if (r.method == Method::kTemplate) WriteTemplateGroup(w, r);

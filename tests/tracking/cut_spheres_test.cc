@@ -56,6 +56,16 @@ Film Slide(Lighting lighting, double from, double speed) {
   return f;
 }
 
+// The film tracked with `method` on 2 threads, the sphere's radius known.
+SequenceResult Track(const Film& f, Method method) {
+  MemorySource source(f.frames);
+  SequenceOptions o;
+  o.follower.method = method;
+  o.contact_radius_px = kRadiusPx;
+  o.threads = 2;
+  return TrackSequence(source, o);
+}
+
 double InView(const Eigen::Vector2d& c) {
   return std::clamp((std::min(double(kWidth), c.x() + kRadiusPx) - std::max(0.0, c.x() - kRadiusPx)) /
                         (2 * kRadiusPx),
@@ -67,15 +77,10 @@ double InView(const Eigen::Vector2d& c) {
 // learnt appearance, moved to the centroid's centre by its silhouette offset, places each sphere
 // cut by the frame's edge: every sphere at least half in view is found, the cut ones within
 // 0.15 px of where the whole frames put the sphere (measured: 0.07 px) and within their stated
-// uncertainty (rms 0.7 sigma). Without the appearance 91 % were found.
+// uncertainty (rms 0.6 sigma). Without the appearance 91 % were found.
 TEST(CutSpheres, TheCentroidsCutSpheresArePlacedByTheLearntAppearance) {
   const Film f = Slide(Lighting::kBacklit, 0.25 * kWidth, 2.0);
-  MemorySource source(f.frames);
-  SequenceOptions o;
-  o.follower.method = Method::kAuto;
-  o.contact_radius_px = kRadiusPx;
-  o.threads = 2;
-  const SequenceResult r = TrackSequence(source, o);
+  const SequenceResult r = Track(f, Method::kAuto);
   ASSERT_EQ(r.frames.size(), f.frames.size());
   ASSERT_EQ(r.method, Method::kCentroid) << r.method_reason;
   ASSERT_FALSE(r.method_trial.empty()) << "no appearance was learnt: " << r.method_reason;
@@ -119,13 +124,7 @@ TEST(CutSpheres, TheCentroidsCutSpheresArePlacedByTheLearntAppearance) {
 // measured 0.02-0.03 px); with 30 % it declines rather than guess (under 30 % of the disc's
 // followed pixels are in view once the edge's 2 px are left out; the limit falls near 40 %).
 TEST(CutSpheres, TheLocatorPlacesTheVisiblePartOrDeclines) {
-  const Film f = Slide(Lighting::kReflect, 0.25 * kWidth, 3.0);
-  MemorySource source(f.frames);
-  SequenceOptions o;
-  o.follower.method = Method::kTemplate;
-  o.contact_radius_px = kRadiusPx;
-  o.threads = 2;
-  const SequenceResult r = TrackSequence(source, o);
+  const SequenceResult r = Track(Slide(Lighting::kReflect, 0.25 * kWidth, 3.0), Method::kTemplate);
   ASSERT_EQ(r.method, Method::kTemplate);
   const Appearance& a = r.appearance[1];
   ASSERT_TRUE(a.valid());

@@ -64,7 +64,7 @@ Walk RandomWalk(uint64_t seed, size_t n, Lighting lighting) {
 
 // A sphere placed cut by the frame's edge lies within kCutWorstPx of where its whole frames
 // put it (the film's offset taken out), and its error in units of its stated uncertainty has an
-// rms of at most kCutRmsSigmas: measured 0.25 px and 1.4 on the mirror-lit walks (268 cut
+// rms of at most kCutRmsSigmas: measured 0.25 px and 1.0 on the mirror-lit walks (268 cut
 // spheres, 30-100 % of their disc in view).
 constexpr double kCutWorstPx = 0.35;
 constexpr double kCutRmsSigmas = 2.0;

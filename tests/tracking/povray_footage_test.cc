@@ -738,6 +738,47 @@ TEST(PovrayLeavingTheFrame, OneSphereLeavesThenTheOtherAndNeitherIsSwappedOrInve
   }
 }
 
+// What `dimerlab track` writes of the cut spheres of the same film (its first 30 frames: the
+// right sphere leaves over frames 10-22): /found is 2 exactly where a sphere is found cut, and
+// /pixels/right_cut_err states each one's uncertainty there (its registration, the whole
+// sphere beside it cut alike, the length's miss and the offset's: 0.09-0.13 px here) and NaN
+// elsewhere. CTest `povray.leaving_the_frame`.
+TEST(PovrayLeavingTheFrame, TheTrackFileFlagsTheCutSpheresWithTheirUncertainty) {
+  const std::string dir = std::string(DIMERLAB_POVRAY_CACHE) + "/leaving_both_edges";
+  if (!std::filesystem::exists(dir + "/truth.csv")) {
+    GTEST_SKIP() << dir << ": rendered by OneSphereLeavesThenTheOther..., which runs first";
+  }
+  const dimer::testing::TempDir tmp;
+  tracking::TrackArgs t;
+  t.input = dir;
+  t.frames = "0:30";
+  t.output = tmp / "track.h5";
+  t.m_per_px = 0.0002;
+  t.quiet = true;
+  tracking::RunTrack(t);
+  const H5Reader h(t.output);
+  const std::vector<uint8_t> found = h.ReadUint8("/found");
+  const std::vector<double> err = h.ReadDoubles("/pixels/right_cut_err");
+  const std::vector<double> left_err = h.ReadDoubles("/pixels/left_cut_err");
+  ASSERT_EQ(found.size(), 60u);
+  ASSERT_EQ(err.size(), 60u);
+  size_t cut = 0;
+  for (size_t i = 0; i < 30; ++i) {
+    EXPECT_NE(found[2 * i], 2) << "frame " << i << ": the left sphere is whole in view";
+    EXPECT_TRUE(std::isnan(left_err[2 * i]) && std::isnan(left_err[2 * i + 1])) << i;
+    if (found[2 * i + 1] == 2) {
+      ++cut;
+      for (int axis = 0; axis < 2; ++axis) {
+        EXPECT_GT(err[2 * i + axis], 0.0) << "frame " << i;
+        EXPECT_LT(err[2 * i + axis], 0.3) << "frame " << i;
+      }
+    } else {
+      EXPECT_TRUE(std::isnan(err[2 * i]) && std::isnan(err[2 * i + 1])) << "frame " << i;
+    }
+  }
+  EXPECT_GE(cut, 6u);
+}
+
 // A still-plate calibration film: the dimer resting on a still plate in 16 poses (each frame its
 // own, sharp), the left sphere on the plate, the right lifted by 0 to 3 degrees, the dimer moved
 // by up to 6 mm between poses. A lab's film of this kind put both spheres' rows 2.2-2.4 px low
