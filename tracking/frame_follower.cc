@@ -34,8 +34,9 @@ constexpr double kCutLengthTolerancePx = 0.5;
 // The dimer's vector is carried over at most this many frames without both spheres.
 constexpr int kCutMaxDimerAgeFrames = 4;
 // Without it, the other sphere is looked for on the circle of the dimer's length tilted up to
-// this much (the flights of a jump tilt the dimer by < 25 degrees; DimerIdentity walks 9),
-// where its centre is within this margin of being wholly in view or further out.
+// this much (34 degrees, beyond the tilts of the DimerIdentity walks and the POV-Ray films; one
+// tilted further waits for a frame that shows both), where its centre is within this margin of
+// being wholly in view or further out.
 constexpr double kCutMaxTiltRad = 0.6;
 constexpr double kCutWholeMarginPx = 6.0;
 
