@@ -375,7 +375,7 @@ void FrameFollower::MeasureCuts(const cv::Mat& frame, FrameTrack* out) const {
       SearchCutOnCircle(frame, out);
       return;
     }
-    // The dimer's vector now: the last one moved on by its rate over the frames since.
+    // The dimer's vector in this frame: the last one moved on by its rate over the frames since.
     const Eigen::Vector2d d = dimer_ + double(dimer_age_ + 1) * dimer_rate_;
     MeasureCut(frame, out->found[0] ? 1 : 0, d, dimer_.norm(), out);
     return;
