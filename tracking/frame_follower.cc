@@ -332,9 +332,8 @@ void FrameFollower::SearchCutOnCircle(const cv::Mat& frame, FrameTrack* out) con
   if (!places_cuts() || out->found[0] == out->found[1] || !std::isfinite(length)) return;
   const int j = out->found[0] ? 0 : 1;  // the one found
   const Eigen::Vector2d c = out->centre[j];
-  const Appearance* best_a = nullptr;
   Located best;
-  int best_side = 0;
+  int best_side = 0;  // none
   for (int side : {+1, -1}) {  // +1: the one found is the left
     const int name = side > 0 ? 1 : 0;
     const Appearance& a = CutAppearance(name);
@@ -356,10 +355,10 @@ void FrameFollower::SearchCutOnCircle(const cv::Mat& frame, FrameTrack* out) con
       ctx.other = c - p;
       Located l = SearchCutAppearance(frame, a, p - CutOffset(name), ctx, kCutMinInView);
       l.position += CutOffset(name);
-      if (l.ok && l.score > best.score) best = l, best_a = &a, best_side = side;
+      if (l.ok && l.score > best.score) best = l, best_side = side;
     }
   }
-  if (!best_a || !(best.score >= kMinTemplateScore)) return;
+  if (best_side == 0 || !(best.score >= kMinTemplateScore)) return;
   const int k = best_side > 0 ? 1 : 0;  // the cut sphere's name
   FrameTrack trial = *out;
   if (k == j) trial.SwapSpheres();  // the one found is the other

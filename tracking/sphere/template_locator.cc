@@ -378,12 +378,13 @@ Located SearchAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   return out;
 }
 
-Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
-                         int search_px, const MaskContext& ctx, const EccStop& stop,
-                         bool state_sigma) {
-  Located out;
-  cv::Mat mask;
-  if (!Peak(frame, a, guess, search_px, ctx, &out, &mask)) return out;
+namespace {
+
+// LocateAppearance's second stage: ECC from Peak's answer (out->position) with its `mask` (cut
+// for `guess`); `out` takes ECC's answer where it converged within kEccMaxMovePx.
+Located RefineByEcc(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
+                    int search_px, const MaskContext& ctx, const EccStop& stop, bool state_sigma,
+                    const cv::Mat& mask, Located out) {
   const int size = 2 * a.half + 1;
   const bool at_edge = out.at_edge;
   const Eigen::Vector2d start = out.position;
@@ -419,6 +420,18 @@ Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen:
   }
   return out;
 }
+
+}  // namespace
+
+Located LocateAppearance(const cv::Mat& frame, const Appearance& a, const Eigen::Vector2d& guess,
+                         int search_px, const MaskContext& ctx, const EccStop& stop,
+                         bool state_sigma) {
+  Located out;
+  cv::Mat mask;
+  if (!Peak(frame, a, guess, search_px, ctx, &out, &mask)) return out;
+  return RefineByEcc(frame, a, guess, search_px, ctx, stop, state_sigma, mask, out);
+}
+
 Located SearchCutAppearance(const cv::Mat& frame, const Appearance& a,
                             const Eigen::Vector2d& guess, const MaskContext& ctx,
                             double min_in_view) {
@@ -434,22 +447,7 @@ Located LocateCutAppearance(const cv::Mat& frame, const Appearance& a,
   Located out;
   cv::Mat mask;
   if (!Peak(frame, a, guess, 0, ctx, &out, &mask, min_in_view, view)) return out;
-  const int size = 2 * a.half + 1;
-  const cv::Point g(int(std::lround(guess.x())), int(std::lround(guess.y())));
-  const cv::Mat frame_patch = FloatPatch(frame, cv::Rect(g.x - a.half, g.y - a.half, size, size));
-  Eigen::Vector2d t(g.x - guess.x(), g.y - guess.y());
-  double rho = 0;
-  if (!RegisterTranslation(frame_patch, a.image, mask, &t, &rho, kEccFrameGaussSize, stop)) {
-    return out;
-  }
-  const Eigen::Vector2d refined(g.x - t.x(), g.y - t.y());
-  if (!((refined - guess).norm() <= kEccMaxMovePx)) return out;
-  out.ok = true;
-  out.position = refined;
-  out.score = rho;
-  out.refined = rho;
-  out.sigma = RegistrationSigma(frame_patch, a.image, mask, t, kEccFrameGaussSize);
-  return out;
+  return RefineByEcc(frame, a, guess, 0, ctx, stop, true, mask, out);
 }
 
 std::vector<Located> FindAppearance(const cv::Mat& frame, const Appearance& a, double plate_row,
