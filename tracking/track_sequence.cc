@@ -34,6 +34,13 @@ struct ChunkResult {
   std::vector<HeldFrame> head, tail;
 };
 
+// The follower's options with what the first readable frame fixed for every chunk.
+FollowerOptions WithReference(FollowerOptions o, const Reference& ref) {
+  o.polarity = ref.polarity;
+  o.radius_px = ref.radius_px;
+  return o;
+}
+
 std::string SizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
 // A frame as the tracker measures it: the sensor's stuck pixels replaced first (they are the
@@ -49,10 +56,7 @@ ChunkResult TrackChunk(const FrameSource& source, size_t start, size_t count,
                        const Reference& ref, const DefectPixels& defects,
                        const LensUndistortion* lens) {
   ChunkResult out;
-  FollowerOptions o = opts;
-  o.polarity = ref.polarity;
-  o.radius_px = ref.radius_px;
-  FrameFollower tracker(o);
+  FrameFollower tracker(WithReference(opts, ref));
   ChunkCuts cuts;  // frames held back for the spheres cut by the frame's edge
   const size_t n = prefetched.empty() ? count : prefetched.size();
   for (size_t j = 0; j < n; ++j) {
@@ -189,10 +193,7 @@ void TryTheSilhouettes(const FrameAt& frame_at, size_t available, int threads, F
     f.image = CleanFrame(f.image, result->defects, film->undistort);
     run.push_back(std::move(f));
   }
-  FollowerOptions o = film->chunk_opts;
-  o.polarity = film->ref.polarity;
-  o.radius_px = film->ref.radius_px;
-  const MethodTrial trial = TryMethods(run, o, threads);
+  const MethodTrial trial = TryMethods(run, WithReference(film->chunk_opts, film->ref), threads);
   film->prepared.choice.reason += trial.reason;
   result->method_trial = trial.candidates;
   if (trial.chosen != Method::kCentroid) return;
@@ -327,12 +328,7 @@ void JoinChunk(const Film& film, ChunkResult* chunk, Seams* seams, SequenceResul
   for (HeldFrame& h : chunk->head) h.index += seam;
   for (HeldFrame& h : chunk->tail) h.index += seam;
   if (seam > 0) {
-    if (!seams->follower) {
-      FollowerOptions o = film.chunk_opts;
-      o.polarity = film.ref.polarity;
-      o.radius_px = film.ref.radius_px;
-      seams->follower.emplace(o);
-    }
+    if (!seams->follower) seams->follower.emplace(WithReference(film.chunk_opts, film.ref));
     PlaceAcrossSeam(*seams->follower, seams->tail, chunk->head, &result->frames, seam);
   }
   seams->tail = std::move(chunk->tail);
