@@ -127,6 +127,15 @@ void FrameTrack::Drop(int k) {
   sigma_px[k] = Eigen::Vector2d::Constant(kNaN);
 }
 
+std::vector<double> DimerLengthSeries(const std::vector<FrameTrack>& frames) {
+  std::vector<double> length;
+  length.reserve(frames.size());
+  for (const FrameTrack& f : frames) {
+    length.push_back(f.whole(0) && f.whole(1) ? (f.centre[1] - f.centre[0]).norm() : kNaN);
+  }
+  return length;
+}
+
 void FollowerOptions::Check() const {
   std::string bad;
   if (polarity < -1 || polarity > 1) bad += "polarity must be -1, 0 or +1; ";

@@ -22,6 +22,7 @@
 #include <cstddef>
 #include <limits>
 #include <memory>
+#include <vector>
 
 #include "tracking/plate/clipped_edge.h"
 #include "tracking/plate/plate_edge.h"
@@ -122,6 +123,11 @@ struct FrameTrack {
   // Sphere k taken for no match: not found, its centre cleared, no score.
   void Drop(int k);
 };
+
+// The distance between the two centres in each frame, in frame order, px; NaN where a sphere is
+// not found whole (FrameTrack::whole). A rigid body keeps it: its second differences are the
+// tracker's noise whatever the motion (GapNoise).
+std::vector<double> DimerLengthSeries(const std::vector<FrameTrack>& frames);
 
 class FrameFollower {
  public:

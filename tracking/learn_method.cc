@@ -189,14 +189,8 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
 TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<FrameTrack>& frames,
                                 double contact_radius_px, double gravity_px) {
   TemplateOffsets o;
-  // The dimer's length in frame order (NaN where a sphere is missing): its second differences
-  // are the tracker's noise whatever the motion (ContactRowOffset's noise_cap).
-  std::vector<double> length;
-  for (const FrameTrack& f : frames) {
-    length.push_back(f.whole(0) && f.whole(1) ? (f.centre[1] - f.centre[0]).norm()
-                                              : std::nan(""));
-  }
-  const double length_noise = GapNoise(length);
+  // The tracker's noise whatever the motion (ContactRowOffset's noise_cap).
+  const double length_noise = GapNoise(DimerLengthSeries(frames));
   for (int k = 0; k < 2; ++k) {
     if (m.choice.silhouettes) {
       o.col[k] = SilhouetteOffset(m.learnt[k], 0);

@@ -9,13 +9,7 @@ namespace dimer::tracking {
 std::array<SpherePrecision, 2> MeasurePrecision(const std::vector<FrameTrack>& frames,
                                                 const std::array<Eigen::Vector2d, 2>& bound) {
   std::array<SpherePrecision, 2> out;
-  std::vector<double> length;
-  length.reserve(frames.size());
-  for (const FrameTrack& f : frames) {
-    length.push_back(f.whole(0) && f.whole(1) ? (f.centre[1] - f.centre[0]).norm()
-                                              : std::numeric_limits<double>::quiet_NaN());
-  }
-  const double length_measured = GapNoise(length);
+  const double length_measured = GapNoise(DimerLengthSeries(frames));
   const bool length_holds = length_measured <= kNotFollowedMinPx;  // false for NaN
   for (int k = 0; k < 2; ++k) {
     SpherePrecision& p = out[k];
