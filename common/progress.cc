@@ -33,7 +33,9 @@ void ProgressMeter::Print(double done, bool final_line) {
   const double rate = elapsed > 0 ? done / elapsed : 0.0;
   std::string text;
   char buf[256];
-  if (total_ > 0) {
+  // A total is an estimate for some work (a fit that moves to a lower point profiles again):
+  // past it, the count and rate are shown without an ETA.
+  if (total_ > 0 && done <= total_) {
     const double eta = rate > 0 ? (total_ - done) / rate : 0.0;
     std::snprintf(buf, sizeof buf, "%s: %.0f/%.0f %s, %.0f %s/s, ", label_.c_str(), done, total_,
                   unit_.c_str(), rate, unit_.c_str());

@@ -23,7 +23,9 @@
 // end's apparent restitution (v_after / -v_before of its centre, 0.558 on a scene of eps 0.55)
 // is not eps, and started there the search does not find its way back to the truth: chi2 778
 // at its end against 0 at the truth (Fit.StartedAtTheTruthStaysThere).
-// Goodness of fit: chi2/dof and its p-value (goodness_of_fit.h). Below kMinFitPValue the fit is
+// Goodness of fit: chi2/dof and its p-value (goodness_of_fit.h). Below kMinFitPValue the
+// profiles (below) are searched for a lower point, and the fit moves there if one is lower by
+// more than the range's threshold (fit.cc, kProfileMoves); still below, it is
 // "no acceptable fit": no coefficient is constrained, the best point is reported only as the
 // point that fails, with the observables furthest off. Otherwise uncertainties and
 // identifiability come from the profile of chi2 along each parameter (the others re-optimised
@@ -51,8 +53,7 @@ struct FitParameter {
   // constrained | bounded_below | bounded_above | unconstrained | no_acceptable_fit (value: the
   // best point only; err and range NaN)
   std::string status;
-  std::vector<double> slice_x, slice_chi2;  // the profile through the optimum (a plain slice
-                                            // when there is no acceptable fit)
+  std::vector<double> slice_x, slice_chi2;  // the profile through the optimum
   // Every parameter where the profile reaches range_lo and range_hi (the others re-optimised
   // there); empty at an open end. The correlations are read off them (fit_correlation.h).
   std::vector<double> at_range_lo, at_range_hi;
@@ -85,7 +86,9 @@ struct FitOptions {
   int transient_periods = 100;   // periods
   int measured_periods = 100;    // periods
   std::function<void(int simulations)> progress;  // called after each simulation (may be empty)
-  // An upper estimate of the simulations a fit runs, for progress meters.
+  // An upper estimate of the simulations a fit runs, for progress meters; a fit that fails the
+  // goodness test and moves to a lower point its profiles found runs up to kProfileMoves more
+  // rounds of profiles (fit.cc).
   int EstimatedSimulations() const {
     return global_evaluations + max_evaluations * 7 / 2 + 5 * 30 * (slice_points + 13) + 4 * 8;
   }

@@ -34,6 +34,23 @@ TEST(ProgressMeter, PlainOutputIsWholeLinesWithoutCarriageReturns) {
   EXPECT_NE(text.find("sim: 10/10 periods"), std::string::npos) << text;
 }
 
+// A total that is an estimate (a fit that moves and profiles again) can be passed: the count
+// and rate are shown, never a negative ETA.
+TEST(ProgressMeter, PastItsEstimateShowsNoEta) {
+  FILE* log = std::tmpfile();
+  ASSERT_NE(log, nullptr);
+  {
+    ProgressMeter m("fit", "simulations", 10, true, log, /*live=*/false, /*plain_interval_s=*/0);
+    m.Update(5);
+    m.Update(15);
+  }
+  const std::string text = Contents(log);
+  std::fclose(log);
+  EXPECT_NE(text.find("fit: 5/10 simulations"), std::string::npos) << text;
+  EXPECT_NE(text.find("fit: 15 simulations"), std::string::npos) << text;
+  EXPECT_EQ(text.find("ETA -"), std::string::npos) << text;
+}
+
 TEST(ProgressMeter, PlainOutputIsThrottledToItsInterval) {
   FILE* log = std::tmpfile();
   ASSERT_NE(log, nullptr);
