@@ -139,6 +139,7 @@ std::vector<double> DimerLengthSeries(const std::vector<FrameTrack>& frames) {
 void FollowerOptions::Check() const {
   std::string bad;
   if (polarity < -1 || polarity > 1) bad += "polarity must be -1, 0 or +1; ";
+  if (lone_search_every < 1) bad += "a lone sphere's whole-frame search must be every >= 1 frames; ";
   if (!std::isnan(radius_px) && !(radius_px >= 3)) bad += "sphere radius must be >= 3 px; ";
   if (!(psf_sigma_px >= 0 && psf_sigma_px <= 5)) bad += "PSF sigma must be 0..5 px; ";
   if (!(std::abs(plate_slope) <= kPlateMaxSlope)) bad += "plate slope must be within +-0.2; ";
@@ -213,13 +214,29 @@ bool FrameFollower::OutOfViewByTheDimer(const cv::Mat& frame, int j) const {
   return in < radius_px_ + kCutWholeMarginPx;
 }
 
+bool FrameFollower::OtherCanBeOutOfView(const FrameTrack& t) const {
+  const double length = options_.dimer_length_px;
+  if (t.found[0] == t.found[1] || !std::isfinite(length) || !(width_ > 0)) return false;
+  const Eigen::Vector2d c = t.centre[t.found[0] ? 0 : 1];
+  for (int side : {+1, -1}) {
+    for (double theta = -kCutMaxTiltRad; theta <= kCutMaxTiltRad; theta += 0.05) {
+      const Eigen::Vector2d p = c + side * length * Eigen::Vector2d(std::cos(theta), std::sin(theta));
+      const double in = std::min(std::min(p.x() + 0.5, width_ - 0.5 - p.x()),
+                                 std::min(p.y() + 0.5, height_ - 0.5 - p.y()));
+      if (in < radius_px_) return true;
+    }
+  }
+  return false;
+}
+
 bool FrameFollower::Follow(const cv::Mat& frame, FrameTrack* out) {
   if (!std::isfinite(plate_row_)) return false;
   // One sphere followed: the other is searched for on the whole frame unless the dimer's last
   // vector puts it out of view or cut by the edge (then step 5 places it if it shows): a frame
   // with one sphere in view costs a following, not an acquisition.
   if (!locked_[0] && !locked_[1]) return false;
-  if (!(locked_[0] && locked_[1]) && !OutOfViewByTheDimer(frame, locked_[0] ? 0 : 1)) {
+  if (!(locked_[0] && locked_[1]) && !OutOfViewByTheDimer(frame, locked_[0] ? 0 : 1) &&
+      lone_frames_left_ == 0) {
     return false;
   }
   std::array<Eigen::Vector2d, 2> predicted{last_[0] + velocity_[0], last_[1] + velocity_[1]};
@@ -235,8 +252,9 @@ bool FrameFollower::Follow(const cv::Mat& frame, FrameTrack* out) {
   for (int k = 0; k < 2; ++k) {
     if (!locked_[k]) continue;
     // A constant-velocity prediction: < 1 px per frame at 2000 frames/s.
-    const SphereMeasurement m =
-        locator_[k]->Locate(frame, Prediction(predicted[k], &predicted[1 - k], *out, true));
+    // The other's place is unknown where the dimer was never seen in this chunk.
+    const Eigen::Vector2d* other = locked_[1 - k] || dimer_seen_ ? &predicted[1 - k] : nullptr;
+    const SphereMeasurement m = locator_[k]->Locate(frame, Prediction(predicted[k], other, *out, true));
     // A sphere cut by the frame's edge is placed by the dimer once the other is found.
     if (places_cuts() && m.status == SphereMeasurement::Status::kClipped) {
       cut[k] = true;
@@ -496,6 +514,15 @@ void FrameFollower::Commit(const FrameTrack& t) {
   } else if (dimer_known_ && ++dimer_age_ > kCutMaxDimerAgeFrames) {
     dimer_known_ = false;
   }
+  if (t.acquired) {
+    // Two searches in a row that found one sphere, where the dimer can reach out of view: one
+    // alone may have missed a sphere in view (a 3-frame film of 160x96 px: docs.install).
+    lone_searches_ = t.found[0] != t.found[1] ? lone_searches_ + 1 : 0;
+    lone_frames_left_ = lone_searches_ >= 2 && OtherCanBeOutOfView(t)
+                            ? options_.lone_search_every - 1 : 0;
+  } else if (lone_frames_left_ > 0) {
+    --lone_frames_left_;
+  }
   for (int k = 0; k < 2; ++k) {
     velocity_[k] = (t.found[k] && locked_[k]) ? Eigen::Vector2d(t.centre[k] - last_[k])
                                               : Eigen::Vector2d(0, 0);
@@ -518,6 +545,8 @@ FrameTrack FrameFollower::Process(const cv::Mat& frame, size_t index) {
   }
   FrameTrack out;
   out.index = index;
+  width_ = frame.cols;
+  height_ = frame.rows;
   if (!Follow(frame, &out)) Acquire(frame, &out);
   Commit(out);
   return out;

@@ -33,6 +33,11 @@
 
 namespace dimer::tracking {
 
+// FollowerOptions::lone_search_every's default: a whole-frame search costs ~6 ms, a following
+// ~0.4 ms (bench_cut_spheres), so every 16th frame adds ~0.4 ms a frame and a sphere missed
+// twice in a row waits at most 15 frames.
+inline constexpr int kLoneSearchEveryFrames = 16;
+
 struct FollowerOptions {
   Method method = Method::kCentroid;  // sub-pixel method
   int polarity = 0;                   // +1 bright spheres, -1 dark (backlit), 0 automatic
@@ -73,6 +78,12 @@ struct FollowerOptions {
   std::shared_ptr<const std::array<Appearance, 2>> cut_appearance;
   std::array<Eigen::Vector2d, 2> cut_offset{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
   std::array<Eigen::Vector2d, 2> cut_offset_err{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
+  // Two frames in a row whose whole-frame search finds one sphere, the dimer's length known and
+  // able to put the other out of view: the other is out of view or cut on the far side of the
+  // dimer (it cannot cross to the near side between frames, half a turn away), so the one is
+  // followed and the whole frame searched again only every this many frames, in case the other
+  // was missed (1: every frame). bench/bench_cut_spheres measures the trade.
+  int lone_search_every = kLoneSearchEveryFrames;
 
   void Check() const;  // InputError listing every invalid field
 };
@@ -151,6 +162,11 @@ class FrameFollower {
   // its last position, its disc is out of `frame` or within kCutWholeMarginPx of its edge (no
   // whole-frame search could find it there).
   bool OutOfViewByTheDimer(const cv::Mat& frame, int j) const;
+  // One sphere found in `t`: whether the other, on the circle of the dimer's length about it
+  // (either side, tilted up to kCutMaxTiltRad), can lie out of view or cut by the frame's edge.
+  // Where it cannot, a search that found one sphere missed the other in view. False without
+  // the dimer's length.
+  bool OtherCanBeOutOfView(const FrameTrack& t) const;
   void Acquire(const cv::Mat& frame, FrameTrack* out);
   bool uses_template() const;
   // A sphere cut by the frame's edge is placed by a learnt appearance: the method's own, or
@@ -219,6 +235,11 @@ class FrameFollower {
   bool dimer_known_ = false;
   bool dimer_seen_ = false;  // dimer_ was measured in this follower's frames (maybe long ago)
   int dimer_age_ = 0;
+  // Frames left before a lone sphere's whole-frame search again (lone_search_every), and how
+  // many whole-frame searches in a row found one sphere.
+  int lone_frames_left_ = 0;
+  int lone_searches_ = 0;
+  int width_ = 0, height_ = 0;  // the frames'
 };
 
 }  // namespace dimer::tracking
