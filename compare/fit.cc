@@ -261,9 +261,10 @@ Minimum Minimise(Objective* obj, std::vector<double> start, int max_eval, nlopt_
 // against +-0.0006, +-0.014 against +-0.012).
 // The profile walks outward from the optimum, each point's search started from its
 // neighbour's minimum; a profile value is never above the slice's (the search starts there).
-// `*lowest` (chi2 `*lowest_chi2`) is replaced by any point of the profile below it.
+// `*lowest` (chi2 `*lowest_chi2`) is replaced by any point of the profile below it. Without
+// `ranges` (a fit that failed the goodness test) the range's ends are not located.
 FitParameter Slice(Objective* obj, const std::vector<double>& best, double chi2_min,
-                   double threshold, size_t k, int points, bool profile,
+                   double threshold, size_t k, int points, bool profile, bool ranges,
                    std::vector<double>* lowest, double* lowest_chi2) {
   const ParamSpec& spec = Specs()[k];
   FitParameter p;
@@ -299,6 +300,7 @@ FitParameter Slice(Objective* obj, const std::vector<double>& best, double chi2_
   for (size_t i = 0; i < p.slice_x.size(); ++i) {
     if (p.slice_chi2[i] < *lowest_chi2) *lowest_chi2 = p.slice_chi2[i], *lowest = at_min[i];
   }
+  if (!ranges) return p;
   // The contiguous run of points within the threshold around the optimum; each closed end is
   // then located by bisection between the last point in and the first point out.
   const double limit = chi2_min + threshold;
@@ -445,7 +447,7 @@ FitResult FitCoefficients(const Analysis& track, const sim::SimOptions& scene,
     Minimum lowest{x, r.chi2};
     for (size_t k = 0; k < Specs().size(); ++k) {
       r.params.push_back(Slice(&obj, x, r.chi2, r.threshold, k, options.slice_points, true,
-                               &lowest.x, &lowest.chi2));
+                               r.acceptable, &lowest.x, &lowest.chi2));
     }
     if (r.acceptable || move == kProfileMoves || !(lowest.chi2 < r.chi2 - r.threshold)) break;
     best = lowest;
