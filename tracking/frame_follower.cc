@@ -40,6 +40,12 @@ constexpr int kCutMaxDimerAgeFrames = 4;
 constexpr double kCutMaxTiltRad = 0.6;
 constexpr double kCutWholeMarginPx = 6.0;
 
+// How far `p` lies inside `frame`, px, to its nearest edge (pixel centres; negative: outside).
+double InsideBy(const cv::Mat& frame, const Eigen::Vector2d& p) {
+  return std::min(std::min(p.x() + 0.5, frame.cols - 0.5 - p.x()),
+                  std::min(p.y() + 0.5, frame.rows - 0.5 - p.y()));
+}
+
 RefineContext Context(int polarity, double plate_row, const Eigen::Vector2d& self,
                       const Eigen::Vector2d* other) {
   RefineContext ctx;
@@ -139,7 +145,7 @@ std::vector<double> DimerLengthSeries(const std::vector<FrameTrack>& frames) {
 void FollowerOptions::Check() const {
   std::string bad;
   if (polarity < -1 || polarity > 1) bad += "polarity must be -1, 0 or +1; ";
-  if (lone_search_every < 1) bad += "a lone sphere's whole-frame search must be every >= 1 frames; ";
+  if (lone_search_every < 1) bad += "a lone sphere's whole-frame search must be every >= 1 frame; ";
   if (!std::isnan(radius_px) && !(radius_px >= 3)) bad += "sphere radius must be >= 3 px; ";
   if (!(psf_sigma_px >= 0 && psf_sigma_px <= 5)) bad += "PSF sigma must be 0..5 px; ";
   if (!(std::abs(plate_slope) <= kPlateMaxSlope)) bad += "plate slope must be within +-0.2; ";
@@ -209,24 +215,34 @@ bool FrameFollower::OutOfViewByTheDimer(const cv::Mat& frame, int j) const {
   if (!places_cuts() || !dimer_seen_) return false;
   const Eigen::Vector2d other = j == 0 ? Eigen::Vector2d(last_[0] + dimer_)
                                        : Eigen::Vector2d(last_[1] - dimer_);
-  const double in = std::min(std::min(other.x() + 0.5, frame.cols - 0.5 - other.x()),
-                             std::min(other.y() + 0.5, frame.rows - 0.5 - other.y()));
-  return in < radius_px_ + kCutWholeMarginPx;
+  return InsideBy(frame, other) < radius_px_ + kCutWholeMarginPx;
 }
 
-bool FrameFollower::OtherCanBeOutOfView(const FrameTrack& t) const {
+bool FrameFollower::OtherCanBeOutOfView(const cv::Mat& frame, const FrameTrack& t) const {
   const double length = options_.dimer_length_px;
-  if (t.found[0] == t.found[1] || !std::isfinite(length) || !(width_ > 0)) return false;
+  if (t.found[0] == t.found[1] || !std::isfinite(length)) return false;
   const Eigen::Vector2d c = t.centre[t.found[0] ? 0 : 1];
   for (int side : {+1, -1}) {
     for (double theta = -kCutMaxTiltRad; theta <= kCutMaxTiltRad; theta += 0.05) {
-      const Eigen::Vector2d p = c + side * length * Eigen::Vector2d(std::cos(theta), std::sin(theta));
-      const double in = std::min(std::min(p.x() + 0.5, width_ - 0.5 - p.x()),
-                                 std::min(p.y() + 0.5, height_ - 0.5 - p.y()));
-      if (in < radius_px_) return true;
+      const Eigen::Vector2d p =
+          c + side * length * Eigen::Vector2d(std::cos(theta), std::sin(theta));
+      if (InsideBy(frame, p) < radius_px_) return true;
     }
   }
   return false;
+}
+
+void FrameFollower::PlanSearches(const cv::Mat& frame, const FrameTrack& t) {
+  if (!t.acquired) {
+    if (lone_frames_left_ > 0) --lone_frames_left_;
+    return;
+  }
+  // Two searches in a row that found one sphere, where the dimer can reach out of view: one
+  // alone may have missed a sphere in view (a 3-frame film of 160x96 px: docs.install).
+  lone_searches_ = t.found[0] != t.found[1] ? lone_searches_ + 1 : 0;
+  lone_frames_left_ = lone_searches_ >= 2 && OtherCanBeOutOfView(frame, t)
+                          ? options_.lone_search_every - 1
+                          : 0;
 }
 
 bool FrameFollower::Follow(const cv::Mat& frame, FrameTrack* out) {
@@ -254,7 +270,8 @@ bool FrameFollower::Follow(const cv::Mat& frame, FrameTrack* out) {
     // A constant-velocity prediction: < 1 px per frame at 2000 frames/s.
     // The other's place is unknown where the dimer was never seen in this chunk.
     const Eigen::Vector2d* other = locked_[1 - k] || dimer_seen_ ? &predicted[1 - k] : nullptr;
-    const SphereMeasurement m = locator_[k]->Locate(frame, Prediction(predicted[k], other, *out, true));
+    const SphereMeasurement m =
+        locator_[k]->Locate(frame, Prediction(predicted[k], other, *out, true));
     // A sphere cut by the frame's edge is placed by the dimer once the other is found.
     if (places_cuts() && m.status == SphereMeasurement::Status::kClipped) {
       cut[k] = true;
@@ -370,10 +387,8 @@ void FrameFollower::SearchCutOnCircle(const cv::Mat& frame, FrameTrack* out) con
       const Eigen::Vector2d p = c + side * length * Eigen::Vector2d(std::cos(theta),
                                                                     std::sin(theta));
       if (p.y() > out->PlateRowAt(p.x()) - 0.5 * a.radius_px) continue;  // below the plate
-      const double in_col = std::min(p.x() + 0.5, frame.cols - 0.5 - p.x());
-      const double in_row = std::min(p.y() + 0.5, frame.rows - 0.5 - p.y());
       // Cut by the frame's edge (whole ones are acquired) and not mostly out of it.
-      const double in = std::min(in_col, in_row);
+      const double in = InsideBy(frame, p);
       if (in > a.radius_px + kCutWholeMarginPx || in < -0.2 * a.radius_px) continue;
       MaskContext ctx;
       ctx.plate_row = out->PlateRowAt(p.x());
@@ -514,15 +529,6 @@ void FrameFollower::Commit(const FrameTrack& t) {
   } else if (dimer_known_ && ++dimer_age_ > kCutMaxDimerAgeFrames) {
     dimer_known_ = false;
   }
-  if (t.acquired) {
-    // Two searches in a row that found one sphere, where the dimer can reach out of view: one
-    // alone may have missed a sphere in view (a 3-frame film of 160x96 px: docs.install).
-    lone_searches_ = t.found[0] != t.found[1] ? lone_searches_ + 1 : 0;
-    lone_frames_left_ = lone_searches_ >= 2 && OtherCanBeOutOfView(t)
-                            ? options_.lone_search_every - 1 : 0;
-  } else if (lone_frames_left_ > 0) {
-    --lone_frames_left_;
-  }
   for (int k = 0; k < 2; ++k) {
     velocity_[k] = (t.found[k] && locked_[k]) ? Eigen::Vector2d(t.centre[k] - last_[k])
                                               : Eigen::Vector2d(0, 0);
@@ -545,10 +551,9 @@ FrameTrack FrameFollower::Process(const cv::Mat& frame, size_t index) {
   }
   FrameTrack out;
   out.index = index;
-  width_ = frame.cols;
-  height_ = frame.rows;
   if (!Follow(frame, &out)) Acquire(frame, &out);
   Commit(out);
+  PlanSearches(frame, out);
   return out;
 }
 

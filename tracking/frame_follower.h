@@ -166,7 +166,10 @@ class FrameFollower {
   // (either side, tilted up to kCutMaxTiltRad), can lie out of view or cut by the frame's edge.
   // Where it cannot, a search that found one sphere missed the other in view. False without
   // the dimer's length.
-  bool OtherCanBeOutOfView(const FrameTrack& t) const;
+  bool OtherCanBeOutOfView(const cv::Mat& frame, const FrameTrack& t) const;
+  // After frame `t` of `frame`: how many frames follow a lone sphere before the whole frame is
+  // searched again (FollowerOptions::lone_search_every).
+  void PlanSearches(const cv::Mat& frame, const FrameTrack& t);
   void Acquire(const cv::Mat& frame, FrameTrack* out);
   bool uses_template() const;
   // A sphere cut by the frame's edge is placed by a learnt appearance: the method's own, or
@@ -239,7 +242,6 @@ class FrameFollower {
   // many whole-frame searches in a row found one sphere.
   int lone_frames_left_ = 0;
   int lone_searches_ = 0;
-  int width_ = 0, height_ = 0;  // the frames'
 };
 
 }  // namespace dimer::tracking
