@@ -15,6 +15,7 @@
 //   time `dimerlab track` on it as a user runs it.
 #include <Eigen/Core>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -99,13 +100,9 @@ Run Track(const Film& f, size_t chunk, int lone_search_every = kLoneSearchEveryF
 
 // In-view bins of a cut sphere: [0.3, 0.5), [0.5, 0.7), [0.7, 0.9), [0.9, 1].
 constexpr int kBins = 4;
-int Bin(double in_view) { return in_view < 0.5 ? 0 : in_view < 0.7 ? 1 : in_view < 0.9 ? 2 : 3; }
-
-void Row(const char* label, const Film& f, const Run& run, int width, double wide_seconds) {
-  const SequenceResult& r = run.r;
-  const double radius = f.poses[0].radius_px;
-  // Each sphere's mean error where whole: the film's offset, which every frame shares.
-  Eigen::Vector2d bias[2] = {Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
+// Each sphere's mean error where whole: the film's offset, which every frame shares.
+std::array<Eigen::Vector2d, 2> WholeBias(const Film& f, const SequenceResult& r) {
+  std::array<Eigen::Vector2d, 2> bias{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
   for (int k = 0; k < 2; ++k) {
     size_t n = 0;
     for (size_t i = 0; i < r.frames.size(); ++i) {
@@ -114,6 +111,15 @@ void Row(const char* label, const Film& f, const Run& run, int width, double wid
     }
     if (n) bias[k] /= double(n);
   }
+  return bias;
+}
+
+int Bin(double in_view) { return in_view < 0.5 ? 0 : in_view < 0.7 ? 1 : in_view < 0.9 ? 2 : 3; }
+
+void Row(const char* label, const Film& f, const Run& run, int width, double wide_seconds) {
+  const SequenceResult& r = run.r;
+  const double radius = f.poses[0].radius_px;
+  const std::array<Eigen::Vector2d, 2> bias = WholeBias(f, r);
   size_t half = 0, found = 0, swaps = 0, cut_frames = 0;
   double worst[kBins] = {}, sum2[kBins] = {}, z2[kBins] = {};
   size_t count[kBins] = {};
@@ -158,15 +164,7 @@ void KnobRow(const Film& f, const char* label, size_t chunk, int every, int widt
   const double radius = f.poses[0].radius_px;
   size_t half = 0, found = 0, searched = 0, cut = 0;
   double sum2 = 0;
-  Eigen::Vector2d bias[2] = {Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
-  for (int k = 0; k < 2; ++k) {
-    size_t n = 0;
-    for (size_t i = 0; i < run.r.frames.size(); ++i) {
-      if (!run.r.frames[i].whole(k)) continue;
-      bias[k] += run.r.frames[i].centre[k] - (k ? f.poses[i].right : f.poses[i].left), ++n;
-    }
-    if (n) bias[k] /= double(n);
-  }
+  const std::array<Eigen::Vector2d, 2> bias = WholeBias(f, run.r);
   for (size_t i = 0; i < run.r.frames.size(); ++i) {
     const FrameTrack& t = run.r.frames[i];
     searched += t.acquired;

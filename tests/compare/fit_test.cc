@@ -138,6 +138,17 @@ TEST(Fit, FindsADriftWhoseSlipBinsMoveInSteps) {
   EXPECT_LT(r.params[0].err, 0.05) << "eps: a range that says nothing";
 }
 
+// The budget of the fits that must fail. The verdict is under test, not the ranges: a failing
+// fit profiles every parameter up to kProfileMoves + 1 times (fit.cc), and 5 points a profile
+// keep the tests short under the sanitizers (13 minutes with 15,
+// Fit.SaysWhenNoCoefficientsReproduceTheTrack).
+FitOptions FailingFitOptions() {
+  FitOptions fo;
+  fo.global_evaluations = 100;
+  fo.slice_points = 5;
+  return fo;
+}
+
 // A track no coefficients can reproduce: the drift of a simulation whose bouncing end leaves the
 // plate three times faster than it arrives (take-off speed x3, apparent restitution ~1.7 with
 // eps <= 0.95). The report must say so and give no coefficient.
@@ -150,12 +161,7 @@ TEST(Fit, SaysWhenNoCoefficientsReproduceTheTrack) {
   const int b = track.periods.settled.summary.bouncing_sphere;
   ASSERT_GE(b, 0);
   for (Impact& i : track.contacts.sphere[b].impacts) i.v_after *= 3;
-  FitOptions fo;
-  fo.global_evaluations = 100;
-  // The verdict is under test, not the ranges: a failing fit profiles every parameter up to
-  // kProfileMoves + 1 times (fit.cc), and 5 points a profile keep the test short under the
-  // sanitizers (13 minutes with 15, Fit.SaysWhenNoCoefficientsReproduceTheTrack).
-  fo.slice_points = 5;
+  const FitOptions fo = FailingFitOptions();
   const FitResult r = FitCoefficients(track, truth, fo);
   Print(r);
   EXPECT_FALSE(r.acceptable);
@@ -229,12 +235,7 @@ TEST(Fit, SaysWhenATiltedPlateIsFittedAsLevel) {
   const double at_truth_tilted = FitChi2(track, truth, {}), at_truth_level = FitChi2(track, level, {});
   std::printf("chi2 at the truth: tilted %.3g, level %.3g\n", at_truth_tilted, at_truth_level);
   EXPECT_LT(at_truth_tilted, 1e-6);
-  FitOptions fo;
-  fo.global_evaluations = 100;
-  // The verdict is under test, not the ranges: a failing fit profiles every parameter up to
-  // kProfileMoves + 1 times (fit.cc), and 5 points a profile keep the test short under the
-  // sanitizers (13 minutes with 15, Fit.SaysWhenNoCoefficientsReproduceTheTrack).
-  fo.slice_points = 5;
+  const FitOptions fo = FailingFitOptions();
   const FitResult r = FitCoefficients(track, level, fo);
   Print(r);
   EXPECT_GT(at_truth_level, r.chi2);
