@@ -146,6 +146,7 @@ void FollowerOptions::Check() const {
   std::string bad;
   if (polarity < -1 || polarity > 1) bad += "polarity must be -1, 0 or +1; ";
   if (lone_search_every < 1) bad += "a lone sphere's whole-frame search must be every >= 1 frame; ";
+  if (coarse_candidates < 0) bad += "the whole-frame search's coarse peaks must be >= 0; ";
   if (!std::isnan(radius_px) && !(radius_px >= 3)) bad += "sphere radius must be >= 3 px; ";
   if (!(psf_sigma_px >= 0 && psf_sigma_px <= 5)) bad += "PSF sigma must be 0..5 px; ";
   if (!(std::abs(plate_slope) <= kPlateMaxSlope)) bad += "plate slope must be within +-0.2; ";
@@ -467,7 +468,8 @@ void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
     det.centres.clear();
     for (const Located& l :
          FindAppearance(frame, (*options_.appearance)[0], plate_low,
-                        kTemplateSeparationR * radius_px_, kMinTemplateScore)) {
+                        kTemplateSeparationR * radius_px_, kMinTemplateScore,
+                        options_.coarse_candidates)) {
       det.centres.push_back(l.position);
     }
     det.radii_px.assign(det.centres.size(), radius_px_);

@@ -33,9 +33,10 @@
 
 namespace dimer::tracking {
 
-// FollowerOptions::lone_search_every's default: a whole-frame search costs ~6 ms, a following
-// ~0.4 ms (bench_cut_spheres), so every 16th frame adds ~0.4 ms a frame and a sphere missed
-// twice in a row waits at most 15 frames.
+// FollowerOptions::lone_search_every's default: a whole-frame search costs a few ms (~6 at
+// full resolution, a third of it from half resolution: coarse_candidates), a following ~0.4 ms
+// (bench_cut_spheres), so every 16th frame adds a fraction of a following's time a frame and a
+// sphere missed twice in a row waits at most 15 frames.
 inline constexpr int kLoneSearchEveryFrames = 16;
 
 struct FollowerOptions {
@@ -84,6 +85,10 @@ struct FollowerOptions {
   // followed and the whole frame searched again only every this many frames, in case the other
   // was missed (1: every frame). bench/bench_cut_spheres measures the trade.
   int lone_search_every = kLoneSearchEveryFrames;
+  // Method::kTemplate: a whole-frame search (acquisition) correlates the frame at half
+  // resolution and then at full resolution about this many of its best peaks (FindAppearance,
+  // kCoarseCandidates); 0: at full resolution everywhere. bench/bench_cut_spheres measures it.
+  int coarse_candidates = kCoarseCandidates;
 
   void Check() const;  // InputError listing every invalid field
 };

@@ -121,6 +121,42 @@ TEST(FindAppearance, FindsBothSpheresOfAFrameBestFirst) {
   EXPECT_LT(((left_first ? p1 : p0) - Eigen::Vector2d(170.8, 55.6)).norm(), 0.5);
 }
 
+// The whole-frame search at half resolution first (kCoarseCandidates) finds what the search at
+// every whole pixel finds: the same spheres, best first, at the same places, on frames with
+// two spheres anywhere (touching ones too), one, or none.
+TEST(FindAppearance, TheCoarseSearchFindsWhatTheFullOneFinds) {
+  const Appearance a = Exact();
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> col(kR, 320 - kR), row(kR, 120 - kR);
+  int found = 0;
+  for (int i = 0; i < 40; ++i) {
+    const int spheres = i % 4 == 3 ? 0 : i % 4 == 2 ? 1 : 2;
+    const Eigen::Vector2d first(col(rng), row(rng));
+    cv::Mat img = Render(320, 120, spheres ? first.x() : -3 * kR, first.y(), 2.0, 200 + i);
+    if (spheres == 2) {  // the second a diameter or more away, its half of the frame pasted in
+      Eigen::Vector2d second;
+      do {
+        second = {col(rng), row(rng)};
+      } while ((second - first).norm() < 2 * kR);
+      const cv::Mat other = Render(320, 120, second.x(), second.y(), 2.0, 300 + i);
+      const int cut = int(std::lround(0.5 * (first.x() + second.x())));
+      const cv::Rect side = second.x() > first.x() ? cv::Rect(cut, 0, 320 - cut, 120)
+                                                   : cv::Rect(0, 0, cut, 120);
+      if (std::abs(second.x() - first.x()) > 2 * kR) other(side).copyTo(img(side));
+      else cv::max(img, other, img);  // one above the other: both drawn
+    }
+    const std::vector<Located> full = FindAppearance(img, a, NAN, 1.5 * kR, 0.5, 0);
+    const std::vector<Located> coarse = FindAppearance(img, a, NAN, 1.5 * kR, 0.5);
+    ASSERT_EQ(coarse.size(), full.size()) << "frame " << i;
+    for (size_t k = 0; k < full.size(); ++k) {
+      EXPECT_LT((coarse[k].position - full[k].position).norm(), 1e-3) << "frame " << i;
+      EXPECT_NEAR(coarse[k].score, full[k].score, 1e-4) << "frame " << i;
+    }
+    found += int(full.size());
+  }
+  EXPECT_GE(found, 40);  // the frames hold 50 spheres
+}
+
 // Reference rows of a sphere whose bottom is lift(i) px above a plate swinging by 0.5 px, with an
 // offset of 3.2 px above its centre (centre = row + offset) and noise 0.02 px.
 constexpr double kContactR = 23.75, kContactOffset = 3.2;
