@@ -22,6 +22,17 @@ TEST(Tracker, ThePsfSigmaMustBeABlurWidth) {
   }
 }
 
+TEST(Tracker, TheWholeFrameSearchesKnobsMustBeCounts) {
+  FollowerOptions o;
+  o.coarse_candidates = 0;  // the full map: allowed
+  EXPECT_NO_THROW(o.Check());
+  o.coarse_candidates = -1;
+  EXPECT_THROW(o.Check(), UsageError);
+  o.coarse_candidates = kCoarseCandidates;
+  o.lone_search_every = 0;
+  EXPECT_THROW(o.Check(), UsageError);
+}
+
 TEST(Detector, PolarityFollowsTheLighting) {
   for (Lighting l : {Lighting::kDisc, Lighting::kBacklit, Lighting::kReflect}) {
     RenderOptions o;
