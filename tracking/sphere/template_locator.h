@@ -127,8 +127,9 @@ Located SearchCutAppearance(const cv::Mat& frame, const Appearance& a,
                             double min_in_view);
 
 // FindAppearance's default `coarse_candidates`: the whole frame searched at half resolution,
-// then at full resolution about this many of the best coarse peaks. The full-resolution map
-// cost ~6 ms a frame at 512x256 and R 23.75 px; bench_cut_spheres measures the trade.
+// then at full resolution about this many of the best coarse peaks, finding what the full map
+// finds (FindAppearance.TheCoarseSearchFindsWhatTheFullOneFinds) at a third of its ~6 ms a
+// frame at 512x256 and R 23.75 px (bench_cut_spheres).
 inline constexpr int kCoarseCandidates = 6;
 
 // Whole-frame search (acquisition): the best match above `plate_row` (NaN: anywhere), and the
