@@ -33,10 +33,10 @@
 
 namespace dimer::tracking {
 
-// FollowerOptions::lone_search_every's default: a whole-frame search costs a few ms (~6 at
-// full resolution, a third of it from half resolution: coarse_candidates), a following ~0.4 ms
-// (bench_cut_spheres), so every 16th frame adds a fraction of a following's time a frame and a
-// sphere missed twice in a row waits at most 15 frames.
+// FollowerOptions::lone_search_every's default: a whole-frame search costs a few times a
+// following's ~0.4 ms (kCoarseCandidates; bench_cut_spheres), so every 16th frame adds a
+// fraction of a following's time a frame and a sphere missed twice in a row waits at most 15
+// frames.
 inline constexpr int kLoneSearchEveryFrames = 16;
 
 struct FollowerOptions {

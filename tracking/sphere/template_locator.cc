@@ -470,8 +470,7 @@ cv::Mat CorrelationMap(const cv::Mat& image, const cv::Mat& templ, const cv::Mat
 // frame, the template and its mask), then at full resolution in a window of +-kCoarseWindowPx
 // about each of the `candidates` best coarse peaks, `suppress_px` (full px) apart; -1
 // elsewhere. A sphere's peak is among them, as a half-size sphere still correlates with its
-// half-size appearance (FindAppearance.TheCoarseSearchFindsWhatTheFullOneFinds); a frame
-// searched whole costs a third of the time (bench_cut_spheres).
+// half-size appearance (what it costs and finds: kCoarseCandidates).
 cv::Mat SearchCoarseToFine(const cv::Mat& image, const cv::Mat& templ, const cv::Mat& mask,
                            double suppress_px, int candidates) {
   cv::Mat small_image, small_templ, mask_f, small_mask_f;
