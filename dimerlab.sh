@@ -68,6 +68,28 @@ run_tests() {
   return "$rc"
 }
 
+# What the sanitizers leave to the Release `test` stage: runs that repeat, with other
+# assertions, a code path that a sanitized test already runs (ERE alternatives, one per line).
+SANITIZE_SKIP=(
+  # POV-Ray footage: each lighting's film is tracked once, sanitized, by its povray.render
+  # fixture and read by its targets check; its plate, coverage, scatter and metres checks, the
+  # noise seeds and levels, the film leaving the frame (the cut-sphere unit tests stay) and the
+  # scale on films other than front_point repeat that run with other assertions.
+  '^povray[.](plate|coverage|scatter|metres)[.]'
+  '^povray[.](noise_seeds|lower_levels|quarter_range|leaving_the_frame)$'
+  '^povray[.]dimer_length[.](cluttered_backdrop|front_point_ar2_0|front_softbox|mistaken_ar|one_sided_gain_ramp|rolled_8_degrees|underexposed)$'
+  '^PovrayTiltedPlate[.]'
+  # Films render -> track -> compare: jump_backlit stays; the drifts add the fit (sanitized in
+  # Fit.SaysWhenNoCoefficientsReproduceTheTrack) and the tilt (in the compare unit tests).
+  '^Films/Pipeline[.].*/drift_'
+  # The fit's long searches: 4,390 simulations or more each, 8-12 minutes sanitized.
+  '^Fit[.](StartedAtTheTruthStaysThere|FindsADriftWhoseSlipBinsMoveInSteps|RecoversRestitutionAndImpactFrictionFromASimulatedDrift|SaysWhenATiltedPlateIsFittedAsLevel)$'
+  # Bit-identical reruns (not memory), and the documentation's command lines, which each
+  # command's own tests run.
+  '^FileSchema[.]ChunkedCompressedFilesStayBitIdenticalOnRerun$'
+  '^docs[.](examples|tracking_example)$'
+)
+
 sanitize() {
   setup
   # -O1 -g1 (line tables, enough for file:line in a sanitizer's report), not -O2 -g: the
@@ -75,20 +97,10 @@ sanitize() {
   build_dir build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDIMERLAB_SANITIZE=ON \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DDIMERLAB_WERROR=ON -DDIMERLAB_BENCH=OFF \
     -DDIMERLAB_POVRAY_CACHE_DIR="$ROOT/build/povray_footage_cache"  # the same footage, rendered once
-  # The plate, coverage and scatter checks of a POV-Ray case repeat its targets check's tracking
-  # run with other assertions (all four run in `test`); under the sanitizers one run per case
-  # covers the same code, at a quarter of the time. So do the scale from the dimer's length on
-  # films other than front_point (and its mistaken A_r), nine noise seeds of one film, and one
-  # film's levels lowered or in a quarter of 16 bits (bit16 is tracked). Three fit tests are
-  # left out: Fit.StartedAtTheTruthStaysThere (12 minutes under the sanitizers),
-  # Fit.FindsADriftWhoseSlipBinsMoveInSteps (96-112 s in Release) and Fit.RecoversRestitution...
-  # (8 minutes, 4,390 simulations). The same code runs sanitized in the fit of Films/Pipeline's
-  # drift_backlit film (search, profiles, correlations) and in Fit.SaysWhen... (a failing fit's
-  # moves). docs.examples runs the documentation's command lines (4-7 minutes sanitized, a fit
-  # among them), whose code each command's own tests cover.
+  local skip
+  skip=$(IFS='|'; echo "${SANITIZE_SKIP[*]}")
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 DIMERLAB_TEST_SCALE=0.2 \
-    ctest --test-dir build-asan --output-on-failure -j "$JOBS" \
-      -E '^povray[.](plate|coverage|scatter)[.]|^povray[.](noise_seeds|lower_levels|quarter_range)$|^povray[.]dimer_length[.](cluttered_backdrop|front_point_ar2_0|front_softbox|one_sided_gain_ramp|rolled_8_degrees|underexposed)$|^docs[.]examples$|^Fit[.](StartedAtTheTruthStaysThere|FindsADriftWhoseSlipBinsMoveInSteps|RecoversRestitutionAndImpactFrictionFromASimulatedDrift)$'
+    ctest --test-dir build-asan --output-on-failure -j "$JOBS" -E "$skip"
 }
 
 # Every benchmark program; each one's tables also go to bench/results/MACHINE/NAME.tsv
