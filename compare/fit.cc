@@ -12,6 +12,7 @@
 #include "common/interrupt.h"
 #include "compare/fit_correlation.h"
 #include "compare/fit_observables.h"
+#include "compare/fit_search.h"
 #include "compare/goodness_of_fit.h"
 #include "compare/simulate.h"
 
@@ -30,7 +31,7 @@ constexpr int kProfileEvaluations = 30;   // profile: budget of each re-optimisa
 constexpr double kProfileStep = 0.03;     // profile: its initial step, fraction of each range
 constexpr int kScatterTrials = 8;         // trials per estimate of the sampling scatter
 // Times the fit moves to a point its own profiles found lower than its optimum by more than the
-// threshold, searching and profiling again from there (FitCoefficients).
+// threshold, searching and profiling again from there (JudgeAndMove; FitSearch.*).
 constexpr int kProfileMoves = 2;
 
 // The sample variance of v (0 for fewer than two values). Not a robust spread: a slip bin whose
@@ -61,7 +62,7 @@ const std::vector<ParamSpec>& Specs() {
   return specs;
 }
 
-class Objective {
+class Objective : public Chi2Objective {
  public:
   Objective(const Analysis& track, const sim::SimOptions& scene, const FitOptions& fo)
       : track_(track), scene_(scene), fo_(fo), observed_(FitObservables(track)) {
@@ -106,7 +107,7 @@ class Objective {
     return FitObservables(a, track_.periods.settled.summary.label, observed_phase_);
   }
 
-  double Chi2(const std::vector<double>& values, std::vector<double>* simulated = nullptr) {
+  double Chi2(const std::vector<double>& values, std::vector<double>* simulated = nullptr) override {
     return Chi2Of(Trial(values, 0), simulated);
   }
 
@@ -124,7 +125,7 @@ class Objective {
   // made a point 0.07 off in eps and 0.2 in mu "acceptable").
   // Returns the standard deviation of chi2 over those trials (0 when none was taken): how far
   // chi2 itself moves between samplings of the same coefficients.
-  double AddScatter(const std::vector<double>& values) {
+  double AddScatter(const std::vector<double>& values) override {
     const double frames_per_period = scene_.fps / scene_.freq_hz;
     std::vector<std::vector<Observable>> trials;
     for (int j = 0; j < kScatterTrials; ++j) {
@@ -145,7 +146,7 @@ class Objective {
   }
 
   const std::vector<Observable>& observed() const { return observed_; }
-  int usable() const { return usable_; }
+  int usable() const override { return usable_; }
   int evaluations() const { return evaluations_; }
 
  private:
@@ -183,7 +184,7 @@ class Objective {
 };
 
 struct NloptData {
-  Objective* objective;
+  Chi2Objective* objective;
   std::vector<double> full;        // all parameter values
   std::vector<size_t> free_index;  // which of them the optimiser moves
   nlopt_opt opt = nullptr;         // to stop it
@@ -211,7 +212,7 @@ struct Minimum {
   double chi2;            // at x, as the optimiser evaluated it
 };
 
-Minimum Minimise(Objective* obj, std::vector<double> start, int max_eval, nlopt_algorithm algo,
+Minimum Minimise(Chi2Objective* obj, std::vector<double> start, int max_eval, nlopt_algorithm algo,
                  const std::vector<size_t>& free_index, double step_fraction = 0.15) {
   const auto& specs = Specs();
   NloptData data{obj, start, free_index, nullptr, nullptr};
@@ -263,7 +264,7 @@ Minimum Minimise(Objective* obj, std::vector<double> start, int max_eval, nlopt_
 // neighbour's minimum; a profile value is never above the slice's (the search starts there).
 // `*lowest` (chi2 `*lowest_chi2`) is replaced by any point of the profile below it. Without
 // `ranges` (a fit that failed the goodness test) the range's ends are not located.
-FitParameter Slice(Objective* obj, const std::vector<double>& best, double chi2_min,
+FitParameter Slice(Chi2Objective* obj, const std::vector<double>& best, double chi2_min,
                    double threshold, size_t k, int points, bool profile, bool ranges,
                    std::vector<double>* lowest, double* lowest_chi2) {
   const ParamSpec& spec = Specs()[k];
@@ -382,6 +383,48 @@ sim::SimOptions FitScene(const Analysis& track, const sim::SimOptions& scene, co
 
 }  // namespace
 
+FitSearchResult JudgeAndMove(Chi2Objective* obj, const std::vector<double>& best,
+                             const FitOptions& options) {
+  const std::vector<size_t> all = {0, 1, 2, 3, 4};
+  FitSearchResult out;
+  std::vector<double> from = best;
+  FitResult& r = out.result;
+  // A fit that fails the goodness test may have stopped in a local minimum. The profiles
+  // re-optimise the others at every value of each parameter, so they search further than the
+  // local searches do: where one finds a point lower than the optimum by more than the
+  // threshold, the fit moves there and is judged again. From the far start of
+  // fit_study_tracked.sh on the mirror-lit A_r 6.0 the searches ended at mu 0.28, chi2 77 for
+  // 39 dof, where mu's profile reaches below 50 near mu 0.35, the minimum the paper's start
+  // finds. An acceptable fit stays where it is (its profiles give its ranges).
+  for (;; ++out.moves) {
+    obj->AddScatter(from);
+    out.x = Minimise(obj, from, options.max_evaluations / 2, NLOPT_LN_NELDERMEAD, all).x;
+    const double chi2_spread = obj->AddScatter(out.x);
+    r = FitResult{};
+    r.chi2 = obj->Chi2(out.x, &r.simulated);
+    r.dof = std::max(1, obj->usable() - static_cast<int>(Specs().size()));
+    r.p_value = ChiSquarePValue(r.chi2, r.dof);
+    r.acceptable = r.p_value >= kMinFitPValue;
+    // A rise of chi2 smaller than its own spread between samplings of the optimum is not resolved.
+    r.threshold = std::max({1.0, r.chi2 / r.dof, chi2_spread});
+    Minimum lowest{out.x, r.chi2};
+    for (size_t k = 0; k < Specs().size(); ++k) {
+      r.params.push_back(Slice(obj, out.x, r.chi2, r.threshold, k, options.slice_points, true,
+                               r.acceptable, &lowest.x, &lowest.chi2));
+    }
+    if (r.acceptable || out.moves == kProfileMoves || !(lowest.chi2 < r.chi2 - r.threshold)) break;
+    from = lowest.x;
+  }
+  for (FitParameter& p : r.params) {
+    if (r.acceptable) continue;
+    // No acceptable fit: the profiles only draw the failure; no range is read off them.
+    p.status = "no_acceptable_fit";
+    p.err = p.range_lo = p.range_hi = kNaN;
+  }
+  r.correlation = ProfileCorrelations(r.params);
+  return out;
+}
+
 double FitChi2(const Analysis& track, const sim::SimOptions& coefficients, const FitOptions& options) {
   const sim::SimOptions base = FitScene(track, coefficients, options);
   Objective obj(track, base, options);
@@ -425,46 +468,15 @@ FitResult FitCoefficients(const Analysis& track, const sim::SimOptions& scene,
     const Minimum global = Minimise(&obj, spread.x, options.max_evaluations, NLOPT_LN_NELDERMEAD, all);
     if (global.chi2 < best.chi2) best = global;
   }
-  FitResult r;
-  // A fit that fails the goodness test may have stopped in a local minimum. The profiles
-  // re-optimise the others at every value of each parameter, so they search further than the
-  // local searches do: where one finds a point lower than the optimum by more than the
-  // threshold, the fit moves there and is judged again. From the far start of
-  // fit_study_tracked.sh on the mirror-lit A_r 6.0 the searches ended at mu 0.28, chi2 77 for
-  // 39 dof, where mu's profile reaches below 50 near mu 0.35, the minimum the paper's start
-  // finds. An acceptable fit stays where it is (its profiles give its ranges).
-  for (int move = 0;; ++move) {
-    obj.AddScatter(best.x);
-    x = Minimise(&obj, best.x, options.max_evaluations / 2, NLOPT_LN_NELDERMEAD, all).x;
-    const double chi2_spread = obj.AddScatter(x);
-    r = FitResult{};
-    r.chi2 = obj.Chi2(x, &r.simulated);
-    r.dof = std::max(1, obj.usable() - static_cast<int>(Specs().size()));
-    r.p_value = ChiSquarePValue(r.chi2, r.dof);
-    r.acceptable = r.p_value >= kMinFitPValue;
-    // A rise of chi2 smaller than its own spread between samplings of the optimum is not resolved.
-    r.threshold = std::max({1.0, r.chi2 / r.dof, chi2_spread});
-    Minimum lowest{x, r.chi2};
-    for (size_t k = 0; k < Specs().size(); ++k) {
-      r.params.push_back(Slice(&obj, x, r.chi2, r.threshold, k, options.slice_points, true,
-                               r.acceptable, &lowest.x, &lowest.chi2));
-    }
-    if (r.acceptable || move == kProfileMoves || !(lowest.chi2 < r.chi2 - r.threshold)) break;
-    best = lowest;
-  }
-  for (FitParameter& p : r.params) {
-    if (r.acceptable) continue;
-    // No acceptable fit: the profiles only draw the failure; no range is read off them.
-    p.status = "no_acceptable_fit";
-    p.err = p.range_lo = p.range_hi = kNaN;
-  }
+  const FitSearchResult searched = JudgeAndMove(&obj, best.x, options);
+  FitResult r = searched.result;
+  x = searched.x;
   for (const Observable& o : obj.observed()) {
     r.observable_names.push_back(o.name);
     r.observed.push_back(o.value);
     r.observed_err.push_back(std::hypot(std::isfinite(o.err) ? o.err : 0.0, o.floor));
   }
   if (!r.acceptable) r.off = WorstObservables(r);
-  r.correlation = ProfileCorrelations(r.params);
   r.best = obj.Options(x);
   r.evaluations = obj.evaluations();
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

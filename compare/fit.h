@@ -25,7 +25,7 @@
 // at its end against 0 at the truth (Fit.StartedAtTheTruthStaysThere).
 // Goodness of fit: chi2/dof and its p-value (goodness_of_fit.h). Below kMinFitPValue the
 // profiles (below) are searched for a lower point, and the fit moves there if one is lower by
-// more than the range's threshold (fit.cc, kProfileMoves); still below, it is
+// more than the range's threshold (fit_search.h, JudgeAndMove: FitSearch.*); still below, it is
 // "no acceptable fit": no coefficient is constrained, the best point is reported only as the
 // point that fails, with the observables furthest off. Otherwise uncertainties and
 // identifiability come from the profile of chi2 along each parameter (the others re-optimised

@@ -1,0 +1,94 @@
+// The fit's last stage (compare/fit_search.h) on chi2 functions whose minima are known: a
+// failing fit moves to the lower point its profiles find, an acceptable one stays where it is,
+// and a fit with no acceptable point says so with no range.
+#include "compare/fit_search.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace dimer::compare {
+namespace {
+
+// Two wells of chi2 over the five coefficients (eps, mu_hat, mu_hat_s, mu, mu_s), apart only in
+// eps: a narrow one (sigma 0.01 in eps) whose floor is `floor_a` at eps = 0.85 and another whose
+// floor is `floor_b` at eps = 0.60; chi2 is the lower of the two. Between them chi2 rises to
+// hundreds, so a local search started in one stays there; the profile of eps, which steps
+// across the whole range of eps, meets the other.
+class TwoWells : public Chi2Objective {
+ public:
+  TwoWells(double floor_a, double floor_b) : floor_a_(floor_a), floor_b_(floor_b) {}
+  double Chi2(const std::vector<double>& x, std::vector<double>* simulated) override {
+    ++evaluations;
+    if (simulated) simulated->assign(kObservables, 0.0);
+    double rest = 0;
+    for (size_t k = 1; k < x.size(); ++k) rest += std::pow((x[k] - kCentre[k]) / kSigma, 2);
+    const double a = floor_a_ + std::pow((x[0] - kEpsA) / kSigmaEps, 2);
+    const double b = floor_b_ + std::pow((x[0] - kEpsB) / kSigmaEps, 2);
+    return std::min(a, b) + rest;
+  }
+  double AddScatter(const std::vector<double>&) override { return 0; }
+  int usable() const override { return kObservables; }
+
+  static constexpr double kEpsA = 0.85, kEpsB = 0.60, kSigmaEps = 0.01, kSigma = 0.05;
+  static constexpr std::array<double, 5> kCentre = {0, 0.2, 0.4, 0.5, 1.0};
+  static constexpr int kObservables = 40;  // 35 degrees of freedom
+  int evaluations = 0;
+
+ private:
+  double floor_a_, floor_b_;
+};
+
+std::vector<double> InWell(double eps) {
+  std::vector<double> x(TwoWells::kCentre.begin(), TwoWells::kCentre.end());
+  x[0] = eps;
+  return x;
+}
+
+// Started in the well whose floor (chi2 200 for 35 dof, p ~ 1e-24) fails the goodness test, the
+// fit moves to the other (floor 30: p 0.71) and states eps's range there.
+TEST(FitSearch, AFailingFitMovesToTheLowerPointItsProfileFinds) {
+  TwoWells chi2(200, 30);
+  const FitSearchResult s = JudgeAndMove(&chi2, InWell(TwoWells::kEpsA), FitOptions{});
+  EXPECT_EQ(s.moves, 1);
+  ASSERT_TRUE(s.result.acceptable) << "chi2 " << s.result.chi2;
+  EXPECT_NEAR(s.result.chi2, 30, 0.1);
+  const FitParameter& eps = s.result.params[0];
+  ASSERT_EQ(eps.status, "constrained");
+  // chi2 rises by 1 at eps +- sigma: the range is [0.59, 0.61], to the search's tolerance.
+  EXPECT_LE(eps.range_lo, TwoWells::kEpsB);
+  EXPECT_GE(eps.range_hi, TwoWells::kEpsB);
+  EXPECT_NEAR(eps.err, TwoWells::kSigmaEps, 0.2 * TwoWells::kSigmaEps);
+}
+
+// Both wells acceptable (floors 30 and 20): the fit started in the higher one stays there, as
+// an acceptable fit is not moved; its range is that well's.
+TEST(FitSearch, AnAcceptableFitStaysWhereItIs) {
+  TwoWells chi2(30, 20);
+  const FitSearchResult s = JudgeAndMove(&chi2, InWell(TwoWells::kEpsA), FitOptions{});
+  EXPECT_EQ(s.moves, 0);
+  ASSERT_TRUE(s.result.acceptable);
+  EXPECT_NEAR(s.result.chi2, 30, 0.1);
+  EXPECT_LE(s.result.params[0].range_lo, TwoWells::kEpsA);
+  EXPECT_GE(s.result.params[0].range_hi, TwoWells::kEpsA);
+}
+
+// Neither well acceptable (floors 200 and 150 for 35 dof): the fit moves to the lower one, fails
+// there too, and gives no range for any coefficient, only the best point.
+TEST(FitSearch, NoAcceptablePointGivesNoRange) {
+  TwoWells chi2(200, 150);
+  const FitSearchResult s = JudgeAndMove(&chi2, InWell(TwoWells::kEpsA), FitOptions{});
+  EXPECT_FALSE(s.result.acceptable);
+  EXPECT_EQ(s.moves, 1);
+  EXPECT_NEAR(s.x[0], TwoWells::kEpsB, 0.005);
+  for (const FitParameter& p : s.result.params) {
+    EXPECT_EQ(p.status, "no_acceptable_fit") << p.name;
+    EXPECT_TRUE(std::isnan(p.range_lo) && std::isnan(p.range_hi) && std::isnan(p.err)) << p.name;
+  }
+}
+
+}  // namespace
+}  // namespace dimer::compare
