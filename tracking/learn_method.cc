@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "tracking/detection_agreement.h"
 #include "tracking/sphere/appearance_mismatch.h"
 #include "tracking/sphere/clipped_highlights.h"
 #include "tracking/sphere/highlight_seed.h"
@@ -183,6 +184,19 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
     m.choice.reason += "; " + clip.reason;
   }
   m.appearance = std::make_shared<const std::array<Appearance, 2>>(follow);
+  // The learnt positions refereed by the rough ones (detection_agreement.h).
+  for (int k = 0; k < 2; ++k) {
+    m.agreement[k] = AgreementWithDetections(m.learnt[k]);
+    const DetectionAgreement& a = m.agreement[k];
+    if (a.agrees) continue;
+    char clause[240];
+    std::snprintf(clause, sizeof clause,
+                  "; the %s sphere's learnt %s moved %.2f px (sd) over the learning frames where "
+                  "its rough centres moved %.2f px: not with the sphere",
+                  k == 0 ? "left" : "right", a.axis == 0 ? "columns" : "rows", a.learnt_sd,
+                  a.rough_sd);
+    m.choice.reason += clause;
+  }
   return m;
 }
 

@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "tracking/detection_agreement.h"
 #include "tracking/sphere/appearance_model.h"
 #include "tracking/plate_contact.h"
 #include "tracking/io/frame_source.h"
@@ -27,6 +28,9 @@ struct SequenceMethod {
   // The found plate edge to the contact line (plate_contact.h), from the learning frames; when
   // applied, added to every frame's plate row before the offsets are estimated.
   PlateShift plate_shift;
+  // Template: each sphere's learnt positions refereed by its rough centres on the learning
+  // frames (detection_agreement.h); a disagreement is also a clause of choice.reason.
+  std::array<DetectionAgreement, 2> agreement;
 };
 
 // Measures the learning frames with the existing methods (a fresh acquisition each, with the

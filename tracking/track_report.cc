@@ -278,6 +278,25 @@ void ReportPrecision(const TrackArgs& args, const SequenceResult& r, Diagnostics
   }
 }
 
+// A sphere whose learnt appearance did not move with its detections on the learning frames
+// (detection_agreement.h): its positions may be held by something that does not move with it.
+void ReportDetectionAgreement(const TrackArgs& args, const SequenceResult& r, Diagnostics* diag) {
+  if (r.method != Method::kTemplate) return;
+  for (int k = 0; k < 2; ++k) {
+    const DetectionAgreement& a = r.detection_agreement[k];
+    if (a.agrees) continue;
+    const char* axis = a.axis == 0 ? "columns" : "rows";
+    diag->Warn("not_with_detections",
+               Format("%s: the %s sphere's learnt appearance did not move as its detections did "
+                      "over the learning frames (its %s spread %.2f px, theirs %.2f px): "
+                      "something that stands still behind it (a ruler's or a backdrop's edge) "
+                      "may hold its positions, pixels off whatever their stated uncertainty; a "
+                      "plain background behind the dimer helps",
+                      args.input.c_str(), k == 0 ? "left" : "right", axis, a.learnt_sd,
+                      a.rough_sd));
+  }
+}
+
 }  // namespace
 
 void ReportFilm(const TrackArgs& args, const Recording& rec, const SequenceResult& r,
@@ -294,6 +313,7 @@ void ReportFilm(const TrackArgs& args, const Recording& rec, const SequenceResul
   ReportStrongerEdge(r, diag);
   ReportPlateGeometry(args, r, diag);
   ReportTemplate(r, diag);
+  ReportDetectionAgreement(args, r, diag);
   ReportPrecision(args, r, diag);
 }
 

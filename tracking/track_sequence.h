@@ -114,6 +114,8 @@ struct SequenceResult {
       Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN())};
   // Each sphere's centres' scatter from frame to frame beside that bound (track_precision.h).
   std::array<SpherePrecision, 2> precision;
+  // Template: each sphere's learnt positions against its rough centres (detection_agreement.h).
+  std::array<DetectionAgreement, 2> detection_agreement;
   LevelScale level_scale;        // a 10- or 12-bit camera's levels, scaled (level_scale.h)
   // The lens calibration the frames were undistorted with (null: none), and the largest shift
   // its undistortion made in these frames, px.
