@@ -87,7 +87,9 @@ SANITIZE_SKIP=(
   # Bit-identical reruns (not memory), and the documentation's command lines, which each
   # command's own tests run.
   '^FileSchema[.]ChunkedCompressedFilesStayBitIdenticalOnRerun$'
-  '^docs[.](examples|tracking_example)$'
+  '^docs[.](examples|tracking_example|paper_current)$'
+  # A long simulated run's health (the simulator's code is sanitized by its unit tests).
+  '^Stability[.]LongDriftRunStaysHealthyAndInTheDriftMode$'
 )
 
 sanitize() {
