@@ -79,11 +79,19 @@ SANITIZE_SKIP=(
   '^povray[.](noise_seeds|lower_levels|quarter_range|leaving_the_frame)$'
   '^povray[.]dimer_length[.](cluttered_backdrop|front_point_ar2_0|front_softbox|mistaken_ar|one_sided_gain_ramp|rolled_8_degrees|underexposed)$'
   '^PovrayTiltedPlate[.]'
-  # Films render -> track -> compare: jump_backlit stays; the drifts add the fit (sanitized in
-  # Fit.SaysWhenNoCoefficientsReproduceTheTrack) and the tilt (in the compare unit tests).
+  # Films render -> track -> compare: jump_backlit stays; the drifts add the fit (below) and
+  # the tilt (in the compare unit tests).
   '^Films/Pipeline[.].*/drift_'
-  # The fit's long searches: 4,390 simulations or more each, 8-12 minutes sanitized.
-  '^Fit[.](StartedAtTheTruthStaysThere|FindsADriftWhoseSlipBinsMoveInSteps|RecoversRestitutionAndImpactFrictionFromASimulatedDrift|SaysWhenATiltedPlateIsFittedAsLevel)$'
+  # The fit's searches on simulations (hundreds to 4,390 each, 1-12 minutes sanitized): its
+  # search, profiles and moves run sanitized in FitSearch.* on a chi2 of known wells, and the
+  # simulations and analysis it calls in the sim and compare unit tests.
+  '^Fit[.](StartedAtTheTruthStaysThere|FindsADriftWhoseSlipBinsMoveInSteps|RecoversRestitutionAndImpactFrictionFromASimulatedDrift|SaysWhenATiltedPlateIsFittedAsLevel|SaysWhenNoCoefficientsReproduceTheTrack)$'
+  # Every byte of every dataset flipped (111 s sanitized): the error paths of corrupt datasets
+  # and metadata run sanitized in FileIntegrity.AFlippedByteAnywhere... and
+  # H5File.EveryCorruptedMetadataByte...; and the files' self-description (attributes, no path
+  # of its own).
+  '^FileIntegrity[.]EveryFlippedByteInADatasetIsReportedNamingIt$'
+  '^FileSchema[.]EveryDatasetOfEveryFileKindDescribesItself$'
   # Bit-identical reruns (not memory), and the documentation's command lines, which each
   # command's own tests run.
   '^FileSchema[.]ChunkedCompressedFilesStayBitIdenticalOnRerun$'
