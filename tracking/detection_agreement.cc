@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace dimer::tracking {
 namespace {
@@ -33,12 +34,13 @@ DetectionAgreement AlongAxis(const LearntSphere& s, int axis) {
   return a;
 }
 
-// How many standard errors the slope lies outside the band (<= 0: inside, or undecided).
+// How many standard errors the slope lies outside the band (<= 0: inside, or undecided; an
+// exact line outside it, infinitely many).
 double SigmasOutside(const DetectionAgreement& a) {
-  if (!std::isfinite(a.slope) || !(a.slope_err > 0)) return 0;
-  const double above = (a.slope - kDetectionSlopeBand) / a.slope_err;
-  const double below = (1 / kDetectionSlopeBand - a.slope) / a.slope_err;
-  return std::max(above, below);
+  if (!std::isfinite(a.slope)) return 0;
+  const double outside = std::max(a.slope - kDetectionSlopeBand, 1 / kDetectionSlopeBand - a.slope);
+  if (!(a.slope_err > 0)) return outside > 0 ? std::numeric_limits<double>::infinity() : 0;
+  return outside / a.slope_err;
 }
 
 }  // namespace
