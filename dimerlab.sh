@@ -73,8 +73,9 @@ run_tests() {
 SANITIZE_SKIP=(
   # POV-Ray footage: each lighting's film is tracked once, sanitized, by its povray.render
   # fixture and read by its targets check; its plate, coverage, scatter and metres checks, the
-  # noise seeds and levels, the film leaving the frame (the cut-sphere unit tests stay) and the
-  # scale on films other than front_point repeat that run with other assertions.
+  # noise seeds and levels, the film leaving the frame (the cut-sphere unit tests stay), the
+  # scale on films other than front_point and front_point's mistaken A_r repeat that run with
+  # other assertions.
   '^povray[.](plate|coverage|scatter|metres)[.]'
   '^povray[.](noise_seeds|lower_levels|quarter_range|leaving_the_frame)$'
   '^povray[.]dimer_length[.](cluttered_backdrop|front_point_ar2_0|front_softbox|mistaken_ar|one_sided_gain_ramp|rolled_8_degrees|underexposed)$'
