@@ -11,6 +11,7 @@
 #include "app/exit_codes.h"
 #include "app/usage.h"
 #include "common/error.h"
+#include "common/heap_policy.h"
 #include "common/interrupt.h"
 #include "common/provenance.h"
 
@@ -22,6 +23,7 @@ const std::string& dimer::app::CommandLine() { return g_command_line; }
 
 int dimer::app::RunCli(int argc, char** argv,
                        const std::function<void(CLI::App&)>& register_commands) {
+  dimer::KeepFreedMemoryForReuse();
   g_command_line = "dimerlab";
   for (int i = 1; i < argc; ++i) g_command_line += std::string(" ") + argv[i];
   CLI::App app{"dimerlab: bouncing-dimer experiments into physics (simulate, render, track, compare)"};

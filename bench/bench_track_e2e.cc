@@ -17,6 +17,8 @@
 // least disturbed), files warm in the page cache. CPU time per frame (user + system, all
 // threads; for (b) the child process's) is printed beside: it does not depend on what else
 // runs on the machine.
+// A last row runs (b) and (d) on the .cine with glibc's heap defaults (DIMERLAB_HEAP=glibc)
+// instead of the policy every dimerlab process sets (common/heap_policy.h), in the same run.
 // It also times `dimerlab track` on a 1-frame input: the process start and fixed costs.
 #include <opencv2/imgcodecs.hpp>
 
@@ -32,6 +34,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -39,6 +42,7 @@
 #include <vector>
 
 #include "bench/available_cores.h"
+#include "common/heap_policy.h"
 #include "tracking/io/cine_writer.h"
 #include "tracking/io/frame_source.h"
 #include "render/scene_renderer.h"
@@ -166,10 +170,11 @@ Rate ImreadRate(const std::string& folder, int threads) {
 struct Run {
   double seconds = 1e30;  // wall, best run
   double cpu = 1e30;      // CPU seconds of the child, least over the runs
+  double minor_faults = 1e30;  // the child's minor page faults, least over the runs
 };
 
 Run TrackProcess(const std::string& dimerlab, const std::string& input, const std::string& out,
-                 const std::vector<std::string>& extra = {}) {
+                 const std::vector<std::string>& extra = {}, char** env = environ) {
   std::vector<std::string> args = {dimerlab, "track", input, "-o", out, "-q", "--force"};
   args.insert(args.end(), extra.begin(), extra.end());
   std::vector<char*> argv;
@@ -182,7 +187,7 @@ Run TrackProcess(const std::string& dimerlab, const std::string& input, const st
   for (int rep = 0; rep < kReps; ++rep) {
     const auto t0 = Clock::now();
     pid_t pid = 0;
-    if (posix_spawn(&pid, dimerlab.c_str(), &actions, nullptr, argv.data(), environ) != 0) {
+    if (posix_spawn(&pid, dimerlab.c_str(), &actions, nullptr, argv.data(), env) != 0) {
       std::fprintf(stderr, "cannot run %s\n", dimerlab.c_str());
       std::exit(1);
     }
@@ -196,6 +201,7 @@ Run TrackProcess(const std::string& dimerlab, const std::string& input, const st
     }
     best.seconds = std::min(best.seconds, s);
     best.cpu = std::min(best.cpu, CpuSeconds(usage));
+    best.minor_faults = std::min(best.minor_faults, double(usage.ru_minflt));
   }
   posix_spawn_file_actions_destroy(&actions);
   return best;
@@ -215,11 +221,28 @@ Rate InMemoryRate(const std::vector<cv::Mat>& frames) {
   return best;
 }
 
+// This process's environment with DIMERLAB_HEAP=glibc (common/heap_policy.h: glibc's own heap
+// defaults in the child), as text and as the pointers posix_spawn takes.
+struct GlibcHeapEnv {
+  std::vector<std::string> text;
+  std::vector<char*> pointers;
+  GlibcHeapEnv() {
+    for (char** e = environ; *e != nullptr; ++e) {
+      if (std::strncmp(*e, "DIMERLAB_HEAP=", 14) != 0) text.push_back(*e);
+    }
+    text.push_back("DIMERLAB_HEAP=glibc");
+    for (std::string& t : text) pointers.push_back(t.data());
+    pointers.push_back(nullptr);
+  }
+};
+
 using dimer::bench::AvailableCores;
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The in-memory figures (a) and (c) with the heap policy `dimerlab` runs with.
+  dimer::KeepFreedMemoryForReuse();
   const std::string dimerlab =
       argc > 1 ? fs::absolute(argv[1]).string()
                : (fs::read_symlink("/proc/self/exe").parent_path() / "../app/dimerlab").string();
@@ -252,28 +275,44 @@ int main(int argc, char** argv) {
   const Rate memory = InMemoryRate(frames);
   std::printf("(c) tracking in memory (centroid, %d threads): %.0f frames/s, %.0f us CPU/frame\n\n",
               cores, memory.per_s, memory.cpu_us);
-  std::printf("| input | (a) read only, frames/s | (a) us CPU/frame | (a') cv::imread, frames/s | (a') us CPU/frame | (b) `dimerlab track`, s | (b) frames/s | (b) us CPU/frame | (b)/(a) | (b)/(a') | bound 1/(1/a+1/c), frames/s | (b)/bound | (d) default method, frames/s | (d) us CPU/frame | (d)/(b) |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  const std::pair<const char*, std::string> inputs[] = {
-      {"BMP folder", work + "/bmp"}, {"TIFF folder", work + "/tiff"},
-      {"PNG folder", work + "/png"}, {".cine (8-bit)", work + "/run.cine"}};
-  for (const auto& [label, path] : inputs) {
-    const Rate read = ReadOnlyRate(path, cores);
+  std::printf("| input | (a) read only, frames/s | (a) us CPU/frame | (a') cv::imread, frames/s | (a') us CPU/frame | (b) `dimerlab track`, s | (b) frames/s | (b) us CPU/frame | (b)/(a) | (b)/(a') | bound 1/(1/a+1/c), frames/s | (b)/bound | (d) default method, frames/s | (d) us CPU/frame | (d) page faults/frame | (d)/(b) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  // The last row: the .cine again, both commands run with glibc's heap defaults.
+  GlibcHeapEnv glibc_heap;
+  struct Input {
+    const char* label;
+    std::string path;
+    char** env;
+  };
+  const Input inputs[] = {{"BMP folder", work + "/bmp", environ},
+                          {"TIFF folder", work + "/tiff", environ},
+                          {"PNG folder", work + "/png", environ},
+                          {".cine (8-bit)", work + "/run.cine", environ},
+                          {".cine, glibc's heap defaults", work + "/run.cine",
+                           glibc_heap.pointers.data()}};
+  for (const auto& [label, path, env] : inputs) {
+    const bool reads = env == environ;  // (a) is this process's, with dimerlab's heap policy
+    const Rate read = reads ? ReadOnlyRate(path, cores) : Rate{};
     const bool folder = fs::is_directory(path);
     const Rate cv_read = folder ? ImreadRate(path, cores) : Rate{};
-    const Run run = TrackProcess(dimerlab, path, work + "/track.h5", {"--method", "centroid"});
-    const Run def = TrackProcess(dimerlab, path, work + "/track.h5");
+    const Run run = TrackProcess(dimerlab, path, work + "/track.h5", {"--method", "centroid"}, env);
+    const Run def = TrackProcess(dimerlab, path, work + "/track.h5", {}, env);
     const double rate = n / run.seconds, bound = 1 / (1 / read.per_s + 1 / memory.per_s);
-    char cv_cols[96] = "| - | - | ", cv_ratio[32] = "-";
+    char read_cols[96] = "| - | - ", cv_cols[96] = "| - | - | ", cv_ratio[32] = "-";
+    char read_ratio[32] = "-", bound_cols[64] = "- | -";
+    if (reads) {
+      std::snprintf(read_cols, sizeof read_cols, "| %.0f | %.0f ", read.per_s, read.cpu_us);
+      std::snprintf(read_ratio, sizeof read_ratio, "%.0f %%", 100 * rate / read.per_s);
+      std::snprintf(bound_cols, sizeof bound_cols, "%.0f | %.0f %%", bound, 100 * rate / bound);
+    }
     if (folder) {
       std::snprintf(cv_cols, sizeof cv_cols, "| %.0f | %.0f | ", cv_read.per_s, cv_read.cpu_us);
       std::snprintf(cv_ratio, sizeof cv_ratio, "%.0f %%", 100 * rate / cv_read.per_s);
     }
-    std::printf("| %s | %.0f | %.0f %s%.3f | %.0f | %.0f | %.0f %% | %s | %.0f | %.0f %% | %.0f | "
-                "%.0f | %.2f |\n",
-                label, read.per_s, read.cpu_us, cv_cols, run.seconds, rate, 1e6 * run.cpu / n,
-                100 * rate / read.per_s, cv_ratio, bound, 100 * rate / bound, n / def.seconds,
-                1e6 * def.cpu / n, run.seconds / def.seconds);
+    std::printf("| %s %s%s%.3f | %.0f | %.0f | %s | %s | %s | %.0f | %.0f | %.1f | %.2f |\n", label,
+                read_cols, cv_cols, run.seconds, rate, 1e6 * run.cpu / n, read_ratio, cv_ratio,
+                bound_cols, n / def.seconds, 1e6 * def.cpu / n, def.minor_faults / n,
+                run.seconds / def.seconds);
     std::fflush(stdout);
   }
   const Run one = TrackProcess(dimerlab, work + "/one", work + "/one.h5", {"--method", "centroid"});
