@@ -28,6 +28,7 @@ DetectionAgreement AlongAxis(const LearntSphere& s, int axis) {
   }
   a.learnt_sd = std::sqrt(sxx / double(n - 1));
   a.rough_sd = std::sqrt(syy / double(n - 1));
+  a.residual_sd = std::sqrt(std::max(0.0, sxx + syy - 2 * sxy) / double(n - 1));
   if (!(sxx > 0)) return a;
   a.slope = sxy / sxx;
   a.slope_err = std::sqrt(std::max(0.0, syy - a.slope * sxy) / double(n - 2) / sxx);
@@ -50,6 +51,11 @@ DetectionAgreement AgreementWithDetections(const LearntSphere& s) {
   DetectionAgreement& worst = SigmasOutside(row) > SigmasOutside(col) ? row : col;
   worst.agrees = !(SigmasOutside(worst) > kDetectionSlopeSigmas);
   return worst;
+}
+
+double WidenForDisagreement(const DetectionAgreement& a, double err) {
+  if (a.agrees || !std::isfinite(a.residual_sd)) return err;
+  return std::hypot(err, a.residual_sd);
 }
 
 }  // namespace dimer::tracking

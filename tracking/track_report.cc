@@ -290,10 +290,11 @@ void ReportDetectionAgreement(const TrackArgs& args, const SequenceResult& r, Di
                Format("%s: the %s sphere's learnt appearance did not move as its detections did "
                       "over the learning frames (its %s spread %.2f px, theirs %.2f px): "
                       "something that stands still behind it (a ruler's or a backdrop's edge) "
-                      "may hold its positions, pixels off whatever their stated uncertainty; a "
-                      "plain background behind the dimer helps",
+                      "may hold its positions; its stated uncertainty includes the %.2f px by "
+                      "which the two parted, and it may be off by more; a plain background "
+                      "behind the dimer helps",
                       args.input.c_str(), k == 0 ? "left" : "right", axis, a.learnt_sd,
-                      a.rough_sd));
+                      a.rough_sd, a.residual_sd));
   }
 }
 

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 namespace dimer::tracking {
 namespace {
@@ -50,6 +51,26 @@ TEST(DetectionAgreement, LearntPositionsHeldStillDisagree) {
   EXPECT_EQ(a.axis, 1);
   EXPECT_GT(a.slope, kDetectionSlopeBand);
   EXPECT_GT(a.rough_sd, 5 * a.learnt_sd);
+}
+
+// Where they disagree the axis's stated uncertainty grows by how far the two parted, their
+// constant offset aside: for learnt rows held at a tenth of a 9-px hop that the rough centres
+// follow 0.8 times over, (0.8 - 0.1) of the hop's spread; where they agree it stays as it was.
+TEST(DetectionAgreement, ADisagreementWidensTheStatedUncertaintyByHowFarTheyPart) {
+  const DetectionAgreement held = AgreementWithDetections(Hopping(20, 9, 0.8, 0.3, 0.1));
+  ASSERT_FALSE(held.agrees);
+  std::vector<double> hop;
+  for (int i = 0; i < 20; ++i) hop.push_back(9 * std::sin(M_PI * i / 19));
+  double mean = 0, var = 0;
+  for (double h : hop) mean += h / 20;
+  for (double h : hop) var += (h - mean) * (h - mean) / 19;
+  const double parted = 0.7 * std::sqrt(var);
+  EXPECT_NEAR(held.residual_sd, parted, 0.1);  // the rough centres' noise 0.3 px aside
+  EXPECT_NEAR(WidenForDisagreement(held, 0.5), std::hypot(0.5, held.residual_sd), 1e-12);
+  EXPECT_GT(WidenForDisagreement(held, 0.5), parted);
+  const DetectionAgreement both = AgreementWithDetections(Hopping(20, 9, 1.0, 0.3, 1.0));
+  ASSERT_TRUE(both.agrees);
+  EXPECT_EQ(WidenForDisagreement(both, 0.5), 0.5);
 }
 
 // A resting sphere (no hop) gives the slope no lever: nothing is decided, whatever the noise
