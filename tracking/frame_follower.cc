@@ -236,8 +236,15 @@ bool FrameFollower::OtherCanBeOutOfView(const cv::Mat& frame, const FrameTrack& 
 void FrameFollower::PlanSearches(const cv::Mat& frame, const FrameTrack& t) {
   if (!t.acquired) {
     if (lone_frames_left_ > 0) --lone_frames_left_;
+    if (empty_frames_left_ > 0) --empty_frames_left_;
     return;
   }
+  // Two searches in a row without a candidate: the dimer is out of view (a drifting dimer leaves
+  // it at the end of a long run), and each such search costs ~4 ms on 512x256 (a whole-frame
+  // correlation and the silhouette detector's; bench_cut_spheres).
+  const bool empty = acquired_candidates_ == 0 && !t.found[0] && !t.found[1];
+  empty_searches_ = empty ? empty_searches_ + 1 : 0;
+  empty_frames_left_ = empty_searches_ >= 2 ? options_.lone_search_every - 1 : 0;
   // Two searches in a row that found one sphere, where the dimer can reach out of view: one
   // alone may have missed a sphere in view (a 3-frame film of 160x96 px: docs.install).
   lone_searches_ = t.found[0] != t.found[1] ? lone_searches_ + 1 : 0;
@@ -475,6 +482,7 @@ void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
     det.radii_px.assign(det.centres.size(), radius_px_);
   }
   const int n = int(det.centres.size());
+  acquired_candidates_ = n;
   std::array<Eigen::Vector2d, 2> coarse{};
   for (int k = 0; k < n; ++k) coarse[k] = det.centres[k];
   if (std::isnan(radius_px_) && n > 0) {
@@ -515,6 +523,14 @@ void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
   MeasureCuts(frame, out);
 }
 
+bool FrameFollower::MeasurePlateOnly(const cv::Mat& frame, FrameTrack* out) {
+  if (!std::isfinite(plate_row_)) return false;
+  out->plate_slope = options_.plate_slope;
+  out->plate_row = PlateRow(frame, plate_row_, plate_col_, {}, 0, &out->clipped_plate,
+                            &out->plate_col);
+  return std::isfinite(out->plate_row);
+}
+
 void FrameFollower::Commit(const FrameTrack& t) {
   if (std::isfinite(t.plate_row)) {
     plate_row_ = t.plate_row;
@@ -553,7 +569,9 @@ FrameTrack FrameFollower::Process(const cv::Mat& frame, size_t index) {
   }
   FrameTrack out;
   out.index = index;
-  if (!Follow(frame, &out)) Acquire(frame, &out);
+  if (!Follow(frame, &out) && !(empty_frames_left_ > 0 && MeasurePlateOnly(frame, &out))) {
+    Acquire(frame, &out);
+  }
   Commit(out);
   PlanSearches(frame, out);
   return out;

@@ -83,7 +83,9 @@ struct FollowerOptions {
   // able to put the other out of view: the other is out of view or cut on the far side of the
   // dimer (it cannot cross to the near side between frames, half a turn away), so the one is
   // followed and the whole frame searched again only every this many frames, in case the other
-  // was missed (1: every frame). bench/bench_cut_spheres measures the trade.
+  // was missed (1: every frame). Likewise two in a row that find nothing, not even a candidate
+  // (the dimer has left the view): only the plate is measured until the next search.
+  // bench/bench_cut_spheres measures the trade.
   int lone_search_every = kLoneSearchEveryFrames;
   // Method::kTemplate: a whole-frame search (acquisition) correlates the frame at half
   // resolution and then at full resolution about this many of its best peaks (FindAppearance,
@@ -176,6 +178,9 @@ class FrameFollower {
   // searched again (FollowerOptions::lone_search_every).
   void PlanSearches(const cv::Mat& frame, const FrameTrack& t);
   void Acquire(const cv::Mat& frame, FrameTrack* out);
+  // A frame between whole-frame searches while nothing is in view: the plate's row near its
+  // last, no sphere. False where the plate is not found there (the frame is then acquired).
+  bool MeasurePlateOnly(const cv::Mat& frame, FrameTrack* out);
   bool uses_template() const;
   // A sphere cut by the frame's edge is placed by a learnt appearance: the method's own, or
   // options_.cut_appearance with the silhouette methods (step 5).
@@ -247,6 +252,11 @@ class FrameFollower {
   // many whole-frame searches in a row found one sphere.
   int lone_frames_left_ = 0;
   int lone_searches_ = 0;
+  // The same for frames with nothing in view: the last whole-frame search's candidates, how many
+  // searches in a row found none, and frames left that measure the plate alone (MeasurePlateOnly).
+  int acquired_candidates_ = 0;
+  int empty_searches_ = 0;
+  int empty_frames_left_ = 0;
 };
 
 }  // namespace dimer::tracking

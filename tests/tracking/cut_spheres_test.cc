@@ -167,6 +167,70 @@ TEST(CutSpheres, ASphereAloneInViewIsFollowedWithoutSearchingTheWholeFrame) {
   EXPECT_LT(double(c[1].searched), 0.8 * double(c[0].searched));
 }
 
+// The dimer slides out of view by the right edge, stays out for `away` frames and comes back.
+Film SlideOutAndBack(Lighting lighting, double speed, int away) {
+  RenderOptions o;
+  o.width = kWidth;
+  o.height = kHeight;
+  o.lighting = lighting;
+  o.noise = 2.0;
+  std::vector<double> xs;
+  const double out = kWidth + 2 * kRadiusPx;  // the left sphere a diameter beyond the edge
+  for (double x = 0.25 * kWidth; x < out; x += speed) xs.push_back(x);
+  for (int i = 0; i < away; ++i) xs.push_back(out);
+  for (double x = out; x > 0.25 * kWidth; x -= speed) xs.push_back(x);
+  Film f;
+  for (size_t i = 0; i < xs.size(); ++i) {
+    f.poses.push_back(Pose(xs[i], i));
+    f.frames.push_back(RenderFrame({f.poses.back()}, o, i));
+  }
+  return f;
+}
+
+// Two whole-frame searches in a row that find nothing, not even a candidate: the dimer is out of
+// view, and until the next search, lone_search_every frames on, only the plate is measured.
+// Mirror-lit, 64-frame chunks: as many spheres found as with a search of every frame, no swap,
+// the plate measured in every frame as there (within 0.01 px), and the frames with nothing in
+// view mostly not searched.
+TEST(CutSpheres, FramesWithNothingInViewAreNotSearchedWhole) {
+  const Film f = SlideOutAndBack(Lighting::kReflect, 3.0, 200);
+  MemorySource source(f.frames);
+  std::array<Counts, 2> c;
+  std::array<size_t, 2> empty_searched{0, 0};
+  std::array<std::vector<double>, 2> plate;
+  size_t empty = 0;
+  for (int run = 0; run < 2; ++run) {
+    SequenceOptions o;
+    o.follower.method = Method::kTemplate;
+    o.follower.lone_search_every = run == 0 ? 1 : kLoneSearchEveryFrames;
+    o.contact_radius_px = kRadiusPx;
+    o.threads = 2;
+    o.chunk_frames = 64;
+    const SequenceResult r = TrackSequence(source, o);
+    ASSERT_EQ(r.frames.size(), f.frames.size());
+    c[run] = Count(f, r);
+    empty = 0;
+    for (size_t i = 0; i < r.frames.size(); ++i) {
+      const FrameTrack& t = r.frames[i];
+      ASSERT_TRUE(std::isfinite(t.plate_row)) << i;
+      plate[run].push_back(t.PlateRowAt(0.5 * kWidth));
+      if (InView(f.poses[i].left) > 0 || InView(f.poses[i].right) > 0) continue;
+      ++empty;
+      empty_searched[run] += t.acquired;
+    }
+  }
+  std::printf("[ stats    ] %zu frames with nothing in view: searched whole %zu (every frame), "
+              "%zu (every %d); spheres found %zu / %zu of %zu\n",
+              empty, empty_searched[0], empty_searched[1], kLoneSearchEveryFrames, c[0].found,
+              c[1].found, c[1].half);
+  EXPECT_EQ(c[1].found, c[0].found);
+  EXPECT_GE(double(c[1].found), 0.99 * double(c[1].half));
+  EXPECT_EQ(c[0].swaps + c[1].swaps, 0u);
+  for (size_t i = 0; i < plate[0].size(); ++i) EXPECT_NEAR(plate[1][i], plate[0][i], 0.01) << i;
+  EXPECT_EQ(empty_searched[0], empty);
+  EXPECT_LT(double(empty_searched[1]), 0.25 * double(empty));
+}
+
 // The locator alone: a mirror-lit sphere's learnt appearance placed on the sphere cut by the
 // frame's right edge, from a guess 0.6 px off. With 45 % of its width in view or more it
 // converges within 0.1 px of where the same appearance places the sphere whole (the offset;
