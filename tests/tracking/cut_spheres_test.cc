@@ -38,23 +38,28 @@ struct Film {
   std::vector<cv::Mat> frames;
 };
 
-// Sliding right at `speed` px a frame from column `from` until the left sphere is a radius
-// beyond the right edge, and back.
-Film Slide(Lighting lighting, double from, double speed) {
+// The dimer at each left-sphere column of `xs` in turn, one frame each.
+Film FilmAt(Lighting lighting, const std::vector<double>& xs) {
   RenderOptions o;
   o.width = kWidth;
   o.height = kHeight;
   o.lighting = lighting;
   o.noise = 2.0;
-  std::vector<double> xs;
-  for (double x = from; x < kWidth + kRadiusPx; x += speed) xs.push_back(x);
-  for (double x = kWidth + kRadiusPx; x > from; x -= speed) xs.push_back(x);
   Film f;
   for (size_t i = 0; i < xs.size(); ++i) {
     f.poses.push_back(Pose(xs[i], i));
     f.frames.push_back(RenderFrame({f.poses.back()}, o, i));
   }
   return f;
+}
+
+// Sliding right at `speed` px a frame from column `from` until the left sphere is a radius
+// beyond the right edge, and back.
+Film Slide(Lighting lighting, double from, double speed) {
+  std::vector<double> xs;
+  for (double x = from; x < kWidth + kRadiusPx; x += speed) xs.push_back(x);
+  for (double x = kWidth + kRadiusPx; x > from; x -= speed) xs.push_back(x);
+  return FilmAt(lighting, xs);
 }
 
 // The film tracked with `method` on 2 threads, the sphere's radius known.
@@ -138,22 +143,29 @@ Counts Count(const Film& f, const SequenceResult& r) {
   return c;
 }
 
+// The template follows `f` in 64-frame chunks (each starting without the dimer's vector) on 2
+// threads, the whole frame searched again every `every` frames while a sphere or both are out
+// of view.
+SequenceResult TrackSearchingEvery(const Film& f, int every) {
+  MemorySource source(f.frames);
+  SequenceOptions o;
+  o.follower.method = Method::kTemplate;
+  o.follower.lone_search_every = every;
+  o.contact_radius_px = kRadiusPx;
+  o.threads = 2;
+  o.chunk_frames = 64;
+  return TrackSequence(source, o);
+}
+
 // A frame whose whole-frame search finds one sphere: the other is out of view or cut on the far
 // side of the dimer, so the one is followed and the whole frame searched again only every
-// lone_search_every frames. Mirror-lit, 64-frame chunks (each starting without the dimer's
-// vector): as many spheres found as with a search of every frame, no swap, and fewer searches.
+// lone_search_every frames. Mirror-lit, TrackSearchingEvery: as many spheres found as with a
+// search of every frame, no swap, and fewer searches.
 TEST(CutSpheres, ASphereAloneInViewIsFollowedWithoutSearchingTheWholeFrame) {
   const Film f = Slide(Lighting::kReflect, 0.25 * kWidth, 2.0);
-  MemorySource source(f.frames);
   std::array<Counts, 2> c;
   for (int run = 0; run < 2; ++run) {
-    SequenceOptions o;
-    o.follower.method = Method::kTemplate;
-    o.follower.lone_search_every = run == 0 ? 1 : kLoneSearchEveryFrames;
-    o.contact_radius_px = kRadiusPx;
-    o.threads = 2;
-    o.chunk_frames = 64;
-    const SequenceResult r = TrackSequence(source, o);
+    const SequenceResult r = TrackSearchingEvery(f, run == 0 ? 1 : kLoneSearchEveryFrames);
     ASSERT_EQ(r.frames.size(), f.frames.size());
     c[run] = Count(f, r);
   }
@@ -169,44 +181,27 @@ TEST(CutSpheres, ASphereAloneInViewIsFollowedWithoutSearchingTheWholeFrame) {
 
 // The dimer slides out of view by the right edge, stays out for `away` frames and comes back.
 Film SlideOutAndBack(Lighting lighting, double speed, int away) {
-  RenderOptions o;
-  o.width = kWidth;
-  o.height = kHeight;
-  o.lighting = lighting;
-  o.noise = 2.0;
   std::vector<double> xs;
   const double out = kWidth + 2 * kRadiusPx;  // the left sphere a diameter beyond the edge
   for (double x = 0.25 * kWidth; x < out; x += speed) xs.push_back(x);
   for (int i = 0; i < away; ++i) xs.push_back(out);
   for (double x = out; x > 0.25 * kWidth; x -= speed) xs.push_back(x);
-  Film f;
-  for (size_t i = 0; i < xs.size(); ++i) {
-    f.poses.push_back(Pose(xs[i], i));
-    f.frames.push_back(RenderFrame({f.poses.back()}, o, i));
-  }
-  return f;
+  return FilmAt(lighting, xs);
 }
 
 // Two whole-frame searches in a row that find nothing, not even a candidate: the dimer is out of
 // view, and until the next search, lone_search_every frames on, only the plate is measured.
-// Mirror-lit, 64-frame chunks: as many spheres found as with a search of every frame, no swap,
-// the plate measured in every frame as there (within 0.01 px), and the frames with nothing in
-// view mostly not searched.
+// Mirror-lit, TrackSearchingEvery: as many spheres found as with a search of every frame, no
+// swap, the plate measured in every frame as there (within 0.01 px), and the frames with
+// nothing in view mostly not searched.
 TEST(CutSpheres, FramesWithNothingInViewAreNotSearchedWhole) {
   const Film f = SlideOutAndBack(Lighting::kReflect, 3.0, 200);
-  MemorySource source(f.frames);
   std::array<Counts, 2> c;
   std::array<size_t, 2> empty_searched{0, 0};
   std::array<std::vector<double>, 2> plate;
   size_t empty = 0;
   for (int run = 0; run < 2; ++run) {
-    SequenceOptions o;
-    o.follower.method = Method::kTemplate;
-    o.follower.lone_search_every = run == 0 ? 1 : kLoneSearchEveryFrames;
-    o.contact_radius_px = kRadiusPx;
-    o.threads = 2;
-    o.chunk_frames = 64;
-    const SequenceResult r = TrackSequence(source, o);
+    const SequenceResult r = TrackSearchingEvery(f, run == 0 ? 1 : kLoneSearchEveryFrames);
     ASSERT_EQ(r.frames.size(), f.frames.size());
     c[run] = Count(f, r);
     empty = 0;
