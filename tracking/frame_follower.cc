@@ -526,7 +526,8 @@ void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
 bool FrameFollower::MeasurePlateOnly(const cv::Mat& frame, FrameTrack* out) {
   if (!std::isfinite(plate_row_)) return false;
   out->plate_slope = options_.plate_slope;
-  out->plate_row = PlateRow(frame, plate_row_, plate_col_, {}, 0, &out->clipped_plate,
+  const std::array<Eigen::Vector2d, 2> no_sphere{Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)};
+  out->plate_row = PlateRow(frame, plate_row_, plate_col_, no_sphere, 0, &out->clipped_plate,
                             &out->plate_col);
   return std::isfinite(out->plate_row);
 }
