@@ -202,6 +202,15 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
 
 TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<FrameTrack>& frames,
                                 double contact_radius_px, double gravity_px) {
+  // A sphere whose learnt positions did not move with its detections: its stated uncertainty
+  // on that axis covers how far the two parted (detection_agreement.h).
+  const auto widened = [&m](TemplateOffsets t) {
+    for (int k = 0; k < 2; ++k) {
+      OffsetEstimate& e = m.agreement[k].axis == 0 ? t.col[k] : t.row[k];
+      e.err = WidenForDisagreement(m.agreement[k], e.err);
+    }
+    return t;
+  };
   TemplateOffsets o;
   // The tracker's noise whatever the motion (ContactRowOffset's noise_cap).
   const double length_noise = GapNoise(DimerLengthSeries(frames));
@@ -223,7 +232,7 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
         ContactRowOffset(rows, plate, contact_radius_px * std::hypot(1.0, slope), gravity_px,
                          length_noise);
   }
-  if (m.choice.silhouettes) return o;
+  if (m.choice.silhouettes) return widened(o);
   // The sphere that rests longer (more frames in its contact cluster) sets the contact; the
   // other one, if it rests much less (it bounces: the frames near its impacts are flight, up to
   // a few tenths of a pixel above contact, and bias its own estimate upward), gets that offset
@@ -249,7 +258,7 @@ TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<Frame
     o.col[k] = LimbColumnOffset(m.learnt[k], row);
     if (o.col[k].source == "none") o.col[k] = ColumnWithoutTheUpperOutline(m.learnt[k]);
   }
-  return o;
+  return widened(o);
 }
 
 void ApplyOffsets(const TemplateOffsets& o, std::vector<FrameTrack>* frames) {

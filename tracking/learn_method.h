@@ -54,7 +54,8 @@ struct TemplateOffsets {
 // From silhouettes when the footage has clean ones, else rows from the plate contact over the
 // whole track (`contact_radius_px`; `gravity_px`, g in px per frame^2, bends the arms of a
 // bouncing sphere's impacts: ContactRowOffset, NaN: left out) and columns from the appearance's
-// outline.
+// outline. Each stated uncertainty is widened where the sphere's learnt positions disagree
+// with its detections (m.agreement, WidenForDisagreement).
 TemplateOffsets EstimateOffsets(const SequenceMethod& m, const std::vector<FrameTrack>& frames,
                                 double contact_radius_px,
                                 double gravity_px = std::numeric_limits<double>::quiet_NaN());

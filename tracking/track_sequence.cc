@@ -291,13 +291,6 @@ void PlaceOffsets(const Film& film, const SequenceOptions& options, SequenceResu
   result->offsets = EstimateOffsets(film.prepared, result->frames, film.ref.radius_px,
                                     options.gravity_per_radius_px * film.ref.radius_px);
   ApplyOffsets(result->offsets, &result->frames);
-  // A sphere whose learnt positions did not move with its detections: its stated uncertainty
-  // on that axis covers how far the two parted (detection_agreement.h).
-  for (int k = 0; k < 2; ++k) {
-    const DetectionAgreement& a = film.prepared.agreement[k];
-    OffsetEstimate& e = a.axis == 0 ? result->offsets.col[k] : result->offsets.row[k];
-    e.err = WidenForDisagreement(a, e.err);
-  }
 }
 
 // The stages after the last chunk, in order.
