@@ -9,6 +9,7 @@
 #include "tests/common/test_tmpdir.h"
 
 namespace dimer {
+namespace atomic_output_test {
 namespace {
 namespace fs = std::filesystem;
 
@@ -77,9 +78,11 @@ TEST(AtomicOutput, MissingParentFolderIsAClearError) {
 }
 
 }  // namespace
+}  // namespace atomic_output_test
 }  // namespace dimer
 
 namespace dimer {
+namespace atomic_output_test {
 namespace {
 
 TEST(CheckCanWrite, RefusesAFolderWhereAFileIsAskedEvenWithForce) {
@@ -115,4 +118,5 @@ TEST(CheckCanWrite, LeavesNoProbeBehind) {
 }
 
 }  // namespace
+}  // namespace atomic_output_test
 }  // namespace dimer

@@ -14,6 +14,7 @@
 #include "tests/common/test_tmpdir.h"
 
 namespace dimer {
+namespace h5_chunks_ahead_test {
 namespace {
 
 std::string Slurp(const std::string& path) {
@@ -89,4 +90,5 @@ TEST(ChunksAhead, AWorkersFailureReachesTheWriter) {
 }
 
 }  // namespace
+}  // namespace h5_chunks_ahead_test
 }  // namespace dimer

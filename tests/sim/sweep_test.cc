@@ -22,6 +22,7 @@
 #include "tests/common/test_tmpdir.h"
 
 namespace dimer::sim {
+namespace sweep_test {
 namespace {
 
 using dimer::testing::TempDir;
@@ -463,4 +464,5 @@ TEST_F(SweepFiles, DriftScaledIsTheSameAtEveryFrequencyWhenDiameterScalesAsOneOv
 }
 
 }  // namespace
+}  // namespace sweep_test
 }  // namespace dimer::sim

@@ -14,6 +14,7 @@
 #include "tracking/track_sequence.h"
 
 namespace dimer::tracking {
+namespace cut_spheres_test {
 namespace {
 
 constexpr int kWidth = 512, kHeight = 256;
@@ -276,4 +277,5 @@ TEST(CutSpheres, TheLocatorPlacesTheVisiblePartOrDeclines) {
 }
 
 }  // namespace
+}  // namespace cut_spheres_test
 }  // namespace dimer::tracking

@@ -16,6 +16,7 @@
 #include "tracking/track_sequence.h"
 
 namespace dimer::tracking {
+namespace dimer_identity_test {
 namespace {
 
 constexpr int kWidth = 400, kHeight = 170;
@@ -270,4 +271,5 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 }  // namespace
+}  // namespace dimer_identity_test
 }  // namespace dimer::tracking

@@ -18,6 +18,7 @@
 #include "tracking/run_track.h"
 
 namespace dimer::tracking {
+namespace dimer_presence_test {
 namespace {
 
 constexpr int kFrames = 30;
@@ -119,4 +120,5 @@ TEST(RunTrack, ADimerInViewInMostFramesIsTracked) {
 }
 
 }  // namespace
+}  // namespace dimer_presence_test
 }  // namespace dimer::tracking

@@ -21,6 +21,7 @@
 #include "tracking/track_sequence.h"
 
 namespace dimer::tracking {
+namespace plate_under_dimer_test {
 namespace {
 
 // Where a distractor lies: at fixed rows, or at rows relative to the plate's top (riding with
@@ -180,4 +181,5 @@ TEST(PlateUnderTheDimer, TrackSaysTheStrongestEdgeIsNotThePlate) {
 }
 
 }  // namespace
+}  // namespace plate_under_dimer_test
 }  // namespace dimer::tracking

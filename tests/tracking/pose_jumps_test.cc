@@ -15,6 +15,7 @@
 #include "tracking/track_sequence.h"
 
 namespace dimer::tracking {
+namespace pose_jumps_test {
 namespace {
 
 constexpr int kWidth = 400, kHeight = 170;
@@ -67,4 +68,5 @@ TEST(PoseJumps, ASphereThatJumpsBetweenPosesIsFoundAtItsNewPose) {
 }
 
 }  // namespace
+}  // namespace pose_jumps_test
 }  // namespace dimer::tracking

@@ -22,6 +22,7 @@
 #include "tracking/io/frame_source.h"
 
 namespace dimer::tracking {
+namespace image_codecs_test {
 namespace {
 
 constexpr int kGreyAnyDepth = cv::IMREAD_ANYDEPTH | cv::IMREAD_GRAYSCALE;
@@ -243,4 +244,5 @@ TEST_F(ImageCodecsLoading, NotALibraryIsOneLineNamingTheFile) {
 }
 
 }  // namespace
+}  // namespace image_codecs_test
 }  // namespace dimer::tracking

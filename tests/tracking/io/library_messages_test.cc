@@ -16,6 +16,7 @@
 #include "tracking/io/frame_source.h"
 
 namespace dimer::tracking {
+namespace library_messages_test {
 namespace {
 
 // OpenCV 4.6's text for a TIFF of 5 samples per pixel, as imcount prints it.
@@ -150,4 +151,5 @@ TEST(LibraryMessages, BadTiffsGiveOneLineNamingTheFile) {
 }
 
 }  // namespace
+}  // namespace library_messages_test
 }  // namespace dimer::tracking

@@ -13,6 +13,7 @@
 #include "tracking/plate/plate_edge.h"
 
 namespace dimer::tracking {
+namespace clipped_edge_test {
 namespace {
 
 // One frame of a plate edge at `edge` (dark above, 128 x gain below, blur 0.5 px, noise 2),
@@ -179,4 +180,5 @@ TEST(ClippedEdgeSequence, FramesWithoutAClippedEdgeAreLeftAsTheyAre) {
 }
 
 }  // namespace
+}  // namespace clipped_edge_test
 }  // namespace dimer::tracking

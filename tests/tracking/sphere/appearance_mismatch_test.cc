@@ -19,6 +19,7 @@
 #include "render/seeded_noise.h"
 
 namespace dimer::tracking {
+namespace appearance_mismatch_test {
 namespace {
 
 constexpr double kRadius = 20.0;
@@ -182,4 +183,5 @@ TEST(AppearanceMismatch, UnmeasuredWithoutTheJackknife) {
 }
 
 }  // namespace
+}  // namespace appearance_mismatch_test
 }  // namespace dimer::tracking

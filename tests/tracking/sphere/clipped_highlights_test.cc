@@ -21,6 +21,7 @@
 #include "tracking/sphere/fast_follow.h"
 
 namespace dimer::tracking {
+namespace clipped_highlights_test {
 namespace {
 
 constexpr double kRadius = 10.0;
@@ -239,4 +240,5 @@ TEST(ClippedHighlights, TheDecisionDoesNotDependOnTheThreadCount) {
 }
 
 }  // namespace
+}  // namespace clipped_highlights_test
 }  // namespace dimer::tracking

@@ -21,6 +21,7 @@
 #include "tests/tracking/synthetic.h"
 
 namespace dimer::tracking {
+namespace column_uncertainty_test {
 namespace {
 
 constexpr double kRadius = 23.75;
@@ -148,4 +149,5 @@ TEST(ColumnUncertainty, TheStatedColumnUncertaintyMatchesItsSpreadOverNoiseSeeds
 }
 
 }  // namespace
+}  // namespace column_uncertainty_test
 }  // namespace dimer::tracking

@@ -11,6 +11,7 @@
 #include "tests/tracking/sphere/sphere_pattern.h"
 
 namespace dimer::tracking {
+namespace fast_follow_test {
 namespace {
 
 constexpr double kR = testing::kPatternRadius;
@@ -133,4 +134,5 @@ TEST(FollowAppearance, WhereTheQuickStepFailsItIsEccsResult) {
 }
 
 }  // namespace
+}  // namespace fast_follow_test
 }  // namespace dimer::tracking

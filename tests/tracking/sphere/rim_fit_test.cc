@@ -8,6 +8,7 @@
 #include "tests/tracking/synthetic.h"
 
 namespace dimer::tracking {
+namespace rim_fit_test {
 namespace {
 
 constexpr double kRadiusPx = 23.75;
@@ -84,4 +85,5 @@ TEST(RimFit, NothingThereIsNotOk) {
 }
 
 }  // namespace
+}  // namespace rim_fit_test
 }  // namespace dimer::tracking

@@ -14,6 +14,7 @@
 #include "tests/tracking/synthetic.h"
 
 namespace dimer::tracking {
+namespace sphere_locator_test {
 namespace {
 
 constexpr double kRadiusPx = 23.75;
@@ -148,4 +149,5 @@ TEST(SphereLocator, TemplateStatesItsScatterAndEccItsBound) {
 }
 
 }  // namespace
+}  // namespace sphere_locator_test
 }  // namespace dimer::tracking
