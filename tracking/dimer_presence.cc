@@ -28,15 +28,30 @@ DimerPresence MeasureDimerPresence(const SequenceResult& r) {
   p.dimer = size_t(std::count_if(lengths.begin(), lengths.end(), [&](double d) {
     return std::abs(d - p.length_px) <= tolerance;
   }));
+  // The left sphere alone has its partner to the right, the right one to the left.
+  const double margin = kOutOfViewMarginFraction * p.length_px;
+  for (const FrameTrack& f : r.frames) {
+    if (f.found[0] == f.found[1]) continue;
+    p.leaving += f.found[0] ? f.centre[0].x() + p.length_px >= r.width - 1 - margin
+                            : f.centre[1].x() - p.length_px <= margin;
+  }
   return p;
 }
 
 std::string NoDimerMessage(const DimerPresence& p) {
-  return Format("no dimer: two spheres a constant distance apart in %zu of %zu frames (%.0f %% "
-                "needed); found two objects in %zu (any distance), one in %zu, none in %zu; "
-                "track the frames that show the dimer (--frames)",
-                p.dimer, p.frames, 100.0 * kMinDimerFraction, p.both, p.one,
-                p.frames - p.both - p.one);
+  return Format("no dimer: two spheres a constant distance apart in %zu of %zu frames (needed: "
+                "half of the %zu that show anything, and %zu at least); found two objects in "
+                "%zu (any distance), one in %zu (%zu with the other's place out of view), none "
+                "in %zu; track the frames that show the dimer (--frames)",
+                p.dimer, p.frames, p.shown(), p.needed(), p.both, p.one, p.leaving,
+                p.frames - p.shown());
+}
+
+std::string DimerOutOfViewNote(const DimerPresence& p) {
+  if (!p.seen() || 2 * p.dimer >= p.frames) return "";
+  return Format("the dimer is in view in %zu of %zu frames (one sphere, the other out of view, "
+                "in %zu; nothing in view in %zu): tracked where it is, found = 0 elsewhere",
+                p.dimer, p.frames, p.leaving, p.frames - p.shown());
 }
 
 }  // namespace dimer::tracking

@@ -183,9 +183,11 @@ SequenceResult TrackWithLibraryMessagesCaptured(const TrackArgs& args, const Seq
 
 // Stage "a dimer is here" (dimer_presence.h): a film of something else is refused before anything
 // is written.
-void RequireADimer(const std::string& input, const SequenceResult& r) {
+void RequireADimer(const std::string& input, const SequenceResult& r, Diagnostics* diag) {
   const DimerPresence dimer = MeasureDimerPresence(r);
   if (!dimer.seen()) throw InputError(input + ": " + NoDimerMessage(dimer));
+  const std::string out_of_view = DimerOutOfViewNote(dimer);
+  if (!out_of_view.empty()) diag->Note("dimer_out_of_view", input + ": " + out_of_view);
 }
 
 // The one-line summary every subcommand ends with (app/ prints it on stdout; -q silences
@@ -228,7 +230,7 @@ void RunTrack(const TrackArgs& args) {
     throw InputError(args.input + ": no readable frame (all " +
                      std::to_string(r.skipped.size()) + " were skipped)");
   }
-  if (r.complete) RequireADimer(args.input, r);  // a partial film is kept whatever it shows
+  if (r.complete) RequireADimer(args.input, r, &diag);  // a partial film is kept whatever it shows
   ReportFilm(args, rec, r, &diag);
   const Calibration cal = Calibrate(args, r, length_scale);
   if (args.ar) ReportLengthScale(args, cal, &diag);

@@ -815,6 +815,36 @@ TEST(PovrayLeavingTheFrame, TheTrackFileFlagsTheCutSpheresWithTheirUncertainty) 
   EXPECT_GE(cut, 6u);
 }
 
+// `dimerlab track` on the whole of the same film (61 frames): both spheres are in view in fewer
+// than half of them, the left one alone in most of the rest and nothing in the last two. A
+// drift run's film ends this way; it is tracked, not refused as a film without a dimer
+// (dimer_presence.h), and a note says how much of it shows the dimer. CTest
+// `povray.leaving_the_frame`.
+TEST(PovrayLeavingTheFrame, AFilmWhoseDimerLeavesForGoodIsTrackedWhereItIsInView) {
+  const std::string dir = std::string(DIMERLAB_POVRAY_CACHE) + "/leaving_both_edges";
+  if (!std::filesystem::exists(dir + "/truth.csv")) {
+    GTEST_SKIP() << dir << ": rendered by OneSphereLeavesThenTheOther..., which runs first";
+  }
+  const dimer::testing::TempDir tmp;
+  tracking::TrackArgs t;
+  t.input = dir;
+  t.output = tmp / "track.h5";
+  t.m_per_px = 0.0002;
+  t.quiet = true;
+  std::string notes;
+  t.on_diagnostic = [&notes](const tracking::Diagnostic& d) { notes += d.message + "\n"; };
+  tracking::RunTrack(t);
+  std::printf("[ stats    ] %s", notes.c_str());
+  EXPECT_NE(notes.find("the dimer is in view in "), std::string::npos) << notes;
+  const H5Reader h(t.output);
+  const std::vector<uint8_t> found = h.ReadUint8("/found");
+  ASSERT_EQ(found.size(), 122u);
+  size_t both = 0;
+  for (size_t i = 0; i < 61; ++i) both += found[2 * i] && found[2 * i + 1];
+  EXPECT_LT(2 * both, 61u) << "the film is not what it says";
+  EXPECT_EQ(found[2 * 59] + found[2 * 59 + 1] + found[2 * 60] + found[2 * 60 + 1], 0);
+}
+
 // A still-plate calibration film: the dimer resting on a still plate in 16 poses (each frame its
 // own, sharp), the left sphere on the plate, the right lifted by 0 to 3 degrees, the dimer moved
 // by up to 6 mm between poses. A lab's film of this kind put both spheres' rows 2.2-2.4 px low
