@@ -774,23 +774,34 @@ TEST(PovrayLeavingTheFrame, OneSphereLeavesThenTheOtherAndNeitherIsSwappedOrInve
   }
 }
 
+// The drifting film of OneSphereLeavesThenTheOther... (which renders it and runs first), read
+// again through `dimerlab track` by the two tests below.
+const std::string kLeavingFilm = std::string(DIMERLAB_POVRAY_CACHE) + "/leaving_both_edges";
+constexpr const char* kLeavingFilmNotRendered =
+    "leaving_both_edges: rendered by OneSphereLeavesThenTheOther..., which runs first";
+
+bool LeavingFilmRendered() { return std::filesystem::exists(kLeavingFilm + "/truth.csv"); }
+
+// `track`'s arguments for that film, its scale given, the track written into `dir`.
+tracking::TrackArgs LeavingFilmTrackArgs(const std::filesystem::path& dir) {
+  tracking::TrackArgs t;
+  t.input = kLeavingFilm;
+  t.output = dir / "track.h5";
+  t.m_per_px = 0.0002;
+  t.quiet = true;
+  return t;
+}
+
 // What `dimerlab track` writes of the cut spheres of the same film (its first 30 frames: the
 // right sphere leaves over frames 10-22): /found is 2 exactly where a sphere is found cut, and
 // /pixels/right_cut_err states each one's uncertainty there (its registration, the whole
 // sphere beside it cut alike, the length's miss and the offset's: 0.09-0.13 px here) and NaN
 // elsewhere. CTest `povray.leaving_the_frame`.
 TEST(PovrayLeavingTheFrame, TheTrackFileFlagsTheCutSpheresWithTheirUncertainty) {
-  const std::string dir = std::string(DIMERLAB_POVRAY_CACHE) + "/leaving_both_edges";
-  if (!std::filesystem::exists(dir + "/truth.csv")) {
-    GTEST_SKIP() << dir << ": rendered by OneSphereLeavesThenTheOther..., which runs first";
-  }
+  if (!LeavingFilmRendered()) GTEST_SKIP() << kLeavingFilmNotRendered;
   const dimer::testing::TempDir tmp;
-  tracking::TrackArgs t;
-  t.input = dir;
+  tracking::TrackArgs t = LeavingFilmTrackArgs(tmp.path());
   t.frames = "0:30";
-  t.output = tmp / "track.h5";
-  t.m_per_px = 0.0002;
-  t.quiet = true;
   tracking::RunTrack(t);
   const H5Reader h(t.output);
   const std::vector<uint8_t> found = h.ReadUint8("/found");
@@ -821,16 +832,9 @@ TEST(PovrayLeavingTheFrame, TheTrackFileFlagsTheCutSpheresWithTheirUncertainty) 
 // (dimer_presence.h), and a note says how much of it shows the dimer. CTest
 // `povray.leaving_the_frame`.
 TEST(PovrayLeavingTheFrame, AFilmWhoseDimerLeavesForGoodIsTrackedWhereItIsInView) {
-  const std::string dir = std::string(DIMERLAB_POVRAY_CACHE) + "/leaving_both_edges";
-  if (!std::filesystem::exists(dir + "/truth.csv")) {
-    GTEST_SKIP() << dir << ": rendered by OneSphereLeavesThenTheOther..., which runs first";
-  }
+  if (!LeavingFilmRendered()) GTEST_SKIP() << kLeavingFilmNotRendered;
   const dimer::testing::TempDir tmp;
-  tracking::TrackArgs t;
-  t.input = dir;
-  t.output = tmp / "track.h5";
-  t.m_per_px = 0.0002;
-  t.quiet = true;
+  tracking::TrackArgs t = LeavingFilmTrackArgs(tmp.path());
   std::string notes;
   t.on_diagnostic = [&notes](const tracking::Diagnostic& d) { notes += d.message + "\n"; };
   tracking::RunTrack(t);
