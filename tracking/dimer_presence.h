@@ -26,8 +26,9 @@ inline constexpr size_t kMinDimerFrames = 5;
 inline constexpr double kDimerLengthTolerancePx = 1.0;
 inline constexpr double kDimerLengthToleranceFraction = 0.01;
 // A lone sphere's partner is out of view where its place is within this fraction of the dimer's
-// length of the frame's side edge or beyond it (a partner at least half in view is found; the
-// margin covers a tilted rod, whose place is nearer, down to cos 40 degrees).
+// length of the frame's side edge or beyond it. A partner at least half in view is found, and a
+// tilted rod's is nearer than its place along the row; the margin (1.4 radii at A_r 3.9) takes
+// in a partner partly in view that the locators missed.
 inline constexpr double kOutOfViewMarginFraction = 0.25;
 
 struct DimerPresence {
