@@ -115,7 +115,7 @@ TEST(RunTrack, ARealCameraFilmWithoutADimerIsRefused) {
 
 // A long drift run's dimer leaves the field of view, one sphere after the other, often for
 // good. Sliding right 5 px a frame over 60 frames (512 px wide), its right sphere leaves by the
-// edge over frames 11-20 and the left one over 38-47; nothing is in view after. Both spheres
+// edge over frames 10-19 and the left one over 38-47; nothing is in view after. Both spheres
 // are in view in fewer than half of the frames, yet the film is tracked (a note says so): each
 // sphere found under its own name while whole in view, neither once out of it. Where 12 frames
 // of the dimer are followed by a sphere alone whose partner's place is in view (not a dimer
