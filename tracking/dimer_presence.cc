@@ -12,10 +12,11 @@ namespace dimer::tracking {
 DimerPresence MeasureDimerPresence(const SequenceResult& r) {
   DimerPresence p;
   p.frames = r.frames.size();
-  std::vector<double> lengths;
+  std::vector<double> lengths, radii;
   for (const FrameTrack& f : r.frames) {
     if (f.found[0] && f.found[1]) {
       lengths.push_back((f.centre[1] - f.centre[0]).norm());
+      radii.insert(radii.end(), f.radius_px.begin(), f.radius_px.end());
     } else if (f.found[0] || f.found[1]) {
       ++p.one;
     }
@@ -28,12 +29,15 @@ DimerPresence MeasureDimerPresence(const SequenceResult& r) {
   p.dimer = size_t(std::count_if(lengths.begin(), lengths.end(), [&](double d) {
     return std::abs(d - p.length_px) <= tolerance;
   }));
-  // The left sphere alone has its partner to the right, the right one to the left.
-  const double margin = kOutOfViewMarginFraction * p.length_px;
+  // The left sphere alone has its partner to the right, the right one to the left; its place
+  // is cut or out where its centre is within a radius of the edge (pixel centres), as in
+  // FrameFollower::OtherCanBeOutOfView, whose circle of tilts reaches furthest along the row.
+  const double median_radius = FiniteMedian(radii);
+  const double radius = median_radius > 0 ? median_radius : 0.0;
   for (const FrameTrack& f : r.frames) {
     if (f.found[0] == f.found[1]) continue;
-    p.leaving += f.found[0] ? f.centre[0].x() + p.length_px >= r.width - 1 - margin
-                            : f.centre[1].x() - p.length_px <= margin;
+    p.leaving += f.found[0] ? f.centre[0].x() + p.length_px > r.width - 0.5 - radius
+                            : f.centre[1].x() - p.length_px < radius - 0.5;
   }
   return p;
 }

@@ -6,8 +6,8 @@
 // of whatever the locators latched onto. A long drift run's dimer leaves the field of view, one
 // sphere after the other, often for good: frames with nothing in view do not count against it,
 // and a frame with one sphere counts for it where the other's place (a dimer's length along the
-// row) is at or beyond the frame's side edge; such a film is tracked where the dimer is in view
-// (found = 0 elsewhere). Held by
+// row, the furthest a tilt can put it) is within a sphere's radius of the frame's side edge or
+// beyond; such a film is tracked where the dimer is in view (found = 0 elsewhere). Held by
 // RunTrack.AFilmWithoutADimerIsRefusedAndNothingIsWritten and
 // RunTrack.ADimerThatLeavesTheViewIsTrackedWhereItIsInView.
 #include <algorithm>
@@ -25,18 +25,12 @@ inline constexpr size_t kMinDimerFrames = 5;
 // Two centres are the dimer's length apart within this many px, or this fraction of it.
 inline constexpr double kDimerLengthTolerancePx = 1.0;
 inline constexpr double kDimerLengthToleranceFraction = 0.01;
-// A lone sphere's partner is out of view where its place is within this fraction of the dimer's
-// length of the frame's side edge or beyond it. A partner at least half in view is found, and a
-// tilted rod's is nearer than its place along the row; the margin (1.4 radii at A_r 3.9) takes
-// in a partner partly in view that the locators missed.
-inline constexpr double kOutOfViewMarginFraction = 0.25;
-
 struct DimerPresence {
   size_t frames = 0;      // readable frames
   size_t dimer = 0;       // both spheres found, the dimer's length apart
   size_t both = 0;        // both found at any distance
   size_t one = 0;         // one found
-  size_t leaving = 0;     // one found, the other's place out of view by the frame's side edge
+  size_t leaving = 0;     // one found, the other's place cut or out by the frame's side edge
   double length_px = 0;   // the median distance of the pairs
   size_t shown() const { return both + one; }  // frames that show anything
   size_t needed() const { return std::min(kMinDimerFrames, (frames + 1) / 2); }
