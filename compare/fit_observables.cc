@@ -1,6 +1,7 @@
 #include "compare/fit_observables.h"
 
 #include <cmath>
+#include <string>
 
 namespace dimer::compare {
 namespace {
@@ -13,6 +14,9 @@ constexpr double kRatioFloor = 5e-3;     // v_after / -v_before
 constexpr double kPhaseFloor = 2e-3;     // periods
 constexpr double kModeStatFloor = 0.05;  // impacts per period, rest fractions
 constexpr int kMinBinCount = 3;
+// A bin of the track's slip profile is compared only where the resting sphere is in contact on
+// this share of the bin's frames in the settled window: a frame or two lost, not a lift-off.
+constexpr double kFullBinShare = 0.9;
 
 struct Stats {
   double mean = kNaN, err = kNaN;
@@ -102,6 +106,18 @@ std::vector<Observable> FitObservables(const Analysis& a, const std::string& mod
     }
     SphereImpacts(a, 0, "left", &out);
     SphereImpacts(a, 1, "right", &out);
+  }
+  return out;
+}
+
+std::vector<Observable> TrackObservables(const Analysis& track) {
+  std::vector<Observable> out = FitObservables(track);
+  const std::vector<int>& count = track.slip.profile_count;
+  const std::vector<int>& frames = track.slip.profile_frames;
+  for (Observable& o : out) {
+    if (o.name.rfind("slip_bin_", 0) != 0) continue;
+    const size_t k = std::stoul(o.name.substr(9));
+    if (k < count.size() && k < frames.size() && count[k] < kFullBinShare * frames[k]) o.value = o.err = kNaN;
   }
   return out;
 }

@@ -161,6 +161,10 @@ SlipResult AnalyzeSlip(const SampledRun& run, const PlateDrive& plate, const Con
     if (in_window(run.Time(i))) settled_u[i] = out.U[i];
   PhaseAverage(phase, settled_u, phase_bins, &out.phase, &out.profile, &out.profile_err,
                &out.profile_count);
+  out.profile_frames.assign(phase_bins, 0);
+  for (size_t i = 0; i < n; ++i)
+    if (in_window(run.Time(i)) && std::isfinite(phase[i]))
+      ++out.profile_frames[std::min(phase_bins - 1, static_cast<int>(phase[i] * phase_bins))];
   std::vector<double> centres;
   PhaseAverage(phase, out.U, phase_bins, &centres, &out.whole_profile, &out.whole_profile_err,
                &out.whole_profile_count);

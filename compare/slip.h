@@ -48,6 +48,9 @@ struct SlipResult {
   int window_periods = 0;
   std::vector<double> phase, profile, profile_err;  // K bin centres [0,1), mean U, its error
   std::vector<int> profile_count;
+  // Frames of the settled window in each bin, resting or not: a bin whose profile_count falls
+  // short of them is one where the sphere leaves the plate on some periods (fit_observables.h).
+  std::vector<int> profile_frames;
   std::vector<double> whole_profile, whole_profile_err;  // the same over every frame of the run
   std::vector<int> whole_profile_count;
   double after = kNaN, after_err = kNaN;    // mean U, first half after a bouncing impact

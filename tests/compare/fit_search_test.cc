@@ -30,7 +30,8 @@ class TwoWells : public Chi2Objective {
     const double b = floor_b_ + std::pow((x[0] - kEpsB) / kSigmaEps, 2);
     return std::min(a, b) + rest;
   }
-  double AddScatter(const std::vector<double>&) override { return 0; }
+  void AddScatter(const std::vector<double>&) override {}
+  void ForgetScatter() override {}
   int usable() const override { return kObservables; }
 
   static constexpr double kEpsA = 0.85, kEpsB = 0.60, kSigmaEps = 0.01, kSigma = 0.05;
@@ -88,6 +89,35 @@ TEST(FitSearch, NoAcceptablePointGivesNoRange) {
     EXPECT_EQ(p.status, "no_acceptable_fit") << p.name;
     EXPECT_TRUE(std::isnan(p.range_lo) && std::isnan(p.range_hi) && std::isnan(p.err)) << p.name;
   }
+}
+
+// A chaotic drift's chi2 changes realisation between coefficients that differ by 1e-9 (fit.h):
+// here the smooth well of floor 30 plus a term of up to 20 that changes at every such step. A
+// rise smaller than that roughness is not resolved, so the range's threshold is the roughness
+// (a smooth chi2's is 1: AFailingFitMovesToTheLowerPointItsProfileFinds) and eps's range is
+// wider than the smooth well's +- sigma.
+class RoughWell : public TwoWells {
+ public:
+  RoughWell() : TwoWells(30, 1000) {}
+  double Chi2(const std::vector<double>& x, std::vector<double>* simulated) override {
+    double phase = 0;
+    for (size_t k = 0; k < x.size(); ++k) phase += (k + 1) * x[k];
+    return TwoWells::Chi2(x, simulated) + kRoughness * (1 + std::sin(1e9 * phase));
+  }
+  static constexpr double kRoughness = 10;
+};
+
+TEST(FitSearch, ARoughChi2sRangeSpansItsRoughness) {
+  RoughWell chi2;
+  const FitSearchResult s = JudgeAndMove(&chi2, InWell(TwoWells::kEpsA), FitOptions{});
+  ASSERT_TRUE(s.result.acceptable) << "chi2 " << s.result.chi2;
+  EXPECT_GT(s.result.threshold, 0.3 * RoughWell::kRoughness);
+  EXPECT_LT(s.result.threshold, 2 * RoughWell::kRoughness);
+  const FitParameter& eps = s.result.params[0];
+  ASSERT_EQ(eps.status, "constrained");
+  EXPECT_LE(eps.range_lo, TwoWells::kEpsA);
+  EXPECT_GE(eps.range_hi, TwoWells::kEpsA);
+  EXPECT_GT(eps.err, 1.5 * TwoWells::kSigmaEps);
 }
 
 }  // namespace
