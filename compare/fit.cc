@@ -121,13 +121,14 @@ class Objective : public Chi2Objective {
   // 3e-4 on bench_fit_study's A_r 4.8; Fit.FindsADriftWhoseSlipBinsMoveInSteps); a chaotic
   // orbit gives another realisation (chi2 21 for 41 dof at eps + 1e-9 on its A_r 2.5). Neither
   // is in the standard errors, which count periods as independent samples of one sampling.
-  // Each observable's variance is kept as the larger of this and any earlier estimate since the
-  // last ForgetScatter (the searches keep the start's and the paper's; JudgeAndMove forgets them
-  // at each optimum it judges); none is taken where the unshifted trial settles in another mode
-  // than the track's (there the spread measures that mode: 60,000 floors^2 summed at
+  // Each observable's variance is kept as the larger of this and any earlier estimate (the
+  // searches keep the start's and the paper's), or replaces it (JudgeAndMove, at each optimum it
+  // judges). None is taken where the unshifted trial settles in another mode than the track's,
+  // and the earlier ones stay: there the spread measures that mode (60,000 floors^2 summed at
   // bench_fit_study's far start on A_r 3.3, which made a point 0.07 off in eps and 0.2 in mu
-  // "acceptable").
-  void AddScatter(const std::vector<double>& values) override {
+  // "acceptable"), and with none at all, a chaotic drift's optimum, labelled irregular, failed
+  // the goodness test (bench_fit_study's A_r 2.5: chi2/dof 5.5, 0 at the truth).
+  void AddScatter(const std::vector<double>& values, bool replace) override {
     const double frames_per_period = scene_.fps / scene_.freq_hz;
     std::vector<std::vector<Observable>> trials;
     for (int j = 0; j < kScatterTrials; ++j) {
@@ -140,11 +141,9 @@ class Objective : public Chi2Objective {
       for (const std::vector<Observable>& t : trials)
         if (k < t.size() && t[k].name == observed_[k].name && std::isfinite(t[k].value))
           v.push_back(t[k].value);
-      scatter_var_[k] = std::max(scatter_var_[k], Variance(v));
+      scatter_var_[k] = replace ? Variance(v) : std::max(scatter_var_[k], Variance(v));
     }
   }
-
-  void ForgetScatter() override { scatter_var_.assign(observed_.size(), 0.0); }
 
   const std::vector<Observable>& observed() const { return observed_; }
   int usable() const override { return usable_; }
@@ -415,15 +414,14 @@ FitSearchResult JudgeAndMove(Chi2Objective* obj, const std::vector<double>& best
   // 39 dof, where mu's profile reaches below 50 near mu 0.35, the minimum the paper's start
   // finds. An acceptable fit stays where it is (its profiles give its ranges).
   for (;; ++out.moves) {
-    obj->AddScatter(from);
+    obj->AddScatter(from, false);
     out.x = Minimise(obj, from, options.max_evaluations / 2, NLOPT_LN_NELDERMEAD, all).x;
     // The spreads that judge the fit and draw its ranges are the optimum's own. One taken at
     // the start or at a failed optimum measures another motion: on fit_study_tracked.sh's
     // mirror-lit A_r 6.0 a failed first optimum's (0.018 g/f on slip bins whose errors were
     // 0.0003, 0.0125 on a drift of 0.0102) kept them out of the second, whose chi2 was then
     // 0.17 for 35 dof.
-    obj->ForgetScatter();
-    obj->AddScatter(out.x);
+    obj->AddScatter(out.x, true);
     r = FitResult{};
     r.chi2 = obj->Chi2(out.x, &r.simulated);
     r.dof = std::max(1, obj->usable() - static_cast<int>(Specs().size()));
@@ -477,11 +475,11 @@ FitResult FitCoefficients(const Analysis& track, const sim::SimOptions& scene,
   // multi-start search alone rarely finds the basin from far away: from (0.85, 0.3, 0.6, 0.6,
   // 1.2) it gave an acceptable fit on 1 of the 6 scenes of bench_fit_study, with the paper's as
   // a second start on 3 (docs/BENCHMARKS.md).
-  obj.AddScatter(x);
+  obj.AddScatter(x, false);
   const sim::SimOptions paper;
   std::vector<double> from_paper;
   for (const ParamSpec& s : Specs()) from_paper.push_back(paper.*(s.field));
-  if (from_paper != x) obj.AddScatter(from_paper);
+  if (from_paper != x) obj.AddScatter(from_paper, false);
   Minimum best = Minimise(&obj, x, options.max_evaluations, NLOPT_LN_NELDERMEAD, all);
   if (from_paper != x) {
     const Minimum m = Minimise(&obj, from_paper, options.max_evaluations, NLOPT_LN_NELDERMEAD, all);

@@ -14,9 +14,12 @@ constexpr double kRatioFloor = 5e-3;     // v_after / -v_before
 constexpr double kPhaseFloor = 2e-3;     // periods
 constexpr double kModeStatFloor = 0.05;  // impacts per period, rest fractions
 constexpr int kMinBinCount = 3;
-// A bin of the track's slip profile is compared only where the resting sphere is in contact on
-// this share of the bin's frames in the settled window: a frame or two lost, not a lift-off.
-constexpr double kFullBinShare = 0.9;
+// A bin of the track's slip profile is compared only where the resting sphere is on the plate
+// on at least this share of the bin's frames in the settled window (fit_observables.h). Not
+// more: a chaotic drift lifts its resting end off in most bins now and then, and with 0.9
+// bench_fit_study's A_r 2.5 kept 18 degrees of freedom of 41 and its fit failed (chi2/dof 5.5,
+// 0 at the truth).
+constexpr double kContactBinShare = 0.5;
 
 struct Stats {
   double mean = kNaN, err = kNaN;
@@ -117,7 +120,7 @@ std::vector<Observable> TrackObservables(const Analysis& track) {
   for (Observable& o : out) {
     if (o.name.rfind("slip_bin_", 0) != 0) continue;
     const size_t k = std::stoul(o.name.substr(9));
-    if (k < count.size() && k < frames.size() && count[k] < kFullBinShare * frames[k]) o.value = o.err = kNaN;
+    if (k < count.size() && k < frames.size() && count[k] < kContactBinShare * frames[k]) o.value = o.err = kNaN;
   }
   return out;
 }

@@ -26,11 +26,11 @@ std::vector<Observable> FitObservables(const Analysis& a, const std::string& mod
                                        double impact_phase = kNaN);
 
 // The observables a fit compares against: FitObservables(track), less each slip bin in which
-// the resting sphere is off the plate on some of its frames of the settled window (in contact
-// on fewer than kFullBinShare of them). Such a bin averages the frames that happen to be
-// in contact, and a trial near the truth keeps it in some samplings and not in others: on
-// fit_study_tracked.sh's mirror-lit A_r 6.0 (bins of 4 and 8 frames of 98) the missing bins
-// added 25 each to chi2 and made its spread between samplings 13 (FitObservables.*).
+// the resting sphere is on the plate on fewer than half of its frames of the settled window (a
+// bin of lift-off). Such a bin averages the few frames that happen to be in contact, and a trial
+// near the truth keeps it in some samplings and not in others: on fit_study_tracked.sh's
+// mirror-lit A_r 6.0 (bins of 4 and 8 frames of 98) the missing bins added 25 each to chi2
+// (FitObservables.*).
 std::vector<Observable> TrackObservables(const Analysis& track);
 
 }  // namespace dimer::compare

@@ -18,10 +18,9 @@ class Chi2Objective {
   // chi2 at `x`; `simulated`, if given: the model's value of each observable (NaN: none).
   virtual double Chi2(const std::vector<double>& x, std::vector<double>* simulated = nullptr) = 0;
   // Takes the observables' spread between samplings of the motion at `x` into their errors
-  // from now on.
-  virtual void AddScatter(const std::vector<double>& x) = 0;
-  // Forgets the spreads taken so far: the next AddScatter's are then the only ones.
-  virtual void ForgetScatter() = 0;
+  // from now on: the larger of it and the spread taken before, or, with `replace`, in its place
+  // (where a spread is taken at all: fit.cc, AddScatter).
+  virtual void AddScatter(const std::vector<double>& x, bool replace) = 0;
   // Observables with a value: the fit's degrees of freedom are these less the five.
   virtual int usable() const = 0;
 };

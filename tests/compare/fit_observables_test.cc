@@ -1,5 +1,5 @@
 // The observables a fit compares (compare/fit_observables.h) on an analysis made by hand: the
-// track keeps only the slip bins in which its resting sphere is in contact on every frame.
+// track keeps only the slip bins in which its resting sphere is on the plate on most frames.
 #include "compare/fit_observables.h"
 
 #include <gtest/gtest.h>
@@ -40,17 +40,18 @@ const Observable& Named(const std::vector<Observable>& list, const std::string& 
 
 // The mirror-lit A_r 6.0 of fit_study_tracked.sh: bins 14, 15, 18 and 19 held 79, 4, 8 and 82
 // of 98 frames (16 and 17 none). A trial near the truth had bins 15 and 18 in some samplings
-// and not in others, each missing one adding 25 to chi2.
-TEST(FitObservables, TheTrackComparesOnlySlipBinsInContactOnEveryFrame) {
+// and not in others, each missing one adding 25 to chi2. The track compares 14 and 19, on the
+// plate on most of their frames, and leaves out 15 and 18.
+TEST(FitObservables, TheTrackComparesOnlySlipBinsMostlyOnThePlate) {
   const Analysis a = DriftWithPartialBins({{14, 79}, {15, 4}, {16, 0}, {17, 0}, {18, 8}, {19, 82}});
   const std::vector<Observable> any = FitObservables(a), track = TrackObservables(a);
   ASSERT_EQ(any.size(), track.size());
-  for (int bin : {15, 18, 14, 19}) {
+  for (int bin : {15, 18}) {
     const std::string name = "slip_bin_" + std::to_string(bin);
     EXPECT_TRUE(std::isfinite(Named(any, name).value)) << name << ": a trial's bin of 3 frames or more counts";
-    EXPECT_FALSE(std::isfinite(Named(track, name).value)) << name << ": partial contact on the track";
+    EXPECT_FALSE(std::isfinite(Named(track, name).value)) << name << ": lift-off on the track";
   }
-  for (int bin : {0, 13, 20, 39}) {
+  for (int bin : {0, 13, 14, 19, 20, 39}) {
     const std::string name = "slip_bin_" + std::to_string(bin);
     EXPECT_DOUBLE_EQ(Named(track, name).value, 0.01 * 25 / kGravity) << name;
   }

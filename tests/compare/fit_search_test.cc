@@ -30,8 +30,7 @@ class TwoWells : public Chi2Objective {
     const double b = floor_b_ + std::pow((x[0] - kEpsB) / kSigmaEps, 2);
     return std::min(a, b) + rest;
   }
-  void AddScatter(const std::vector<double>&) override {}
-  void ForgetScatter() override {}
+  void AddScatter(const std::vector<double>&, bool) override {}
   int usable() const override { return kObservables; }
 
   static constexpr double kEpsA = 0.85, kEpsB = 0.60, kSigmaEps = 0.01, kSigma = 0.05;
