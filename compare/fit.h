@@ -33,8 +33,9 @@
 // the optimum: its spread between coefficients 1e-7 of their ranges apart, where a chaotic orbit
 // changes realisation; a smaller rise is not resolved). Not chi2's spread between the samplings:
 // with their spread in the errors, chi2 moves between samplings by its own statistical spread,
-// while along a profile a regular orbit's chi2 is smooth (fit_study_tracked.sh: roughness 0 and
-// sampling spread 6.1 on the backlit A_r 4.2, whose ranges were then 2.5 times as wide). A
+// while along a profile a regular orbit's chi2 is smooth (fit_study_tracked.sh's backlit A_r 4.2:
+// roughness 0, sampling spread 5.7, and with that as the threshold ranges 2.4-2.7 times as wide;
+// FitSearch.ARoughChi2sRangeSpansItsRoughness). A
 // parameter is constrained only when that range closes on both sides within the bounds; a
 // range that reaches both bounds means the scene does not constrain it: unconstrained, with no
 // value.
