@@ -109,9 +109,9 @@ TEST(Fit, StartedAtTheTruthStaysThere) {
 // regular orbit strobed at 80 frames per period puts the same phases into each slip bin every
 // period, and a bin that holds a jump of U changes by several of its errors as the jump crosses
 // a frame time (slip_bin_32 by 10 sigma at eps + 0.001, chi2 65 at eps - 3e-4). chi2 at the truth
-// is 0, yet without the sampling scatter in the errors and the threshold (fit.cc, AddScatter)
-// the search from the paper's coefficients stops on another step (chi2 2.3 for 30 dof) whose
-// ranges of mu_hat and mu, [0.0882, 0.0899] and [0.2332, 0.2437], miss the truth.
+// is 0, yet without the sampling scatter in the errors (fit.cc, AddScatter) the search from the
+// paper's coefficients stops on another step (chi2 2.3 for 30 dof) whose ranges of mu_hat and
+// mu, [0.0882, 0.0899] and [0.2332, 0.2437], miss the truth.
 TEST(Fit, FindsADriftWhoseSlipBinsMoveInSteps) {
   sim::SimOptions truth;
   truth.ar = 3.0;
