@@ -126,8 +126,7 @@ class Objective : public Chi2Objective {
   // judges). None is taken where the unshifted trial settles in another mode than the track's,
   // and the earlier ones stay: there the spread measures that mode (60,000 floors^2 summed at
   // bench_fit_study's far start on A_r 3.3, which made a point 0.07 off in eps and 0.2 in mu
-  // "acceptable"), and with none at all, a chaotic drift's optimum, labelled irregular, failed
-  // the goodness test (bench_fit_study's A_r 2.5: chi2/dof 5.5, 0 at the truth).
+  // "acceptable").
   void AddScatter(const std::vector<double>& values, bool replace) override {
     const double frames_per_period = scene_.fps / scene_.freq_hz;
     std::vector<std::vector<Observable>> trials;

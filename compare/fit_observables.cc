@@ -120,7 +120,8 @@ std::vector<Observable> TrackObservables(const Analysis& track) {
   for (Observable& o : out) {
     if (o.name.rfind("slip_bin_", 0) != 0) continue;
     const size_t k = std::stoul(o.name.substr(9));
-    if (k < count.size() && k < frames.size() && count[k] < kContactBinShare * frames[k]) o.value = o.err = kNaN;
+    const bool lift_off = k < count.size() && k < frames.size() && count[k] < kContactBinShare * frames[k];
+    if (lift_off) o.value = o.err = kNaN;
   }
   return out;
 }
