@@ -17,6 +17,7 @@
 #include <random>
 #include <sstream>
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <thread>
 
 #include "common/atomic_output.h"
@@ -397,20 +398,27 @@ std::vector<cv::Mat> RenderPov(const std::string& scene_text, const Camera& came
   cmd += " > povray.log 2>&1";
   // Under load POV-Ray 3.7 sometimes gives up before it starts ("Timed out waiting for worker
   // thread startup": a 2401-frame render died at frame 1204 with the test suite running beside
-  // it). That run has traced nothing, so it is run again, up to kPovrayStartAttempts in all; any
-  // other failure is reported at once.
+  // it) or crashes while parsing (a segmentation fault on one chunk of front_point_ar2_0 in a
+  // fresh-clone CI run; the same chunk rendered when run again). Such a run has traced nothing,
+  // so it is run again, up to kPovrayStartAttempts in all; any other failure is reported at once.
+  auto slices = [&work_dir] {
+    std::vector<std::string> files;
+    for (const auto& de : fs::directory_iterator(work_dir)) {
+      const std::string name = de.path().filename().string();
+      if (name.rfind("slice", 0) == 0 && de.path().extension() == ".png") files.push_back(name);
+    }
+    return files;
+  };
   int rc = 0;
   for (int attempt = 1; attempt <= kPovrayStartAttempts; ++attempt) {
     rc = std::system(cmd.c_str());
     const bool never_started =
         ReadAll(work_dir + "/povray.log").find(kPovrayStartTimeout) != std::string::npos;
-    if (rc == 0 || !never_started) break;
+    // The shell reports a process killed by signal n as exit status 128 + n.
+    const bool crashed_before_any_image = WIFEXITED(rc) && WEXITSTATUS(rc) > 128 && slices().empty();
+    if (rc == 0 || !(never_started || crashed_before_any_image)) break;
   }
-  std::vector<std::string> files;
-  for (const auto& de : fs::directory_iterator(work_dir)) {
-    const std::string name = de.path().filename().string();
-    if (name.rfind("slice", 0) == 0 && de.path().extension() == ".png") files.push_back(name);
-  }
+  std::vector<std::string> files = slices();
   std::sort(files.begin(), files.end());  // slice00.png ...: fixed width, so sorted = in order
   if (rc != 0 || int(files.size()) != subframes) {
     throw InputError(povray + " failed in " + work_dir + " (exit " + std::to_string(rc) + ", " +

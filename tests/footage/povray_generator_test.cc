@@ -108,14 +108,16 @@ TEST(PovrayGenerator, PlateEdgeLandsOnThePlateRow) {
   }
 }
 
-// A stand-in for POV-Ray that fails its first `failures` runs with `message`, then runs the
-// real one; it counts its runs in `dir`/runs.
-std::string FlakyPovray(const dimer::testing::TempDir& dir, int failures, const char* message) {
+// A stand-in for POV-Ray that fails its first `failures` runs with `message` (and, with `crash`,
+// a segmentation fault rather than exit 1), then runs the real one; it counts its runs in
+// `dir`/runs.
+std::string FlakyPovray(const dimer::testing::TempDir& dir, int failures, const char* message,
+                        bool crash = false) {
   const std::string path = dir / "flaky_povray.sh", runs = dir / "runs";
   std::ofstream(path) << "#!/bin/sh\nn=$(cat '" << runs << "' 2>/dev/null || echo 0)\n"
                       << "echo $((n + 1)) > '" << runs << "'\n"
-                      << "if [ \"$n\" -lt " << failures << " ]; then echo '" << message
-                      << "' >&2; exit 1; fi\nexec povray \"$@\"\n";
+                      << "if [ \"$n\" -lt " << failures << " ]; then echo '" << message << "' >&2; "
+                      << (crash ? "kill -SEGV $$" : "exit 1") << "; fi\nexec povray \"$@\"\n";
   std::filesystem::permissions(path, std::filesystem::perms::owner_all);
   return path;
 }
@@ -127,8 +129,9 @@ int Runs(const dimer::testing::TempDir& dir) {
 }
 
 // POV-Ray 3.7 under load sometimes stops before it starts ("Timed out waiting for worker thread
-// startup"; a long render died of it with the test suite running beside it): that run is made
-// again, twice at most. Any other failure is reported at once, naming POV-Ray's message.
+// startup"; a long render died of it with the test suite running beside it) or crashes before
+// it has written an image: that run is made again, twice at most. Any other failure is reported
+// at once, naming POV-Ray's message.
 TEST(PovrayGenerator, APovrayThatNeverStartedIsRunAgain) {
   Camera cam;
   cam.width = 48;
@@ -162,6 +165,13 @@ TEST(PovrayGenerator, APovrayThatNeverStartedIsRunAgain) {
       EXPECT_NE(std::string(e.what()).find("Parse Error"), std::string::npos) << e.what();
     }
     EXPECT_EQ(Runs(dir), 1) << "a scene POV-Ray cannot read is not run again";
+  }
+  {  // A crash while parsing, before any image (one chunk of front_point_ar2_0 in a CI run).
+    dimer::testing::TempDir dir;
+    const std::string povray = FlakyPovray(dir, 2, "==== [Parsing...] ====", true);
+    const cv::Mat img = RenderPov(scene, cam, 1, 0, dir / "work", povray).at(0);
+    EXPECT_EQ(Runs(dir), 3);
+    EXPECT_NEAR(cv::mean(img)[0], 0.5, 0.01);
   }
 }
 
