@@ -417,9 +417,9 @@ FitSearchResult JudgeAndMove(Chi2Objective* obj, const std::vector<double>& best
     out.x = Minimise(obj, from, options.max_evaluations / 2, NLOPT_LN_NELDERMEAD, all).x;
     // The spreads that judge the fit and draw its ranges are the optimum's own. One taken at
     // the start or at a failed optimum measures another motion: on fit_study_tracked.sh's
-    // mirror-lit A_r 6.0 a failed first optimum's (0.018 g/f on slip bins whose errors were
-    // 0.0003, 0.0125 on a drift of 0.0102) kept them out of the second, whose chi2 was then
-    // 0.17 for 35 dof.
+    // mirror-lit A_r 6.0 a failed first optimum's (0.020 g/f on slip bins whose errors were
+    // 0.0003, 0.016 on a drift of 0.010) kept them out of the second, whose chi2 was then 0.17
+    // for 35 dof.
     obj->AddScatter(out.x, true);
     r = FitResult{};
     r.chi2 = obj->Chi2(out.x, &r.simulated);
