@@ -91,7 +91,10 @@ std::vector<Observable> FitObservables(const Analysis& a, const std::string& mod
     out.push_back({"slip_before", a.slip.before / vscale, a.slip.before_err / vscale, kSpeedFloor});
     // Bins next to the bouncing end's impact are left out: U jumps inside them, so their mean
     // depends on where the frames fall relative to the impact, not on the physics.
-    if (!std::isfinite(impact_phase)) impact_phase = out[6].value;  // bouncing_impact_phase
+    if (!std::isfinite(impact_phase)) {
+      for (const Observable& o : out)
+        if (o.name == "bouncing_impact_phase") impact_phase = o.value;
+    }
     const int nb = static_cast<int>(a.slip.profile.size());
     for (int k = 0; k < a.options.phase_bins; ++k) {
       const double centre = (k + 0.5) / a.options.phase_bins;
@@ -99,7 +102,7 @@ std::vector<Observable> FitObservables(const Analysis& a, const std::string& mod
                              std::abs(std::remainder(centre - impact_phase, 1.0)) < 1.5 / a.options.phase_bins;
       const bool ok = k < nb && a.slip.profile_count[k] >= kMinBinCount && !at_impact;
       out.push_back({"slip_bin_" + std::to_string(k), ok ? a.slip.profile[k] / vscale : kNaN,
-                     ok ? a.slip.profile_err[k] / vscale : kNaN, kSpeedFloor});
+                     ok ? a.slip.profile_err[k] / vscale : kNaN, kSpeedFloor, k});
     }
   } else if (label == "jump" || label == "flutter") {
     for (int s = 0; s < 2; ++s) {
@@ -118,8 +121,8 @@ std::vector<Observable> TrackObservables(const Analysis& track) {
   const std::vector<int>& count = track.slip.profile_count;
   const std::vector<int>& frames = track.slip.profile_frames;
   for (Observable& o : out) {
-    if (o.name.rfind("slip_bin_", 0) != 0) continue;
-    const size_t k = std::stoul(o.name.substr(9));
+    if (o.slip_bin < 0) continue;
+    const size_t k = static_cast<size_t>(o.slip_bin);
     const bool lift_off = k < count.size() && k < frames.size() && count[k] < kContactBinShare * frames[k];
     if (lift_off) o.value = o.err = kNaN;
   }

@@ -13,6 +13,7 @@ struct Observable {
   std::string name;
   double value = kNaN, err = kNaN;
   double floor = 0;  // systematic floor added in quadrature (analysis resolution)
+  int slip_bin = -1;  // the phase bin of a slip_bin_<k> observable; -1 for the others
 };
 
 // The observables of `a` read as the mode `mode` (empty: a's own settled mode), so that a
