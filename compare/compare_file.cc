@@ -236,6 +236,10 @@ void WriteFit(Out& o, const FitResult& f) {
   Rows goodness = {f.chi2 / f.dof, f.p_value, f.acceptable ? 1.0 : 0.0};
   o.Doubles("/fit/goodness", goodness, {1, 3}, "1", "chi2/dof at the optimum, its p-value P(chi2 >= found), "
             "1 if acceptable (p >= 0.001) else 0", "chi2_per_dof,p_value,acceptable");
+  Rows floors = {f.floor_scale, f.chi2_per_dof_at_floors, f.p_value_at_floors};
+  o.Doubles("/fit/floors", floors, {1, 3}, "1", "the factor the analysis floors were scaled by so that an "
+            "acceptable fit's chi2/dof is 1 (1: not scaled), and chi2/dof at the optimum and its p-value with the "
+            "floors as set (the goodness test)", "floor_scale,chi2_per_dof_at_floors,p_value_at_floors");
   // (No wall time: files are bit-identical on rerun; it is printed on stderr.)
   Rows summary = {f.chi2, static_cast<double>(f.dof), f.threshold, static_cast<double>(f.evaluations)};
   o.Doubles("/fit/summary", summary, {1, 4}, "1", "chi2 at the optimum, degrees of freedom, chi2 range "

@@ -24,6 +24,7 @@ constexpr double kFailedTrial = 1e6;      // chi2 of a trial that could not be s
 constexpr double kXtolRel = 1e-3;         // optimiser stop: relative parameter change
 constexpr unsigned long kNloptSeed = 20050725;  // any fixed value
 constexpr int kEdgeBisections = 6;        // range ends to 1/64 of a slice step
+constexpr int kFloorScaleBisections = 30;  // the floors' scale (ScaleFloors) to 1e-9
 constexpr double kLocalXtolRel = 1e-2;    // multi-start: each local search, coarse
 constexpr int kLocalEvaluations = 60;     // multi-start: budget of each local search
 constexpr unsigned kStartsPerRound = 4;   // multi-start: Sobol points per round
@@ -144,6 +145,24 @@ class Objective : public Chi2Objective {
     }
   }
 
+  double ScaleFloors(const std::vector<double>& x, double target, double min_scale) override {
+    floor_scale_ = 1;
+    const std::vector<Observable> sim = Trial(x, 0);
+    auto chi2_at = [&](double scale) {
+      floor_scale_ = scale;
+      return Chi2Of(sim);
+    };
+    if (chi2_at(1) >= target) return floor_scale_ = 1;
+    if (chi2_at(min_scale) <= target) return floor_scale_ = min_scale;
+    double lo = min_scale, hi = 1;  // chi2 falls as the floors grow
+    for (int i = 0; i < kFloorScaleBisections; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (chi2_at(mid) > target ? lo : hi) = mid;
+    }
+    return floor_scale_ = hi;
+  }
+  double floor_scale() const { return floor_scale_; }
+
   const std::vector<Observable>& observed() const { return observed_; }
   int usable() const override { return usable_; }
   int evaluations() const { return evaluations_; }
@@ -165,7 +184,8 @@ class Objective : public Chi2Objective {
       if (simulated) (*simulated)[k] = s->value;
       const double e_o = std::isfinite(o.err) ? o.err : 0, e_s = std::isfinite(s->err) ? s->err : 0;
       // The scatter enters twice: the track and the trial are each one sampling of the motion.
-      const double var = e_o * e_o + e_s * e_s + o.floor * o.floor + 2 * scatter_var_[k];
+      const double floor = o.floor * floor_scale_;
+      const double var = e_o * e_o + e_s * e_s + floor * floor + 2 * scatter_var_[k];
       chi2 += (s->value - o.value) * (s->value - o.value) / var;
     }
     return chi2;
@@ -179,6 +199,7 @@ class Objective : public Chi2Objective {
   int usable_ = 0;
   int evaluations_ = 0;
   std::vector<double> scatter_var_;  // per observable, AddScatter
+  double floor_scale_ = 1;           // ScaleFloors
   double observed_phase_ = kNaN;  // the track's bouncing-end impact phase (drift)
 };
 
@@ -426,6 +447,15 @@ FitSearchResult JudgeAndMove(Chi2Objective* obj, const std::vector<double>& best
     r.dof = std::max(1, obj->usable() - static_cast<int>(Specs().size()));
     r.p_value = ChiSquarePValue(r.chi2, r.dof);
     r.acceptable = r.p_value >= kMinFitPValue;
+    r.chi2_per_dof_at_floors = r.chi2 / r.dof;
+    r.p_value_at_floors = r.p_value;
+    if (r.acceptable && r.chi2 < r.dof && options.min_floor_scale < 1) {
+      // Floors that overstate the track's scatter (fit.h, kMinFloorScale).
+      r.floor_scale = obj->ScaleFloors(out.x, r.dof, options.min_floor_scale);
+      out.x = Minimise(obj, out.x, options.max_evaluations / 2, NLOPT_LN_NELDERMEAD, all).x;
+      r.chi2 = obj->Chi2(out.x, &r.simulated);
+      r.p_value = ChiSquarePValue(r.chi2, r.dof);
+    }
     // A rise of chi2 smaller than its roughness at the optimum is not resolved (fit.h).
     r.threshold = std::max({1.0, r.chi2 / r.dof, NeighbourSpread(obj, out.x)});
     Minimum lowest{out.x, r.chi2};
@@ -495,7 +525,7 @@ FitResult FitCoefficients(const Analysis& track, const sim::SimOptions& scene,
   for (const Observable& o : obj.observed()) {
     r.observable_names.push_back(o.name);
     r.observed.push_back(o.value);
-    r.observed_err.push_back(std::hypot(std::isfinite(o.err) ? o.err : 0.0, o.floor));
+    r.observed_err.push_back(std::hypot(std::isfinite(o.err) ? o.err : 0.0, o.floor * obj.floor_scale()));
   }
   if (!r.acceptable) r.off = WorstObservables(r);
   r.best = obj.Options(x);

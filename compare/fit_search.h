@@ -21,6 +21,10 @@ class Chi2Objective {
   // from now on: the larger of it and the spread taken before, or, with `replace`, in its place
   // (where a spread is taken at all: fit.cc, AddScatter).
   virtual void AddScatter(const std::vector<double>& x, bool replace) = 0;
+  // Scales every observable's analysis floor (fit.h) by the factor in [min_scale, 1] at which
+  // chi2 at `x` is `target` (1 where it is `target` or more already, min_scale where it stays
+  // below), uses it from now on and returns it.
+  virtual double ScaleFloors(const std::vector<double>& x, double target, double min_scale) = 0;
   // Observables with a value: the fit's degrees of freedom are these less the five.
   virtual int usable() const = 0;
 };

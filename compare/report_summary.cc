@@ -328,6 +328,11 @@ void Fitting(const FitResult& f, std::ostringstream& o) {
     for (const std::string& line : f.off) o << "- " << line << "\n";
     o << "\n";
   } else {
+    if (f.floor_scale < 1) {
+      o << ", with the analysis floors scaled by " << NumOrNa(f.floor_scale, "%.3g")
+        << ": at the floors as set chi2/dof was " << NumOrNa(f.chi2_per_dof_at_floors, "%.3g")
+        << ", so they overstate this track's scatter";
+    }
     o << ". A parameter's range is where its chi2 profile (the others re-optimised) stays within "
          "chi2 + "
       << NumOrNa(f.threshold) << " = " << NumOrNa(f.chi2 + f.threshold) << ".";

@@ -31,6 +31,7 @@ class TwoWells : public Chi2Objective {
     return std::min(a, b) + rest;
   }
   void AddScatter(const std::vector<double>&, bool) override {}
+  double ScaleFloors(const std::vector<double>&, double, double) override { return 1; }
   int usable() const override { return kObservables; }
 
   static constexpr double kEpsA = 0.85, kEpsB = 0.60, kSigmaEps = 0.01, kSigma = 0.05;
@@ -117,6 +118,93 @@ TEST(FitSearch, ARoughChi2sRangeSpansItsRoughness) {
   EXPECT_LE(eps.range_lo, TwoWells::kEpsA);
   EXPECT_GE(eps.range_hi, TwoWells::kEpsA);
   EXPECT_GT(eps.err, 1.5 * TwoWells::kSigmaEps);
+}
+
+// Floors that overstate the scatter (fit.h, kMinFloorScale): 40 observables, linear in the five
+// coefficients (orthogonal cosine columns, so each profile is a slice), each stated with error 1
+// and a floor of 4, about which the data scatter by `scatter`. With the floor as set chi2/dof is
+// then (scatter^2 / 17), and the scale s that brings it to 1 solves 1 + 16 s^2 = 17 chi2/dof.
+class Floored : public Chi2Objective {
+ public:
+  explicit Floored(double scatter) : scatter_(scatter) {}
+  double Chi2(const std::vector<double>& x, std::vector<double>* simulated) override {
+    if (simulated) simulated->assign(kObservables, 0.0);
+    const double var = 1 + std::pow(kFloor * scale_, 2);
+    double chi2 = 0;
+    for (int k = 0; k < kObservables; ++k) {
+      double model = 0;
+      for (int j = 0; j < 5; ++j) model += kGain * std::cos(M_PI * j * (k + 0.5) / kObservables) * (x[j] - kTruth[j]);
+      const double data = scatter_ * std::sqrt(2.0) * std::sin(2.1 * k + 0.3);
+      chi2 += (model - data) * (model - data) / var;
+    }
+    return chi2;
+  }
+  void AddScatter(const std::vector<double>&, bool) override {}
+  double ScaleFloors(const std::vector<double>& x, double target, double min_scale) override {
+    scale_ = 1;
+    const double at_floors = Chi2(x, nullptr);
+    if (at_floors >= target) return scale_;
+    const double s2 = (at_floors * (1 + kFloor * kFloor) / target - 1) / (kFloor * kFloor);
+    scale_ = std::max(min_scale, std::sqrt(std::max(0.0, s2)));
+    return scale_;
+  }
+  int usable() const override { return kObservables; }
+
+  static constexpr int kObservables = 40;
+  static constexpr double kFloor = 4, kGain = 60;
+  static constexpr std::array<double, 5> kTruth = {0.6, 0.2, 0.4, 0.5, 1.0};
+
+ private:
+  double scatter_;
+  double scale_ = 1;
+};
+
+FitSearchResult FitFloored(double scatter, double min_floor_scale) {
+  Floored chi2(scatter);
+  FitOptions o;
+  o.min_floor_scale = min_floor_scale;
+  return JudgeAndMove(&chi2, {0.62, 0.21, 0.38, 0.52, 0.97}, o);
+}
+
+// The rendered-and-tracked case: the data scatter twice their stated error, the floor four
+// times it (chi2/dof ~0.2, as on fit_study_tracked.sh's drifts). The floors are scaled until
+// chi2/dof is 1, and eps's range narrows by the errors' ratio, sqrt((1 + 16 s^2) / 17).
+TEST(FitSearch, FloorsThatOverstateTheScatterAreScaledToIt) {
+  const FitSearchResult set = FitFloored(2, 1), scaled = FitFloored(2, kMinFloorScale);
+  ASSERT_TRUE(set.result.acceptable && scaled.result.acceptable);
+  EXPECT_EQ(set.result.floor_scale, 1);
+  const double at_floors = scaled.result.chi2_per_dof_at_floors;
+  EXPECT_LT(at_floors, 0.5);
+  const double s = std::sqrt((17 * at_floors - 1) / 16);
+  ASSERT_GT(s, kMinFloorScale);
+  EXPECT_NEAR(scaled.result.floor_scale, s, 1e-3);
+  EXPECT_NEAR(scaled.result.chi2 / scaled.result.dof, 1, 0.01);
+  const FitParameter &a = set.result.params[0], &b = scaled.result.params[0];
+  ASSERT_EQ(a.status, "constrained");
+  ASSERT_EQ(b.status, "constrained");
+  EXPECT_NEAR(b.err / a.err, std::sqrt((1 + 16 * s * s) / 17), 0.05);
+  EXPECT_LE(b.range_lo, Floored::kTruth[0] + 0.3 * a.err);
+  EXPECT_GE(b.range_hi, Floored::kTruth[0] - 0.3 * a.err);
+}
+
+// A noise-free track (no scatter): chi2 stays below dof at any scale, and the floors shrink no
+// further than kMinFloorScale.
+TEST(FitSearch, ANoiseFreeTracksFloorsShrinkToTheLeastScale) {
+  const FitSearchResult set = FitFloored(0, 1), scaled = FitFloored(0, kMinFloorScale);
+  ASSERT_TRUE(scaled.result.acceptable);
+  EXPECT_EQ(scaled.result.floor_scale, kMinFloorScale);
+  const double ratio = std::sqrt((1 + 16 * kMinFloorScale * kMinFloorScale) / 17);
+  EXPECT_NEAR(scaled.result.params[0].err / set.result.params[0].err, ratio, 0.05);
+  EXPECT_LE(scaled.result.params[0].range_lo, Floored::kTruth[0]);
+  EXPECT_GE(scaled.result.params[0].range_hi, Floored::kTruth[0]);
+}
+
+// Data that scatter more than their floors (chi2/dof above 1): nothing is scaled.
+TEST(FitSearch, FloorsBelowTheScatterAreKept) {
+  const FitSearchResult s = FitFloored(4.5, kMinFloorScale);
+  ASSERT_TRUE(s.result.acceptable) << s.result.chi2;
+  EXPECT_GT(s.result.chi2_per_dof_at_floors, 1);
+  EXPECT_EQ(s.result.floor_scale, 1);
 }
 
 }  // namespace

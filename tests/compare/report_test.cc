@@ -414,6 +414,23 @@ TEST_F(ReportTest, NoAcceptableFitGivesNoCoefficient) {
   EXPECT_EQ(md.find("range is where"), std::string::npos);
 }
 
+// An acceptable fit whose floors overstated the track's scatter (compare/fit.h, kMinFloorScale)
+// says by what factor they were scaled and what chi2/dof was before; one whose floors were kept
+// says nothing of it.
+TEST_F(ReportTest, SummarySaysWhenTheFloorsWereScaled) {
+  Write();
+  EXPECT_EQ(ReadText(dir_ / "summary.md").find("floors scaled"), std::string::npos);
+  fit_.floor_scale = 0.41;
+  fit_.chi2_per_dof_at_floors = 0.19;
+  fit_.p_value_at_floors = 1;
+  Write();
+  const std::string md = ReadText(dir_ / "summary.md");
+  EXPECT_NE(md.find("(chi2/dof 0.64, p-value 0.669), with the analysis floors scaled by 0.41: at the floors as "
+                    "set chi2/dof was 0.19, so they overstate this track's scatter. A parameter's range"),
+            std::string::npos)
+      << md;
+}
+
 // The summary says at which scale the tracked plate's motion became metres: Γ read off an edge
 // that is not in the dimer's plane is off by the ratio of the scales (track --plate-m-per-px).
 TEST_F(ReportTest, SummarySaysWhichScaleThePlatesMotionWasReadAt) {
