@@ -9,9 +9,10 @@
 // without another simulation. A pair is given a correlation only when both parameters are
 // constrained (both profiles close); slopes of opposite signs, or a slope of exactly 0 (the
 // re-optimisation did not move the other parameter at all), give NaN rather than a guess. The
-// numbers are as fine as the profiles' re-optimisation (fit.cc: 30 simulations, steps of 3 % of
-// the bounds): on a noise-free scene whose ranges are 1e-3 of the bounds it resolves some pairs
-// only (Fit.StartedAtTheTruthStaysThere: eps with none). Held by FitCorrelation.* (fit_test.cc).
+// numbers are as fine as the re-optimisation at the ranges' ends (fit.cc, RefineRangeEnds: 30
+// simulations, steps of a tenth of each other parameter's range): on a noise-free scene whose
+// ranges are 5e-4 of the bounds it resolves some pairs only (Fit.StartedAtTheTruthStaysThere:
+// eps with none). Held by FitCorrelation.* (fit_test.cc).
 #include <vector>
 
 #include "compare/fit.h"

@@ -55,7 +55,7 @@ TEST(Fit, RecoversRestitutionAndImpactFrictionFromASimulatedDrift) {
   EXPECT_LE(mu_hat_s.range_lo, truth.mu_hat_s);
   EXPECT_GE(mu_hat_s.range_hi, truth.mu_hat_s);
   // Correlations (fit_correlation.h): a number for each pair of constrained parameters, read
-  // off both profiles (eps-mu_hat -0.27, eps-mu +0.45, mu_hat-mu -0.46 here), none for the rest.
+  // off both profiles (eps-mu_hat -0.28, eps-mu +0.38, mu_hat-mu -0.50 here), none for the rest.
   const size_t n = r.params.size();
   ASSERT_EQ(r.correlation.size(), n * n);
   for (size_t j = 0; j < n; ++j) {
