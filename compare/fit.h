@@ -53,9 +53,11 @@ namespace dimer::compare {
 // fit by 9e-4 g/f rms against a floor of 2e-3 (docs/ANALYSIS.md), and on fit_study_tracked.sh
 // chi2/dof was 0.12-0.21 on 18 of 24 fits, with ranges meant as 68 % holding the truth on 91 %.
 // An acceptable fit whose chi2/dof is below 1 has its floors scaled down until chi2/dof is 1, its
-// optimum polished again and its profiles drawn with them; never below this factor, so that a
-// noise-free track, whose chi2 at floors of nothing would be ~0, keeps most of its ranges
-// (FitSearch.FloorsThatOverstateTheScatterAreScaledToIt).
+// optimum polished again and its profiles drawn with them (there: 66 % of the ranges hold the
+// truth, 91 % on the backlit films and 39 % on the mirror-lit ones, whose tracking bias no error
+// states; docs/BENCHMARKS.md). Never below this factor, so that a noise-free track, whose chi2
+// at floors of nothing would be ~0, keeps some of its ranges: bench_fit_study's are 0.15-1 times
+// as wide and all hold the truth (FitSearch.FloorsThatOverstateTheScatterAreScaledToIt).
 inline constexpr double kMinFloorScale = 0.25;
 
 struct FitParameter {
