@@ -111,11 +111,12 @@ struct FitOptions {
   int transient_periods = 100;   // periods
   int measured_periods = 100;    // periods
   std::function<void(int simulations)> progress;  // called after each simulation (may be empty)
-  // An upper estimate of the simulations a fit runs, for progress meters; a fit that fails the
-  // goodness test and moves to a lower point its profiles found runs up to kProfileMoves more
-  // rounds of profiles (fit.cc).
+  // An upper estimate of the simulations a fit runs, for progress meters: the searches, the
+  // polishes, the profiles, the samplings and roughness, and the two ends of each range searched
+  // again (fit.cc, RefineRangeEnds); a fit that fails the goodness test and moves to a lower
+  // point its profiles found runs up to kProfileMoves more rounds of profiles (fit.cc).
   int EstimatedSimulations() const {
-    return global_evaluations + max_evaluations * 4 + 5 * 30 * (slice_points + 13) + 5 * 8;
+    return global_evaluations + max_evaluations * 4 + 5 * 30 * (slice_points + 13) + 5 * 8 + 5 * 2 * 30;
   }
 };
 
