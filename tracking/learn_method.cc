@@ -70,12 +70,13 @@ Probes ProbeLearningFrames(const std::vector<Frame>& learning, const FollowerOpt
 // stands off the centre by as much as 12 px (the one-sided light), farther than the learning's
 // search, so silhouette and highlight seeds are not mixed. The highlights are taken where they
 // agree in more frames than the silhouettes give pairs. Returns what is added to the method's
-// reason ("" when the silhouettes are kept).
+// reason ("" when the silhouettes are kept). With `always`, the highlights are taken wherever
+// they agree in enough frames, whatever the silhouettes give (RelearnHeldSpheres).
 std::string SeedFromHighlights(double radius_px, const LearnOptions& learn,
-                               std::vector<LearningSample>* samples) {
+                               std::vector<LearningSample>* samples, bool always = false) {
   size_t seeded = 0, from_highlights = 0;
   for (const LearningSample& s : *samples) seeded += s.found[0] && s.found[1];
-  if (!(2 * seeded < samples->size() || seeded < kMinSeededFrames)) return "";
+  if (!always && !(2 * seeded < samples->size() || seeded < kMinSeededFrames)) return "";
   std::vector<LearningSample> lines;
   std::vector<std::vector<HighlightBlob>> blobs;
   for (const LearningSample& s : *samples) {
@@ -96,7 +97,7 @@ std::string SeedFromHighlights(double radius_px, const LearnOptions& learn,
   const double agreement =
       learn.seed_agreement_px > 0 ? learn.seed_agreement_px : 2.0 * LearnSearchPx(radius_px);
   const HighlightSeeds seeds = SeedFilm(blobs, radius_px, agreement, kMinSeededFrames);
-  if (seeds.agreeing <= seeded) return "";
+  if (always ? seeds.agreeing < kMinSeededFrames : seeds.agreeing <= seeded) return "";
   size_t left_out = 0;
   for (size_t i = 0; i < samples->size(); ++i) {
     LearningSample& s = (*samples)[i];
@@ -122,6 +123,44 @@ std::string SeedFromHighlights(double radius_px, const LearnOptions& learn,
                 left_out, seeded);
   return "; rough centres of " + std::to_string(from_highlights) +
          " learning frames from the highlights" + spread;
+}
+
+// A sphere whose learnt positions the referee finds not moving with its detections
+// (detection_agreement.h) is held by something that stands still behind it: on POV-Ray
+// ruler_above_plate the hopping sphere's rows stayed on the ruler's edges, 6 px off. Both are
+// learnt again from rough centres on the highlights, which move with the spheres, with the
+// pixels that stand still behind them left out (LearnOptions::still_background_spread); a held
+// sphere takes the new appearance where the referee then passes it (povray.
+// ruler_sphere_followed), and keeps the old one, its uncertainty widened, where not. Returns
+// what is added to the method's reason; `taken[k]` says whether sphere k took it, and `from`
+// holds the samples it was then learnt from.
+std::string RelearnHeldSpheres(const std::vector<LearningSample>& samples, double radius_px,
+                               bool recentre, bool fit_radius, const LearnOptions& learn,
+                               std::array<LearntSphere, 2>* learnt, std::array<bool, 2>* taken,
+                               std::vector<LearningSample>* from) {
+  std::array<bool, 2> held{};
+  for (int k = 0; k < 2; ++k) held[k] = !AgreementWithDetections((*learnt)[k]).agrees;
+  if (!held[0] && !held[1]) return "";
+  *from = samples;
+  const std::string seeded = SeedFromHighlights(radius_px, learn, from, true);
+  if (seeded.empty()) return "";
+  LearnOptions still = learn;
+  still.still_background_spread = kStillBackgroundSpread;
+  bool radius_from_outline = false;
+  const std::array<LearntSphere, 2> again =
+      LearnAppearances(*from, radius_px, recentre, fit_radius, &radius_from_outline, still);
+  std::string reason;
+  for (int k = 0; k < 2; ++k) {
+    if (!held[k] || !again[k].appearance.valid() || !AgreementWithDetections(again[k]).agrees) {
+      continue;
+    }
+    (*learnt)[k] = again[k];
+    (*taken)[k] = true;
+    reason += std::string("; the ") + (k == 0 ? "left" : "right") +
+              " sphere, held by something standing still behind it, learnt again from its "
+              "highlights without that";
+  }
+  return reason.empty() ? "" : reason + seeded;
 }
 
 }  // namespace
@@ -156,6 +195,12 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
   m.learnt = LearnAppearances(samples, reference.radius_px, !m.choice.silhouettes,
                               !m.choice.silhouettes && !radius_known, &m.radius_from_outline,
                               learn);
+  std::vector<LearningSample> relearnt_from;
+  if (m.learnt[0].appearance.valid() && m.learnt[1].appearance.valid()) {
+    m.choice.reason += RelearnHeldSpheres(samples, reference.radius_px, !m.choice.silhouettes,
+                                          !m.choice.silhouettes && !radius_known, learn,
+                                          &m.learnt, &m.relearnt, &relearnt_from);
+  }
   if (!m.learnt[0].appearance.valid() || !m.learnt[1].appearance.valid()) {
     // Nothing to learn from (fewer than 3 learning frames with both spheres): the silhouette
     // methods are what is left.
@@ -179,7 +224,8 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
   // learnt appearances, whose reference point is the same.
   std::array<Appearance, 2> follow;
   for (int k = 0; k < 2; ++k) {
-    const ClipDecision clip = DecideClippedHighlights(m.learnt[k], samples, k, learn.threads);
+    const ClipDecision clip = DecideClippedHighlights(
+        m.learnt[k], m.relearnt[k] ? relearnt_from : samples, k, learn.threads);
     follow[size_t(k)] = clip.appearance;
     m.choice.reason += "; " + clip.reason;
   }

@@ -31,6 +31,9 @@ struct SequenceMethod {
   // Template: each sphere's learnt positions refereed by its rough centres on the learning
   // frames (detection_agreement.h); a disagreement is also a clause of choice.reason.
   std::array<DetectionAgreement, 2> agreement;
+  // Whether each sphere was learnt again, from its highlights and without what stood still
+  // behind it, after the referee rejected its first appearance (RelearnHeldSpheres).
+  std::array<bool, 2> relearnt{false, false};
 };
 
 // Measures the learning frames with the existing methods (a fresh acquisition each, with the

@@ -300,6 +300,7 @@ void FinishFilm(const Film& film, const SequenceOptions& options, bool sequence_
   result->method = sequence_level ? film.prepared.choice.method : options.follower.method;
   result->method_reason = film.prepared.choice.reason;
   result->detection_agreement = film.prepared.agreement;
+  result->relearnt = film.prepared.relearnt;
   // Before anything reads the found spheres (the plate's motion scale, the offsets): the chunks'
   // names made the film's, then the matches that are not a sphere dropped.
   result->dimer_names = NameSpheresByTheDimer(&result->frames);

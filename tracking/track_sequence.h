@@ -116,6 +116,9 @@ struct SequenceResult {
   std::array<SpherePrecision, 2> precision;
   // Template: each sphere's learnt positions against its rough centres (detection_agreement.h).
   std::array<DetectionAgreement, 2> detection_agreement;
+  // Template: the spheres learnt again after the referee rejected their first appearance
+  // (learn_method.h, SequenceMethod::relearnt); detection_agreement is then the new one's.
+  std::array<bool, 2> relearnt{false, false};
   LevelScale level_scale;        // a 10- or 12-bit camera's levels, scaled (level_scale.h)
   // The lens calibration the frames were undistorted with (null: none), and the largest shift
   // its undistortion made in these frames, px.

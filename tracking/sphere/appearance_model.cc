@@ -203,10 +203,12 @@ bool HorizonMoves(const std::vector<cv::Mat>& images, const std::vector<Learning
   return std::abs(slope) > kHorizonMovesPerPx && std::abs(slope) > 3 * se;
 }
 
-// Sums of the samples' patches (times their masks) and of their masks, and how many samples.
+// Sums of the samples' patches (times their masks) and of their masks, and how many samples;
+// `sumsq` (of the patches squared) only where still background is cut (CutStillBackground).
 struct PatchSums {
   cv::Mat sum, count;
   int n = 0;
+  cv::Mat sumsq;
 };
 
 // Sample i's patch and its mask (CV_32F) at pos[i]; false where the patch leaves the frame.
@@ -229,15 +231,41 @@ Appearance Framing(int half, double radius_px, double slope) {
   return all;
 }
 
-// The mean appearance from its sums: pixels seen by too few samples unknown, rows from `cut_row`
-// down left out.
-Appearance FromSums(const PatchSums& p, const Appearance& frame, int cut_row) {
+// Leaves out of `a` the known pixels whose values spread over the samples (sd, from the sums)
+// by more than `times` the median spread of its known pixels (LearnOptions::
+// still_background_spread).
+void CutStillBackground(const PatchSums& p, double times, Appearance* a) {
+  cv::Mat var;
+  cv::divide(p.sumsq, cv::max(p.count, 1.0f), var);
+  var -= a->image.mul(a->image);
+  cv::Mat sd;
+  cv::sqrt(cv::max(var, 0.0f), sd);
+  std::vector<float> known;
+  for (int y = 0; y < sd.rows; ++y) {
+    for (int x = 0; x < sd.cols; ++x) {
+      if (a->mask.at<uint8_t>(y, x)) known.push_back(sd.at<float>(y, x));
+    }
+  }
+  if (known.empty()) return;
+  std::nth_element(known.begin(), known.begin() + std::ptrdiff_t(known.size() / 2), known.end());
+  const float limit = float(times) * known[known.size() / 2];
+  a->mask.setTo(0, sd > limit);
+}
+
+// The mean appearance from its sums: pixels seen by too few samples unknown, and those of still
+// background where `still_spread` > 0 (CutStillBackground); rows from `cut_row` down left out.
+Appearance FromSums(const PatchSums& p, const Appearance& frame, int cut_row,
+                    double still_spread = 0) {
   Appearance a = frame;
   const float min_count = float(std::max(double(kMinSamplesPerPixel), kMinSeenFraction * p.n));
   a.mask = p.count >= min_count;  // 255 / 0
   a.mask /= 255;
   if (p.n < int(kMinSamples) || cv::countNonZero(a.mask) == 0) return Appearance{};
   cv::divide(p.sum, cv::max(p.count, 1.0f), a.image);
+  if (still_spread > 0) {
+    CutStillBackground(p, still_spread, &a);
+    if (cv::countNonZero(a.mask) == 0) return Appearance{};
+  }
   const int size = 2 * frame.half + 1;
   if (cut_row >= 0 && cut_row < size) {
     CutBelow(cut_row, frame.horizon_slope, &a);
@@ -273,26 +301,29 @@ SamplePatches MaskedPatches(const std::vector<cv::Mat>& images,
 // plate by `slope` rows per column.
 Appearance Average(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
                    const std::vector<size_t>& used, const std::vector<Eigen::Vector2d>& pos,
-                   int k, int half, double radius_px, int cut_row, double slope, int threads) {
+                   int k, int half, double radius_px, int cut_row, double slope,
+                   double still_spread, int threads) {
   const Appearance frame = Framing(half, radius_px, slope);
   const int size = 2 * half + 1;
-  PatchSums p{cv::Mat::zeros(size, size, CV_32F), cv::Mat::zeros(size, size, CV_32F), 0};
+  PatchSums p{cv::Mat::zeros(size, size, CV_32F), cv::Mat::zeros(size, size, CV_32F), 0, {}};
+  if (still_spread > 0) p.sumsq = cv::Mat::zeros(size, size, CV_32F);
   const SamplePatches patches = MaskedPatches(images, samples, used, pos, k, frame, threads);
   for (size_t i = 0; i < used.size(); ++i) {
     if (patches.patch[i].empty()) continue;
     p.sum += patches.patch[i];
     p.count += patches.mask_f[i];
+    if (still_spread > 0) p.sumsq += patches.patch[i].mul(patches.patch[i]);
     ++p.n;
   }
-  return FromSums(p, frame, cut_row);
+  return FromSums(p, frame, cut_row, still_spread);
 }
 
 // s->jackknife: the appearance averaged again without each group of samples (sample i in group
 // i mod groups), at the positions and with the cut it was averaged at. Each is the whole sum
 // less its group's, so the patches are taken once.
 void LeaveGroupsOut(const std::vector<cv::Mat>& images, const std::vector<LearningSample>& samples,
-                    const std::vector<size_t>& used, int k, int max_groups, int threads,
-                    LearntSphere* s) {
+                    const std::vector<size_t>& used, int k, int max_groups,
+                    bool still_background, int threads, LearntSphere* s) {
   s->jackknife.clear();
   const Appearance& a = s->appearance;
   if (!a.valid() || s->averaged.size() != used.size() || max_groups < 3) return;
@@ -300,7 +331,8 @@ void LeaveGroupsOut(const std::vector<cv::Mat>& images, const std::vector<Learni
   const Appearance frame = Framing(a.half, a.radius_px, a.horizon_slope);
   const int size = 2 * a.half + 1;
   const auto zeros = [&] {
-    return PatchSums{cv::Mat::zeros(size, size, CV_32F), cv::Mat::zeros(size, size, CV_32F), 0};
+    return PatchSums{cv::Mat::zeros(size, size, CV_32F), cv::Mat::zeros(size, size, CV_32F), 0,
+                     {}};
   };
   PatchSums whole = zeros();
   std::vector<PatchSums> group(groups);
@@ -320,8 +352,14 @@ void LeaveGroupsOut(const std::vector<cv::Mat>& images, const std::vector<Learni
     ++whole.n;
   }
   for (const PatchSums& g : group) {
-    const PatchSums rest{whole.sum - g.sum, whole.count - g.count, whole.n - g.n};
-    s->jackknife.push_back(FromSums(rest, frame, s->cut_row));
+    const PatchSums rest{whole.sum - g.sum, whole.count - g.count, whole.n - g.n, {}};
+    Appearance j = FromSums(rest, frame, s->cut_row);
+    // The pixels the appearance left out as still background stay out of its jackknife's.
+    if (j.valid() && still_background) {
+      j.mask &= a.mask;
+      j.image.setTo(cv::mean(j.image, j.mask), j.mask == 0);
+    }
+    s->jackknife.push_back(j);
   }
 }
 
@@ -365,7 +403,7 @@ void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSamp
   Appearance a;
   for (int pass = 0; pass <= learn.passes; ++pass) {
     a = Average(images, samples, used, pos, k, half, radius_px, cut_row, learn.plate_slope,
-                learn.threads);
+                learn.still_background_spread, learn.threads);
     if (!a.valid()) return;
     s->averaged = pos;
     RegisterSamples(samples, used, k, a, radius_px,
@@ -572,7 +610,8 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   std::array<LearntSphere, 2> learnt = CutAtMovingHorizon(set, out, start, final_half, radius_px);
   if (!learnt[0].appearance.valid()) return {};
   for (int k = 0; k < 2; ++k) {
-    LeaveGroupsOut(images, samples, used, k, learn.jackknife_groups, learn.threads, &learnt[k]);
+    LeaveGroupsOut(images, samples, used, k, learn.jackknife_groups,
+                   learn.still_background_spread > 0, learn.threads, &learnt[k]);
   }
   return learnt;
 }

@@ -81,7 +81,19 @@ struct LearnOptions {
   // two seeds stand within this of the film's median separation, px; 0: twice LearnSearchPx
   // (each seed then possibly within the learning's search). PrepareSequenceMethod uses it.
   double seed_agreement_px = 0;
+  // Pixels whose values, in the patches aligned on the sphere, spread over the learning samples
+  // by more than this many times the appearance's median spread are left out of it: they stand
+  // still behind the sphere instead of moving with it (a ruler's or a backdrop's edges). 0:
+  // none. PrepareSequenceMethod sets kStillBackgroundSpread where it learns a sphere again that
+  // the referee (detection_agreement.h) found held by something behind it.
+  double still_background_spread = 0;
 };
+// The median spread is the noise's; a sphere's own edges spread by their gradient times the
+// registration's error, the edges of what stands still behind it by their gradient times the
+// sphere's motion. On POV-Ray ruler_above_plate the hopping sphere learnt again is followed
+// (rows and columns within 0.08 px of the truth, scatter <= 0.03 px) with 5 to 8; it scatters
+// by 0.07-0.27 px with 4 or 12 to 20, by 0.5-1.9 px with 2 or 3 (povray.detection_agreement).
+inline constexpr double kStillBackgroundSpread = 6.0;
 // Frames whose reference row is within this of the lowest (relative to the plate) rest, px;
 // where the gap's noise (impact_vertex.h, GapNoise) is larger than a third of it, within
 // kContactBandNoise times the noise.
