@@ -4,10 +4,12 @@
 // methods' or the highlights' positions, learn_method.h), whatever constant offset lies between
 // them. Something in view that does not move with the sphere (a ruler's or a backdrop's edge
 // behind it) can hold the registrations where it is: on POV-Ray ruler_above_plate the hopping
-// sphere's learnt rows spread 0.27 px over the learning frames while its rough rows spread
-// 2.18 px and it rose 9 px, and the track then put it within a pixel of its resting row
-// throughout. The dimer's length cannot tell (a sphere of a level dimer that rises 11 px
-// changes the length by 0.44 px); this can, and the track says so.
+// sphere's first learnt rows spread 0.27 px over the learning frames while its rough rows
+// spread 2.36 px and it rose 11 px, and a track from them put it within a pixel of its resting
+// row throughout. The dimer's length cannot tell (a sphere of a level dimer that rises 11 px
+// changes the length by 0.44 px); this can. A sphere it rejects is learnt again without what
+// stands still behind it (learn_method.h, RelearnHeldSpheres), and this referee judges the new
+// appearance too; where it still disagrees, the track says so.
 //
 // Along each axis the rough positions are regressed on the learnt ones: a sphere followed by
 // both gives a slope near 1, within what the rough methods' own motion bias allows (their
@@ -46,8 +48,8 @@ DetectionAgreement AgreementWithDetections(const LearntSphere& s);
 // The stated uncertainty of a sphere's position on `a.axis`, `err`, widened where the learnt
 // positions disagree with the detections: hypot(err, a.residual_sd). The tracker cannot tell
 // which of the two is right, and the learnt positions may be held pixels off (on POV-Ray
-// ruler_above_plate the held rows were 6.3 px off stating 0.56; with the residual, 2.0);
-// where they agree, `err` unchanged.
+// ruler_above_plate the first appearance's rows were 6.3 px off stating 0.56; with the
+// residual, 2.0); where they agree, `err` unchanged.
 double WidenForDisagreement(const DetectionAgreement& a, double err);
 
 }  // namespace dimer::tracking

@@ -310,6 +310,8 @@ RootAttrs RootAttributes(const TrackArgs& args, const SequenceResult& r, const C
                     {"matches_dropped_score_right", int64_t(r.scores.dropped[1])},
                     {"matches_dropped_length_left", int64_t(r.scores.dropped_length[0])},
                     {"matches_dropped_length_right", int64_t(r.scores.dropped_length[1])},
+                    {"learnt_again_left", int64_t(r.relearnt[0])},
+                    {"learnt_again_right", int64_t(r.relearnt[1])},
                     {"dimer_length_px", r.scores.length_px}};
   AttrUnits units = {{"fps", "1/s"}, {"plate_shift", "px"}, {"plate_shift_err", "px"},
                      {"plate_shift_edge_ref", "px"}, {"plate_motion_scale", "1"},
@@ -321,7 +323,8 @@ RootAttrs RootAttributes(const TrackArgs& args, const SequenceResult& r, const C
                      {"plate_slope_err", "px/px"}, {"stuck_pixels", "1"},
                      {"stuck_pixels_frames", "1"}, {"matches_dropped_score_left", "1"},
                      {"matches_dropped_score_right", "1"}, {"matches_dropped_length_left", "1"},
-                     {"matches_dropped_length_right", "1"}, {"dimer_length_px", "px"},
+                     {"matches_dropped_length_right", "1"}, {"learnt_again_left", "1"},
+                     {"learnt_again_right", "1"}, {"dimer_length_px", "px"},
                      {"m_per_px", "m/px"}, {"row0", "px"}, {"col0", "px"}, {"ar", "1"},
                      {"ar_length_px", "px"}, {"ar_length_frames", "1"}, {"ar_radius_px", "px"},
                      {"ar_outline_radius_px", "px"},

@@ -280,10 +280,19 @@ void ReportPrecision(const TrackArgs& args, const SequenceResult& r, Diagnostics
 
 // A sphere whose learnt appearance did not move with its detections on the learning frames
 // (detection_agreement.h): its positions may be held by something that does not move with it.
+// Where it was learnt again without that (learn_method.h, RelearnHeldSpheres), a note says so.
 void ReportDetectionAgreement(const TrackArgs& args, const SequenceResult& r, Diagnostics* diag) {
   if (r.method != Method::kTemplate) return;
   for (int k = 0; k < 2; ++k) {
     const DetectionAgreement& a = r.detection_agreement[k];
+    if (r.relearnt[k]) {
+      diag->Note("learnt_again",
+                 Format("%s: the %s sphere's first appearance did not move as its detections "
+                        "did (something standing still behind it, a ruler's or a backdrop's "
+                        "edge, held it); it was learnt again from its highlights without the "
+                        "pixels that stand still, and then moved with them",
+                        args.input.c_str(), k == 0 ? "left" : "right"));
+    }
     if (a.agrees) continue;
     const char* axis = a.axis == 0 ? "columns" : "rows";
     diag->Warn("not_with_detections",
