@@ -130,8 +130,8 @@ std::string SeedFromHighlights(double radius_px, const LearnOptions& learn,
 // ruler_above_plate the hopping sphere's rows stayed on the ruler's edges, 6 px off. Both are
 // learnt again from rough centres on the highlights, which move with the spheres, with the
 // pixels that stand still behind them left out (LearnOptions::still_background_spread); a held
-// sphere takes the new appearance where the referee then passes it (povray.
-// ruler_sphere_followed), and keeps the old one, its uncertainty widened, where not. Returns
+// sphere takes the new appearance where the referee then passes it (povray.detection_agreement),
+// and keeps the old one, its uncertainty widened, where not. Returns
 // what is added to the method's reason; `taken[k]` says whether sphere k took it, and `from`
 // holds the samples it was then learnt from.
 std::string RelearnHeldSpheres(const std::vector<LearningSample>& samples, double radius_px,
