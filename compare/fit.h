@@ -112,11 +112,13 @@ struct FitOptions {
   int measured_periods = 100;    // periods
   std::function<void(int simulations)> progress;  // called after each simulation (may be empty)
   // An upper estimate of the simulations a fit runs, for progress meters: the searches, the
-  // polishes, the profiles, the samplings and roughness, and the two ends of each range searched
-  // again (fit.cc, RefineRangeEnds); a fit that fails the goodness test and moves to a lower
-  // point its profiles found runs up to kProfileMoves more rounds of profiles (fit.cc).
+  // polishes, the profiles (the slice's points, the optimum and ~10 bisections of each range
+  // end, fit.cc), the samplings and roughness, and the two ends of each range searched again
+  // (fit.cc, RefineRangeEnds); a fit that fails the goodness test and moves to a lower point its
+  // profiles found runs up to kProfileMoves more rounds of profiles (fit.cc).
   int EstimatedSimulations() const {
-    return global_evaluations + max_evaluations * 4 + 5 * 30 * (slice_points + 13) + 5 * 8 + 5 * 2 * 30;
+    return global_evaluations + max_evaluations * 4 + 5 * 30 * (slice_points + 21) + 5 * 8 +
+           5 * 2 * 30;
   }
 };
 

@@ -16,6 +16,9 @@ const std::array<const char*, 2> kTipColour = {"#1f77b4", "#d62728"};
 const std::array<const char*, 2> kResColour = {"#ff7f0e", "#9467bd"};  // x, z residuals
 const std::array<const char*, 2> kSide = {"left", "right"};
 constexpr double kZoomThresholds = 10;  // fit_profile's y range: chi2_min + this many thresholds
+// A constrained range narrower than this fraction of its bounds is drawn zoomed: x from a range's
+// width below it to one above (the profile's points there are its ends' bisections, fit.cc).
+constexpr double kZoomRangeFraction = 0.1;
 
 double At(const std::vector<double>& v, size_t i) { return i < v.size() ? v[i] : kNaN; }
 
@@ -127,7 +130,14 @@ PlannedFigure PlanFitProfile(const FitResult& fit) {
     for (size_t j = 0; j < q.slice_x.size(); ++j) b.rows.push_back({q.slice_x[j], q.slice_chi2[j]});
     p.figure.blocks.push_back(std::move(b));
     sc += "unset object\nunset arrow\n";
-    if (std::isfinite(q.lo) && std::isfinite(q.hi) && q.hi > q.lo)
+    const bool bounded = std::isfinite(q.lo) && std::isfinite(q.hi) && q.hi > q.lo;
+    const double width = q.range_hi - q.range_lo;
+    const bool zoom = bounded && q.status == "constrained" && width > 0 &&
+                      width < kZoomRangeFraction * (q.hi - q.lo);
+    if (zoom)
+      sc += Format("set xrange [%.9g:%.9g]\n", std::max(q.lo, q.range_lo - width),
+                   std::min(q.hi, q.range_hi + width));
+    else if (bounded)
       sc += Format("set xrange [%.9g:%.9g]\n", q.lo, q.hi);
     else
       sc += "set xrange [*:*]\n";
@@ -163,8 +173,8 @@ PlannedFigure PlanFitProfile(const FitResult& fit) {
       plot.push_back("keyentry with boxes fs transparent solid 0.15 noborder fc rgb \"#2ca02c\" "
                      "title \"range\"");
     }
-    sc += "set title " + GnuplotQuote(ParameterTitle(q)) + "\nset xlabel " +
-          GnuplotQuote(q.name) + "\nset ylabel \"chi2\"\nplot " + Join(plot);
+    sc += "set title " + GnuplotQuote(ParameterTitle(q) + (zoom ? " (zoomed on the range)" : "")) +
+          "\nset xlabel " + GnuplotQuote(q.name) + "\nset ylabel \"chi2\"\nplot " + Join(plot);
   }
   sc += "unset multiplot\n";
   p.figure.height_px = FitProfileHeightPx(n);

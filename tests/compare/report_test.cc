@@ -361,6 +361,21 @@ TEST_F(ReportTest, TablesHoldTheNumbersDrawn) {
   ExpectNear(-20, sim[0].rows[0][7], "z residual of the left tip, um");
 }
 
+// A constrained range narrower than a tenth of its bounds is drawn zoomed on it (x from a
+// range's width below it to one above, the title saying so), a wider one over its bounds: eps's
+// range 0.62-0.68 is 0.092 of its bounds 0.3-0.95; 0.60-0.70 is 0.15.
+TEST_F(ReportTest, FitProfileZoomsOnARangeNarrowerThanATenthOfItsBounds) {
+  Write();
+  std::string gp = ReadText(Figure("fit_profile.gp"));
+  EXPECT_NE(gp.find("set xrange [0.56:0.74]"), std::string::npos) << gp;
+  EXPECT_NE(gp.find("(zoomed on the range)"), std::string::npos) << gp;
+  fit_.params[0] = Param("eps", "constrained", 0.65, 0.05, 0.3, 0.95, 1 / (0.05 * 0.05));
+  Write();
+  gp = ReadText(Figure("fit_profile.gp"));
+  EXPECT_NE(gp.find("set xrange [0.3:0.95]"), std::string::npos) << gp;
+  EXPECT_EQ(gp.find("zoomed"), std::string::npos) << gp;
+}
+
 TEST_F(ReportTest, SummaryNeverPrintsAValueForAnUnconstrainedParameter) {
   Write();
   const std::string md = ReadText(dir_ / "summary.md");
