@@ -28,7 +28,8 @@ constexpr unsigned long kNloptSeed = 20050725;  // any fixed value
 // is kEdgeResolution of its distance from the optimum (the end then within 2.5 % of the range's
 // half-width), at least kEdgeBisections times (1/64 of a slice step) and at most
 // kMaxEdgeBisections. With the 6 alone, eps's ends on fit_study_tracked.sh's fits were located
-// to 0.55 (median) and up to 2 times the range's half-width: its ranges were the bisection's.
+// only to within 0.55 (median) and up to 2 times the range's half-width
+// (FitSearch.ARangesEndsAreLocatedToItsOwnWidth).
 constexpr int kEdgeBisections = 6;
 constexpr int kMaxEdgeBisections = 24;
 constexpr double kEdgeResolution = 0.05;
