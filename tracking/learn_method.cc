@@ -131,9 +131,9 @@ std::string SeedFromHighlights(double radius_px, const LearnOptions& learn,
 // learnt again from rough centres on the highlights, which move with the spheres, with the
 // pixels that stand still behind them left out (LearnOptions::still_background_spread); a held
 // sphere takes the new appearance where the referee then passes it (povray.detection_agreement),
-// and keeps the old one, its uncertainty widened, where not. Returns
-// what is added to the method's reason; `taken[k]` says whether sphere k took it, and `from`
-// holds the samples it was then learnt from.
+// and keeps the old one, its uncertainty widened, where not. Returns what is added to the
+// method's reason; `taken[k]` says whether sphere k took it, and `from` holds the samples it was
+// then learnt from.
 std::string RelearnHeldSpheres(const std::vector<LearningSample>& samples, double radius_px,
                                bool recentre, bool fit_radius, const LearnOptions& learn,
                                std::array<LearntSphere, 2>* learnt, std::array<bool, 2>* taken,
