@@ -27,8 +27,8 @@ constexpr unsigned long kNloptSeed = 20050725;  // any fixed value
 // A range end is bisected between the last slice point in and the first out until the bracket
 // is kEdgeResolution of its distance from the optimum (the end then within 2.5 % of the range's
 // half-width), at least kEdgeBisections times (1/64 of a slice step) and at most
-// kMaxEdgeBisections. With the 6 alone, eps's ends on fit_study_tracked.sh's fits were located
-// only to within 0.55 (median) and up to 2 times the range's half-width
+// kMaxEdgeBisections. The 6 alone would locate eps's ends on fit_study_tracked.sh's fits only to
+// within 0.55 (median) and up to 2 times the range's half-width
 // (FitSearch.ARangesEndsAreLocatedToItsOwnWidth).
 constexpr int kEdgeBisections = 6;
 constexpr int kMaxEdgeBisections = 24;

@@ -209,7 +209,7 @@ TEST(FitSearch, FloorsBelowTheScatterAreKept) {
 
 // One well of chi2 = 30 + ((eps - 0.6) / sigma)^2 + the others' (TwoWells' rest): eps's range is
 // 0.6 +- sigma exactly. Its ends are bisected to their own scale (compare/fit.cc,
-// kEdgeResolution): with sigma 2e-4, 0.7 % of the slice's step, 6 bisections alone located each
+// kEdgeResolution): with sigma 2e-4, 0.7 % of the slice's step, 6 bisections alone locate each
 // end only to within +-2.2e-4, about sigma (here the upper end 0.12 sigma off).
 class OneWell : public Chi2Objective {
  public:
