@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tracking/detection_agreement.h"
+#include "tracking/plate_agreement.h"
 #include "tracking/sphere/appearance_model.h"
 #include "tracking/plate_contact.h"
 #include "tracking/io/frame_source.h"
@@ -34,6 +35,11 @@ struct SequenceMethod {
   // Whether each sphere was learnt again, from its highlights and without what stood still
   // behind it, after the referee rejected its first appearance (RelearnHeldSpheres).
   std::array<bool, 2> relearnt{false, false};
+  // Each sphere's followed rows on the learning frames refereed by the plate it rests on
+  // (plate_agreement.h; the final appearance's), and whether that referee had it learnt again
+  // (RelearnHeldByThePlate; relearnt is then true too).
+  std::array<PlateAgreement, 2> plate_agreement;
+  std::array<bool, 2> relearnt_by_plate{false, false};
 };
 
 // Measures the learning frames with the existing methods (a fresh acquisition each, with the

@@ -250,17 +250,10 @@ namespace {
 // on the POV-Ray mirror plate.
 constexpr double kScaleSpreadAllowancePx = 0.3;
 
-struct Line {
-  double a = 0, b = 1;  // row = a + b edge
-  double b_err = std::numeric_limits<double>::quiet_NaN();
-  double edge_sd = 0;
-  size_t n = 0;
-};
-
 // Least squares row = a + b edge over `use`.
-Line FitLine(const std::vector<double>& edge, const std::vector<double>& row,
+RestingLine FitLine(const std::vector<double>& edge, const std::vector<double>& row,
              const std::vector<uint8_t>& use) {
-  Line l;
+  RestingLine l;
   double se = 0, sr = 0;
   for (size_t i = 0; i < edge.size(); ++i) {
     if (use[i]) se += edge[i], sr += row[i], ++l.n;
@@ -287,36 +280,43 @@ Line FitLine(const std::vector<double>& edge, const std::vector<double>& row,
 
 }  // namespace
 
+RestingLine FitRestingLine(const std::vector<double>& edge, const std::vector<double>& row) {
+  RestingLine l;
+  if (row.size() != edge.size()) return l;
+  std::vector<uint8_t> valid(edge.size(), 0), use(edge.size(), 0);
+  std::vector<double> gap;  // edge - row: smallest where the sphere rests (its row largest)
+  for (size_t i = 0; i < edge.size(); ++i) {
+    valid[i] = std::isfinite(edge[i]) && std::isfinite(row[i]);
+    if (valid[i]) gap.push_back(edge[i] - row[i]);
+  }
+  if (gap.size() < 3) return l;
+  // Lower envelope first: within a band of its 5th percentile (not its minimum: one noisy
+  // frame) wide enough for the scale's own spread over the edge's range.
+  std::sort(gap.begin(), gap.end());
+  const double low = gap[gap.size() / 20];
+  for (size_t i = 0; i < edge.size(); ++i) {
+    use[i] = valid[i] && edge[i] - row[i] <= low + kRestBandPx + kScaleSpreadAllowancePx;
+  }
+  l = FitLine(edge, row, use);
+  // Then the frames near the line (twice: the first line may lean on a few flight frames).
+  for (int pass = 0; pass < 2 && l.n >= 3; ++pass) {
+    for (size_t i = 0; i < edge.size(); ++i) {
+      use[i] = valid[i] && row[i] >= l.a + l.b * edge[i] - kRestBandPx;
+    }
+    l = FitLine(edge, row, use);
+  }
+  l.valid = gap.size();
+  return l;
+}
+
 PlateMotionScale FitPlateMotionScale(const std::vector<double>& edge,
                                      const std::array<std::vector<double>, 2>& rows,
                                      const PlateShift& shift) {
   PlateMotionScale best;
   for (int k = 0; k < 2; ++k) {
-    const std::vector<double>& row = rows[k];
-    if (row.size() != edge.size()) continue;
-    std::vector<uint8_t> valid(edge.size(), 0), use(edge.size(), 0);
-    std::vector<double> gap;  // edge - row: smallest where the sphere rests (its row largest)
-    for (size_t i = 0; i < edge.size(); ++i) {
-      valid[i] = std::isfinite(edge[i]) && std::isfinite(row[i]);
-      if (valid[i]) gap.push_back(edge[i] - row[i]);
-    }
-    if (gap.size() < kMinScaleFrames) continue;
-    // Lower envelope first: within a band of its 5th percentile (not its minimum: one noisy
-    // frame) wide enough for the scale's own spread over the edge's range.
-    std::sort(gap.begin(), gap.end());
-    const double low = gap[gap.size() / 20];
-    for (size_t i = 0; i < edge.size(); ++i) {
-      use[i] = valid[i] && edge[i] - row[i] <= low + kRestBandPx + kScaleSpreadAllowancePx;
-    }
-    Line l = FitLine(edge, row, use);
-    // Then the frames near the line (twice: the first line may lean on a few flight frames).
-    for (int pass = 0; pass < 2 && l.n >= 3; ++pass) {
-      for (size_t i = 0; i < edge.size(); ++i) {
-        use[i] = valid[i] && row[i] >= l.a + l.b * edge[i] - kRestBandPx;
-      }
-      l = FitLine(edge, row, use);
-    }
-    if (l.n < kMinScaleFrames || l.edge_sd < kMinScaleSpreadPx || !std::isfinite(l.b_err)) {
+    const RestingLine l = FitRestingLine(edge, rows[k]);
+    if (l.valid < kMinScaleFrames || l.n < kMinScaleFrames || l.edge_sd < kMinScaleSpreadPx ||
+        !std::isfinite(l.b_err)) {
       continue;
     }
     if (l.n > best.frames) {

@@ -120,6 +120,18 @@ PlateMotionScale FitPlateMotionScale(const std::vector<double>& edge,
                                      const std::array<std::vector<double>, 2>& rows,
                                      const PlateShift& shift);
 
+// The straight line row = a + b edge through the frames where a sphere rests, `edge` the found
+// edge row per frame and `row` the sphere's row (NaN: none): FitPlateMotionScale's fit, which
+// the plate's referee of a learnt appearance uses too (plate_agreement.h).
+struct RestingLine {
+  double a = 0, b = 1;
+  double b_err = std::numeric_limits<double>::quiet_NaN();
+  double edge_sd = 0;  // the edge's spread over the resting frames, px
+  size_t n = 0;        // resting frames
+  size_t valid = 0;    // frames with both an edge and a row
+};
+RestingLine FitRestingLine(const std::vector<double>& edge, const std::vector<double>& row);
+
 // The contact line's row for a found edge row.
 inline double ContactRow(const PlateShift& p, const PlateMotionScale& m, double edge) {
   return edge + (p.applied ? p.value : 0.0) + (m.scale - 1.0) * (edge - m.edge_ref);

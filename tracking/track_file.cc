@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <utility>
 #include <vector>
 
 #include "common/h5_file.h"
@@ -273,6 +274,13 @@ struct RootAttrs {
 
 // The root attributes (docs/FORMATS.md): every parameter that made the file and what each
 // stage found, with their units.
+// A sphere's resting rows on the plate's (plate_agreement.h) and its error; 0 where too few
+// resting frames decided nothing (rest_slope_frames says how many there were).
+std::pair<double, double> RestSlope(const PlateAgreement& a) {
+  if (!std::isfinite(a.slope) || !std::isfinite(a.slope_err)) return {0.0, 0.0};
+  return {a.slope, a.slope_err};
+}
+
 RootAttrs RootAttributes(const TrackArgs& args, const SequenceResult& r, const Calibration& cal,
                          const Recording& rec) {
   const bool clip_found = r.plate_clip.level.found();
@@ -312,6 +320,12 @@ RootAttrs RootAttributes(const TrackArgs& args, const SequenceResult& r, const C
                     {"matches_dropped_length_right", int64_t(r.scores.dropped_length[1])},
                     {"learnt_again_left", int64_t(r.relearnt[0])},
                     {"learnt_again_right", int64_t(r.relearnt[1])},
+                    {"rest_slope_left", RestSlope(r.plate_agreement[0]).first},
+                    {"rest_slope_err_left", RestSlope(r.plate_agreement[0]).second},
+                    {"rest_slope_frames_left", int64_t(r.plate_agreement[0].frames)},
+                    {"rest_slope_right", RestSlope(r.plate_agreement[1]).first},
+                    {"rest_slope_err_right", RestSlope(r.plate_agreement[1]).second},
+                    {"rest_slope_frames_right", int64_t(r.plate_agreement[1].frames)},
                     {"dimer_length_px", r.scores.length_px}};
   AttrUnits units = {{"fps", "1/s"}, {"plate_shift", "px"}, {"plate_shift_err", "px"},
                      {"plate_shift_edge_ref", "px"}, {"plate_motion_scale", "1"},
@@ -324,7 +338,10 @@ RootAttrs RootAttributes(const TrackArgs& args, const SequenceResult& r, const C
                      {"stuck_pixels_frames", "1"}, {"matches_dropped_score_left", "1"},
                      {"matches_dropped_score_right", "1"}, {"matches_dropped_length_left", "1"},
                      {"matches_dropped_length_right", "1"}, {"learnt_again_left", "1"},
-                     {"learnt_again_right", "1"}, {"dimer_length_px", "px"},
+                     {"learnt_again_right", "1"}, {"rest_slope_left", "px/px"},
+                     {"rest_slope_err_left", "px/px"}, {"rest_slope_frames_left", "1"},
+                     {"rest_slope_right", "px/px"}, {"rest_slope_err_right", "px/px"},
+                     {"rest_slope_frames_right", "1"}, {"dimer_length_px", "px"},
                      {"m_per_px", "m/px"}, {"row0", "px"}, {"col0", "px"}, {"ar", "1"},
                      {"ar_length_px", "px"}, {"ar_length_frames", "1"}, {"ar_radius_px", "px"},
                      {"ar_outline_radius_px", "px"},

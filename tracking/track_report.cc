@@ -285,13 +285,36 @@ void ReportDetectionAgreement(const TrackArgs& args, const SequenceResult& r, Di
   if (r.method != Method::kTemplate) return;
   for (int k = 0; k < 2; ++k) {
     const DetectionAgreement& a = r.detection_agreement[k];
-    if (r.relearnt[k]) {
+    if (r.relearnt_by_plate[k]) {
+      const PlateAgreement& p = r.plate_agreement[k];
+      diag->Note("learnt_again",
+                 Format("%s: the %s sphere's rows did not move with the plate it rests on "
+                        "(something standing still behind it, a ruler's or a backdrop's edge, "
+                        "held them); it was learnt again without the pixels that stand still, "
+                        "and its rows then moved %.2f +- %.2f px per px of the plate's over %zu "
+                        "resting learning frames (1 for rows that move with it; the rows' stated "
+                        "uncertainty includes how far they part from that)",
+                        args.input.c_str(), k == 0 ? "left" : "right", p.slope, p.slope_err,
+                        p.frames));
+    } else if (r.relearnt[k]) {
       diag->Note("learnt_again",
                  Format("%s: the %s sphere's first appearance did not move as its detections "
                         "did (something standing still behind it, a ruler's or a backdrop's "
                         "edge, held it); it was learnt again from its highlights without the "
                         "pixels that stand still, and then moved with them",
                         args.input.c_str(), k == 0 ? "left" : "right"));
+    }
+    const PlateAgreement& p = r.plate_agreement[k];
+    if (!p.agrees) {
+      diag->Warn("not_with_plate",
+                 Format("%s: the %s sphere's rows moved %.2f +- %.2f px per px of the plate's "
+                        "over %zu learning frames where it rests, not with the plate: something "
+                        "that stands still behind it (a ruler's or a backdrop's edge) may hold "
+                        "them, and learnt again without it they still did not move with it; its "
+                        "rows may be off by a fraction of the plate's motion; a plain background "
+                        "behind the dimer helps",
+                        args.input.c_str(), k == 0 ? "left" : "right", p.slope, p.slope_err,
+                        p.frames));
     }
     if (a.agrees) continue;
     const char* axis = a.axis == 0 ? "columns" : "rows";

@@ -233,12 +233,17 @@ void ExpectIdentical(const std::array<tracking::SequenceResult, 2>& r) {
   }
 }
 
-// The learnt appearance refereed by its detections (tracking/detection_agreement.h): the
-// hopping sphere before the ruler, whose first appearance the ruler's edges hold (its rows 6 px
-// off), is learnt again from its highlights without the pixels that stand still behind it
-// (learn_method.h, RelearnHeldSpheres) and then followed: its rows and columns within the
-// targets' 0.1 px of the truth and scattering by no more than 0.05 px, and the referee passes
-// it; on front_point, where both follow the spheres, nothing is learnt again.
+// The learnt appearance refereed by its detections (tracking/detection_agreement.h) and by the
+// plate (tracking/plate_agreement.h). The hopping sphere before the ruler, whose first
+// appearance the ruler's edges hold (its rows 6 px off), is learnt again from its highlights
+// without the pixels that stand still behind it (learn_method.h, RelearnHeldSpheres) and then
+// followed: its rows and columns within the targets' 0.1 px of the truth and scattering by no
+// more than 0.05 px, and the referee passes it. The resting sphere, whose rows the ruler holds
+// (0.09 px per px of the plate's), is learnt again from its own rough centres without them
+// (RelearnHeldByThePlate): its rows then move more with the plate, scatter about the truth by
+// no more than 0.07 px (held: 0.135; the target's 0.05 is not met: povray.scatter), and their
+// bias lies within twice their stated uncertainty. On front_point, where both follow the
+// spheres, nothing is learnt again.
 TEST(PovrayDetectionAgreement, TheSphereARulerHoldsIsLearntAgainAndFollowed) {
   for (const Case& c : {Case{"ruler_above_plate", Lighting::kRulerAbovePlate, 3.9},
                         Case{"front_point", Lighting::kFrontPoint, 3.9}}) {
@@ -262,9 +267,36 @@ TEST(PovrayDetectionAgreement, TheSphereARulerHoldsIsLearntAgainAndFollowed) {
                   a.rough_sd);
       EXPECT_TRUE(a.agrees) << c.name << " sphere " << k;
     }
-    EXPECT_FALSE(r.relearnt[0]) << c.name;
+    for (int k = 0; k < 2; ++k) {
+      const tracking::PlateAgreement& p = r.plate_agreement[k];
+      std::printf("[ stats    ] %s sphere %d: relearnt by the plate %d, rows on the plate's "
+                  "%.2f +- %.2f over %zu resting frames\n",
+                  c.name, k, int(r.relearnt_by_plate[k]), p.slope, p.slope_err, p.frames);
+      EXPECT_TRUE(p.agrees) << c.name << " sphere " << k;
+    }
+    EXPECT_EQ(r.relearnt[0], ruler) << c.name;
+    EXPECT_EQ(r.relearnt_by_plate[0], ruler) << c.name;
     EXPECT_EQ(r.relearnt[1], ruler) << c.name;
+    EXPECT_FALSE(r.relearnt_by_plate[1]) << c.name;
     if (!ruler) continue;
+    EXPECT_NE(r.method_reason.find("learnt again without what stands still"), std::string::npos)
+        << r.method_reason;
+    {
+      // The resting left sphere's rows against the truth.
+      double sum = 0, sum2 = 0;
+      for (size_t i = 0; i < truth.size(); ++i) {
+        ASSERT_TRUE(r.frames[i].found[0]) << "frame " << i;
+        const double e = r.frames[i].centre[0].y() - truth[i].centre[0].y();
+        sum += e, sum2 += e * e;
+      }
+      const double bias = sum / double(truth.size());
+      const double sd = std::sqrt(sum2 / double(truth.size()) - bias * bias);
+      std::printf("[ stats    ] ruler's left sphere: row bias %.3f px, scatter %.3f px, stated "
+                  "+- %.3f px\n",
+                  bias, sd, r.offsets.row[0].err);
+      EXPECT_LE(sd, 0.07);
+      EXPECT_LE(std::abs(bias), 2 * r.offsets.row[0].err);
+    }
     EXPECT_NE(r.method_reason.find("learnt again from its highlights"), std::string::npos)
         << r.method_reason;
     // The right sphere against the truth: mean error and scatter about it per axis.
