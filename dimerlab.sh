@@ -113,8 +113,12 @@ sanitize() {
     -DDIMERLAB_POVRAY_CACHE_DIR="$ROOT/build/povray_footage_cache"  # the same footage, rendered once
   local skip
   skip=$(IFS='|'; echo "${SANITIZE_SKIP[*]}")
+  local rc=0
   ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 DIMERLAB_TEST_SCALE=0.2 \
-    ctest --test-dir build-asan --output-on-failure -j "$JOBS" -E "$skip"
+    ctest --test-dir build-asan --output-on-failure -j "$JOBS" -E "$skip" 2>&1 |
+    tee build-asan/ctest_last.log || rc=$?
+  slowest_tests build-asan/ctest_last.log
+  return "$rc"
 }
 
 # Every benchmark program; each one's tables also go to bench/results/MACHINE/NAME.tsv
