@@ -209,7 +209,7 @@ PlateAgreement RegisteredWithThePlate(const LearntSphere& s,
 // it left out (LearnOptions::still_background_spread; its highlights, which RelearnHeldSpheres
 // seeds from, put its rows 0.14 px off there, its own rough centres 0.06), both appearances are
 // followed on the learning frames, and it takes the new one where its rows move more nearly with
-// the plate (povray.plate_agreement; on the ruler 0.55 +- 0.04, its rows' scatter about the
+// the plate (povray.detection_agreement; on the ruler 0.55 +- 0.04, its rows' scatter about the
 // truth 0.135 -> 0.056 px; the cut's other spreads, 2-4 and 7-12, gave 0.02-0.49). Returns what
 // is added to the method's reason. `relearnt_from`: the samples of the spheres RelearnHeldSpheres
 // learnt again.
@@ -219,12 +219,22 @@ std::string RelearnHeldByThePlate(const std::vector<Frame>& learning,
                                   const std::vector<LearningSample>& relearnt_from, bool recentre,
                                   bool fit_radius, const LearnOptions& learn,
                                   SequenceMethod* m, std::array<Appearance, 2>* follow) {
+  std::array<bool, 2> held{};
   for (int k = 0; k < 2; ++k) {
     m->plate_agreement[k] =
         RegisteredWithThePlate(m->learnt[k], m->relearnt[k] ? relearnt_from : samples);
+    held[k] = !m->plate_agreement[k].agrees && !m->relearnt[k];
   }
-  std::array<bool, 2> held{};
-  for (int k = 0; k < 2; ++k) held[k] = !m->plate_agreement[k].agrees && !m->relearnt[k];
+  if (!held[0] && !held[1]) return "";
+  // Followed, the rows are told apart more finely than by their registration; a sphere they
+  // pass is not held.
+  const std::array<PlateAgreement, 2> followed =
+      FollowedWithThePlate(learning, reference, *follow, learn.threads);
+  for (int k = 0; k < 2; ++k) {
+    if (!held[k]) continue;
+    m->plate_agreement[k] = followed[k];
+    held[k] = !followed[k].agrees;
+  }
   if (!held[0] && !held[1]) return "";
   LearnOptions still = learn;
   still.still_background_spread = kStillBackgroundSpread;
@@ -235,11 +245,7 @@ std::string RelearnHeldByThePlate(const std::vector<Frame>& learning,
   std::string reason;
   for (int k = 0; k < 2; ++k) {
     if (!held[k] || !again[k].appearance.valid()) continue;
-    // Followed, the two are told apart more finely than by their registered rows.
-    const PlateAgreement before =
-        FollowedWithThePlate(learning, reference, *follow, learn.threads)[size_t(k)];
-    m->plate_agreement[k] = before;
-    if (before.agrees) continue;
+    const PlateAgreement& before = followed[k];
     char clause[200];
     std::snprintf(clause, sizeof clause,
                   "; the %s sphere's rows moved %.2f +- %.2f px per px of the plate's over %zu "
@@ -338,7 +344,7 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
     follow[size_t(k)] = clip.appearance;
     m.choice.reason += "; " + clip.reason;
   }
-  // The followed rows refereed by the plate (plate_agreement.h), where the template is followed.
+  // The rows refereed by the plate each sphere rests on (plate_agreement.h).
   m.choice.reason += RelearnHeldByThePlate(learning, reference, samples, relearnt_from,
                                            !m.choice.silhouettes,
                                            !m.choice.silhouettes && !radius_known, learn, &m,

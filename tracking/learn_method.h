@@ -35,8 +35,9 @@ struct SequenceMethod {
   // Whether each sphere was learnt again, from its highlights and without what stood still
   // behind it, after the referee rejected its first appearance (RelearnHeldSpheres).
   std::array<bool, 2> relearnt{false, false};
-  // Each sphere's followed rows on the learning frames refereed by the plate it rests on
-  // (plate_agreement.h; the final appearance's), and whether that referee had it learnt again
+  // Each sphere's rows on the learning frames refereed by the plate it rests on
+  // (plate_agreement.h): its registered rows, or, where those were rejected, the final
+  // appearance's followed rows; and whether that referee had it learnt again
   // (RelearnHeldByThePlate; relearnt is then true too).
   std::array<PlateAgreement, 2> plate_agreement;
   std::array<bool, 2> relearnt_by_plate{false, false};

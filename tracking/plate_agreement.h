@@ -33,8 +33,8 @@ struct PlateAgreement {
   double edge_sd = 0;  // the plate edge's spread over them, px
 };
 
-// `edge` the plate's edge row under the sphere and `row` its followed row per frame (NaN: none),
-// over the same frames.
+// `edge` the plate's edge row under the sphere and `row` its row per frame (registered or
+// followed; NaN: none), over the same frames.
 PlateAgreement AgreementWithPlate(const std::vector<double>& edge, const std::vector<double>& row);
 
 // Whether `after` moves more nearly with the plate than `before`: its slope nearer 1 by more

@@ -252,7 +252,7 @@ constexpr double kScaleSpreadAllowancePx = 0.3;
 
 // Least squares row = a + b edge over `use`.
 RestingLine FitLine(const std::vector<double>& edge, const std::vector<double>& row,
-             const std::vector<uint8_t>& use) {
+                    const std::vector<uint8_t>& use) {
   RestingLine l;
   double se = 0, sr = 0;
   for (size_t i = 0; i < edge.size(); ++i) {

@@ -119,8 +119,8 @@ struct SequenceResult {
   // Template: the spheres learnt again after the referee rejected their first appearance
   // (learn_method.h, SequenceMethod::relearnt); detection_agreement is then the new one's.
   std::array<bool, 2> relearnt{false, false};
-  // Template: each sphere's followed rows on the learning frames against the plate it rests on
-  // (plate_agreement.h), and whether that referee had it learnt again.
+  // Template: each sphere's rows on the learning frames against the plate it rests on
+  // (SequenceMethod::plate_agreement), and whether that referee had it learnt again.
   std::array<PlateAgreement, 2> plate_agreement;
   std::array<bool, 2> relearnt_by_plate{false, false};
   LevelScale level_scale;        // a 10- or 12-bit camera's levels, scaled (level_scale.h)
