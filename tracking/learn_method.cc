@@ -191,15 +191,21 @@ std::array<PlateAgreement, 2> FollowedWithThePlate(
 }
 
 // A sphere's registered rows on the learning frames refereed by the plate under it: what
-// learning measured already, so a film pays nothing for it where it agrees.
+// learning measured already, so a film pays nothing for it where it agrees. `on_plate`: 1 for
+// each sample (indexed as `samples`) it rests in.
 PlateAgreement RegisteredWithThePlate(const LearntSphere& s,
-                                      const std::vector<LearningSample>& samples) {
+                                      const std::vector<LearningSample>& samples,
+                                      std::vector<uint8_t>* on_plate) {
   std::vector<double> edge, row;
   for (size_t j = 0; j < s.samples.size() && j < s.registered.size(); ++j) {
     edge.push_back(samples[s.samples[j]].PlateRowAt(s.registered[j].x()));
     row.push_back(s.registered[j].y());
   }
-  return AgreementWithPlate(edge, row);
+  std::vector<uint8_t> resting(edge.size(), 0);
+  const PlateAgreement a = AgreementWithPlate(edge, row, &resting);
+  on_plate->assign(samples.size(), 0);
+  for (size_t j = 0; j < edge.size(); ++j) (*on_plate)[s.samples[j]] = resting[j];
+  return a;
 }
 
 // A sphere whose rows do not move with the plate it rests on (plate_agreement.h) is held by
@@ -207,11 +213,13 @@ PlateAgreement RegisteredWithThePlate(const LearntSphere& s,
 // registered rows moved 0.07 +- 0.03 px per px of the plate's, and its followed ones 0.09 +-
 // 0.01. It is learnt again from the same rough centres with the pixels that stand still behind
 // it left out (LearnOptions::still_background_spread; its highlights, which RelearnHeldSpheres
-// seeds from, put its rows 0.14 px off there, its own rough centres 0.06), both appearances are
-// followed on the learning frames, and it takes the new one where its rows move more nearly with
-// the plate (povray.detection_agreement; on the ruler 0.55 +- 0.04, its rows' scatter about the
-// truth 0.135 -> 0.056 px; the cut's other spreads, 2-4 and 7-12, gave 0.02-0.49). Returns what
-// is added to the method's reason. `relearnt_from`: the samples of the spheres RelearnHeldSpheres
+// seeds from, put its rows 0.14 px off there) and its rows in the frames where it rests set by
+// the plate (LearnOptions::rows_on_plate; registered instead, 0.55 +- 0.04 and rows scattering
+// 0.056 px, and only the cut's spreads 5-6 took). Both appearances are followed on the learning
+// frames, and it takes the new one where its rows move more nearly with the plate
+// (povray.detection_agreement; on the ruler 0.62 +- 0.04, its rows' scatter about the truth
+// 0.135 -> 0.047 px; the cut's spreads 3-12 all gave 0.58-0.63, 20 gave 0.50). Returns what is
+// added to the method's reason. `relearnt_from`: the samples of the spheres RelearnHeldSpheres
 // learnt again.
 std::string RelearnHeldByThePlate(const std::vector<Frame>& learning,
                                   const FollowerOptions& reference,
@@ -220,9 +228,10 @@ std::string RelearnHeldByThePlate(const std::vector<Frame>& learning,
                                   bool fit_radius, const LearnOptions& learn,
                                   SequenceMethod* m, std::array<Appearance, 2>* follow) {
   std::array<bool, 2> held{};
+  std::array<std::vector<uint8_t>, 2> on_plate;
   for (int k = 0; k < 2; ++k) {
-    m->plate_agreement[k] =
-        RegisteredWithThePlate(m->learnt[k], m->relearnt[k] ? relearnt_from : samples);
+    m->plate_agreement[k] = RegisteredWithThePlate(
+        m->learnt[k], m->relearnt[k] ? relearnt_from : samples, &on_plate[k]);
     held[k] = !m->plate_agreement[k].agrees && !m->relearnt[k];
   }
   if (!held[0] && !held[1]) return "";
@@ -238,6 +247,9 @@ std::string RelearnHeldByThePlate(const std::vector<Frame>& learning,
   if (!held[0] && !held[1]) return "";
   LearnOptions still = learn;
   still.still_background_spread = kStillBackgroundSpread;
+  for (int k = 0; k < 2; ++k) {
+    if (held[k]) still.rows_on_plate[size_t(k)] = on_plate[k];
+  }
   bool radius_from_outline = false;
   const std::array<LearntSphere, 2> again =
       LearnAppearances(samples, reference.radius_px, recentre, fit_radius, &radius_from_outline,

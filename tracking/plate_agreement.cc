@@ -7,9 +7,9 @@
 namespace dimer::tracking {
 
 PlateAgreement AgreementWithPlate(const std::vector<double>& edge,
-                                  const std::vector<double>& row) {
+                                  const std::vector<double>& row, std::vector<uint8_t>* resting) {
   PlateAgreement a;
-  const RestingLine l = FitRestingLine(edge, row);
+  const RestingLine l = FitRestingLine(edge, row, resting);
   a.frames = l.n;
   a.edge_sd = l.edge_sd;
   if (l.n < kMinPlateAgreementFrames || !std::isfinite(l.b_err)) return a;

@@ -11,6 +11,7 @@
 // A sphere it rejects is learnt again without what stands still behind it
 // (learn_method.cc, RelearnHeldByThePlate).
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -34,8 +35,10 @@ struct PlateAgreement {
 };
 
 // `edge` the plate's edge row under the sphere and `row` its row per frame (registered or
-// followed; NaN: none), over the same frames.
-PlateAgreement AgreementWithPlate(const std::vector<double>& edge, const std::vector<double>& row);
+// followed; NaN: none), over the same frames; `resting` (may be null): 1 for each frame it
+// rests in (FitRestingLine).
+PlateAgreement AgreementWithPlate(const std::vector<double>& edge, const std::vector<double>& row,
+                                  std::vector<uint8_t>* resting = nullptr);
 
 // Whether `after` moves more nearly with the plate than `before`: its slope nearer 1 by more
 // than twice their errors combined.

@@ -280,7 +280,8 @@ RestingLine FitLine(const std::vector<double>& edge, const std::vector<double>& 
 
 }  // namespace
 
-RestingLine FitRestingLine(const std::vector<double>& edge, const std::vector<double>& row) {
+RestingLine FitRestingLine(const std::vector<double>& edge, const std::vector<double>& row,
+                           std::vector<uint8_t>* resting) {
   RestingLine l;
   if (row.size() != edge.size()) return l;
   std::vector<uint8_t> valid(edge.size(), 0), use(edge.size(), 0);
@@ -306,6 +307,7 @@ RestingLine FitRestingLine(const std::vector<double>& edge, const std::vector<do
     l = FitLine(edge, row, use);
   }
   l.valid = gap.size();
+  if (resting) *resting = use;
   return l;
 }
 

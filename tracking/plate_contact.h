@@ -26,6 +26,7 @@
 #include <opencv2/core.hpp>
 
 #include <array>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -130,7 +131,9 @@ struct RestingLine {
   size_t n = 0;        // resting frames
   size_t valid = 0;    // frames with both an edge and a row
 };
-RestingLine FitRestingLine(const std::vector<double>& edge, const std::vector<double>& row);
+// `resting` (may be null): 1 for each frame the line rests on.
+RestingLine FitRestingLine(const std::vector<double>& edge, const std::vector<double>& row,
+                           std::vector<uint8_t>* resting = nullptr);
 
 // The contact line's row for a found edge row.
 inline double ContactRow(const PlateShift& p, const PlateMotionScale& m, double edge) {

@@ -240,8 +240,8 @@ void ExpectIdentical(const std::array<tracking::SequenceResult, 2>& r) {
 // followed: its rows and columns within the targets' 0.1 px of the truth and scattering by no
 // more than 0.05 px, and the referee passes it. The resting sphere, whose rows the ruler holds
 // (0.09 px per px of the plate's), is learnt again from its own rough centres without them
-// (RelearnHeldByThePlate): its rows then move more with the plate, scatter about the truth by
-// no more than 0.07 px (held: 0.135; the target's 0.05 is not met: povray.scatter), and their
+// and with its resting rows set by the plate (RelearnHeldByThePlate): its rows then move more
+// with the plate, scatter about the truth by no more than 0.07 px (0.047; held: 0.135), and their
 // bias lies within twice their stated uncertainty. On front_point, where both follow the
 // spheres, nothing is learnt again.
 TEST(PovrayDetectionAgreement, TheSphereARulerHoldsIsLearntAgainAndFollowed) {

@@ -389,6 +389,27 @@ void RegisterSamples(const std::vector<LearningSample>& samples, const std::vect
   });
 }
 
+// The rows of the samples flagged in `on_plate` (indexed as `samples`; empty: none) set by the
+// plate under them (LearnOptions::rows_on_plate): the plate's row less the flagged samples'
+// median gap between plate and row.
+void PlaceRowsOnPlate(const std::vector<LearningSample>& samples, const std::vector<size_t>& used,
+                      const std::vector<uint8_t>& on_plate, std::vector<Eigen::Vector2d>* pos) {
+  if (on_plate.size() != samples.size()) return;
+  std::vector<double> gaps;
+  for (size_t i = 0; i < used.size(); ++i) {
+    if (!on_plate[used[i]]) continue;
+    const double plate = samples[used[i]].PlateRowAt((*pos)[i].x());
+    if (std::isfinite(plate)) gaps.push_back(plate - (*pos)[i].y());
+  }
+  if (gaps.empty()) return;
+  const double gap = MedianOf(gaps);
+  for (size_t i = 0; i < used.size(); ++i) {
+    if (!on_plate[used[i]]) continue;
+    const double plate = samples[used[i]].PlateRowAt((*pos)[i].x());
+    if (std::isfinite(plate)) (*pos)[i].y() = plate - gap;
+  }
+}
+
 // Learns sphere k's appearance from `start` positions (one per used sample): kLearnPasses of
 // averaging and registration to the mean (RegisterSamples). Invalid appearance if too few
 // samples. The last pass's registration changes no appearance, only s->registered: with
@@ -408,6 +429,7 @@ void LearnOne(const std::vector<cv::Mat>& images, const std::vector<LearningSamp
     s->averaged = pos;
     RegisterSamples(samples, used, k, a, radius_px,
                     pass == learn.passes && last == LastPass::kEcc, learn, &pos);
+    PlaceRowsOnPlate(samples, used, learn.rows_on_plate[size_t(k)], &pos);
   }
   s->appearance = a;
   s->registered = pos;

@@ -36,6 +36,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -87,6 +88,13 @@ struct LearnOptions {
   // none. PrepareSequenceMethod sets kStillBackgroundSpread where it learns a sphere again that
   // the referee (detection_agreement.h) found held by something behind it.
   double still_background_spread = 0;
+  // Per sphere, one flag per learning sample (empty: none): the samples where the sphere rests
+  // on the plate. Their rows are set by the plate after every registration, at the plate's row
+  // under the sphere less the flagged samples' median gap, instead of registered: a resting
+  // sphere moves with the plate, while something standing still behind it (a ruler's edge) can
+  // hold its registrations. PrepareSequenceMethod sets them where it learns a resting sphere
+  // again whose rows did not move with the plate (learn_method.cc, RelearnHeldByThePlate).
+  std::array<std::vector<uint8_t>, 2> rows_on_plate{};
 };
 // The median spread is the noise's; a sphere's own edges spread by their gradient times the
 // registration's error, the edges of what stands still behind it by their gradient times the
