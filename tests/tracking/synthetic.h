@@ -62,6 +62,25 @@ inline Trajectory DriftTrajectory(size_t n, double fps, double freq_hz = 25.0,
   return traj;
 }
 
+// The jump mode in metres (lab frame): the dimer level, both spheres leaving the plate together
+// and landing on it once per plate period (at the plate's zero crossings, frames 0, P, 2P, ...
+// for P = fps / freq_hz), the plate oscillating by 0.35 mm. Neither sphere rests.
+inline Trajectory JumpTrajectory(size_t n, double fps, double freq_hz = 25.0) {
+  Trajectory traj;
+  traj.Reserve(n);
+  const double r = 0.5 * kDiameterM, half = (kAspectRatio - 1.0) * r;
+  const double amplitude = 0.35e-3, g = 9.81, period = 1.0 / freq_hz;
+  const double rebound = 0.5 * g * period;  // m/s: back on the plate one period later
+  for (size_t i = 0; i < n; ++i) {
+    const double t = double(i) / fps;
+    const double plate = amplitude * std::sin(2.0 * std::numbers::pi * freq_hz * t);
+    const double since = t - period * std::floor(t / period + 1e-9);
+    const double z = r + rebound * since - 0.5 * g * since * since;
+    traj.Append(t, Eigen::Vector2d(-half, z), Eigen::Vector2d(half, z), plate, 0.0);
+  }
+  return traj;
+}
+
 // A file that looks like a simulator's output (kind sim, diameter, fps), from a trajectory.
 inline void WriteSimFile(const std::string& path, const Trajectory& traj, double fps,
                          bool with_diameter = true) {

@@ -572,6 +572,17 @@ std::array<LearntSphere, 2> CutAtMovingHorizon(const LearningSet& set,
   return cut;
 }
 
+// The least height of s's registered reference points above the plate under them over its
+// samples, px (Appearance::lowest_gap_px); NaN where no sample has a plate row.
+double LowestGap(const std::vector<LearningSample>& samples, const LearntSphere& s) {
+  double lowest = std::numeric_limits<double>::quiet_NaN();
+  for (size_t j = 0; j < s.samples.size() && j < s.registered.size(); ++j) {
+    const double gap = samples[s.samples[j]].PlateRowAt(s.registered[j].x()) - s.registered[j].y();
+    if (std::isfinite(gap) && !(gap >= lowest)) lowest = gap;
+  }
+  return lowest;
+}
+
 }  // namespace
 
 std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& samples,
@@ -634,6 +645,7 @@ std::array<LearntSphere, 2> LearnAppearances(const std::vector<LearningSample>& 
   for (int k = 0; k < 2; ++k) {
     LeaveGroupsOut(images, samples, used, k, learn.jackknife_groups,
                    learn.still_background_spread > 0, learn.threads, &learnt[k]);
+    learnt[k].appearance.lowest_gap_px = LowestGap(samples, learnt[k]);
   }
   return learnt;
 }

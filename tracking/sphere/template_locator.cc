@@ -37,6 +37,13 @@ constexpr double kEccMaxMovePx = 1.0;
 // Acquisition: the rod's direction is unknown, so a horizontal corridor on both sides of this
 // half-width (units of R) is cut; the dimer's tilt stays well inside it near the sphere.
 constexpr double kAcquireRodHalfWidthR = 0.45;
+// A sphere's reference point is searched for down to its least height above the plate in the
+// learning frames (Appearance::lowest_gap_px) less this margin, in radii (learning frames
+// that missed the impacts by a frame) where that is under a radius. On our renderer's
+// reflect films of the jump mode the reference lies 5-9 px below the centre, and a sphere
+// touching the plate at a chunk's first frame was found 2.4-3.4 px high with the search
+// bounded a radius above the plate (TemplateAcquisition.FindsSpheresTouching...).
+constexpr double kAcquireGapMarginR = 0.1;
 // The whole-frame search (FindAppearance) at half resolution first only for spheres of at least
 // this radius (smaller ones are too few pixels at half size), px; the full-resolution windows
 // about the coarse peaks are +-kCoarseWindowPx (a coarse peak is off by a pixel of half
@@ -512,8 +519,14 @@ std::vector<Located> FindAppearance(const cv::Mat& frame, const Appearance& a, d
                                     int coarse_candidates) {
   std::vector<Located> found;
   const int size = 2 * a.half + 1;
-  // A resting sphere's template reaches below the plate: rows from R - guard below the
-  // reference are cut, and the frame is searched down to where such a template ends.
+  // A resting sphere's template reaches below the plate: rows from `reach` - guard below the
+  // reference are cut, and the frame is searched down to where such a template ends. The reach
+  // is the radius, or less where the reference point came nearer the plate in the learning
+  // frames (it lies below the sphere's centre).
+  const double reach =
+      std::isfinite(a.lowest_gap_px)
+          ? std::clamp(a.lowest_gap_px - kAcquireGapMarginR * a.radius_px, 0.0, a.radius_px)
+          : a.radius_px;
   cv::Mat mask = a.mask.clone();
   const double rod_half = kAcquireRodHalfWidthR * a.radius_px;
   const double rod_inset = a.radius_px - kRodCutInsetPx;
@@ -521,7 +534,7 @@ std::vector<Located> FindAppearance(const cv::Mat& frame, const Appearance& a, d
     const double dy = y - a.half;
     for (int x = 0; x < size; ++x) {
       const double dx = x - a.half;
-      if (dy > a.radius_px - kTemplatePlateGuardPx ||
+      if (dy > reach - kTemplatePlateGuardPx ||
           (std::abs(dx) > rod_inset && std::abs(dy) < rod_half)) {
         mask.at<uint8_t>(y, x) = 0;
       }
@@ -529,7 +542,7 @@ std::vector<Located> FindAppearance(const cv::Mat& frame, const Appearance& a, d
   }
   int rows = frame.rows;
   if (std::isfinite(plate_row)) {
-    rows = std::min(rows, int(std::ceil(plate_row - a.radius_px)) + a.half + 2);
+    rows = std::min(rows, int(std::ceil(plate_row - reach)) + a.half + 2);
   }
   if (rows < size || frame.cols < size) return found;
   const cv::Mat image = ToFloat(frame(cv::Rect(0, 0, frame.cols, rows)));

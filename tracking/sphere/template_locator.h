@@ -33,6 +33,11 @@ struct Appearance {
   // The slope (rows per column) of the plate whose reflection the appearance shows: its horizon
   // is looked for and cut along it (appearance_model.h); 0: level.
   double horizon_slope = 0;
+  // The reference point's least height above the plate over the learning frames (the plate's
+  // row less the reference row), px; NaN: not measured. The reference point is where the
+  // rough centres put the sphere, which on mirror-lit spheres can be pixels below its centre;
+  // a sphere touching the plate is searched for down to there (FindAppearance).
+  double lowest_gap_px = std::numeric_limits<double>::quiet_NaN();
   bool valid() const { return !image.empty(); }
 };
 

@@ -1,0 +1,63 @@
+// The template method's whole-frame search (FindAppearance) on our renderer's mirror-lit steel
+// in the jump mode: neither sphere rests, so the learnt appearance's reference point is where
+// the rough centres put it, pixels below the sphere's centre, and a chunk whose first frame
+// shows the spheres touching the plate must still find them there.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "tests/tracking/synthetic.h"
+#include "render/render.h"
+#include "tracking/io/frame_source.h"
+#include "tracking/track_sequence.h"
+
+namespace dimer::tracking {
+namespace {
+
+TEST(TemplateAcquisition, FindsSpheresTouchingThePlateAtAChunksFirstFrame) {
+  // Three plate periods of 80 frames; chunks of 16 frames start at each landing (0, 80, 160).
+  const size_t n = 161;
+  const Trajectory traj = testing::JumpTrajectory(n, 2000.0);
+  RenderPlan plan;
+  plan.map = {testing::kMPerPx, 200.0, 256.0};
+  plan.radius_px = 0.5 * testing::kDiameterM / plan.map.m_per_px;
+  plan.rod_half_width_px = 3.75;
+  RenderOptions o;
+  o.lighting = Lighting::kReflect;
+  o.noise = 2.0;
+  std::vector<cv::Mat> frames;
+  std::vector<SceneGeometry> truth;
+  for (size_t i = 0; i < n; ++i) {
+    truth.push_back(plan.SceneAt(traj, traj.t[i]));
+    frames.push_back(RenderFrame({truth.back()}, o, i));
+  }
+  MemorySource src(frames);
+  SequenceOptions so;
+  so.follower.method = Method::kTemplate;
+  so.threads = 2;
+  so.chunk_frames = 16;
+  so.contact_radius_px = plan.radius_px;  // the scale is known (--m-per-px)
+  const SequenceResult r = TrackSequence(src, so);
+  ASSERT_EQ(r.frames.size(), n);
+  // Each sphere's rows less their median error (the offset's own uncertainty is not what is
+  // judged here): within 0.1 px in every frame, the landings included. With the search bounded
+  // a radius above the plate, the chunks' first frames at the landings were 2.4-3.4 px high.
+  for (int k = 0; k < 2; ++k) {
+    std::vector<double> err;
+    for (size_t i = 0; i < n; ++i) {
+      ASSERT_TRUE(r.frames[i].found[k]) << "frame " << i << " sphere " << k;
+      err.push_back(r.frames[i].centre[k].y() - (k == 0 ? truth[i].left : truth[i].right).y());
+    }
+    std::vector<double> sorted = err;
+    std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(n / 2), sorted.end());
+    const double median = sorted[n / 2];
+    for (size_t i = 0; i < n; ++i) {
+      EXPECT_LE(std::abs(err[i] - median), 0.1)
+          << "sphere " << k << ", frame " << i << " (a landing every 80 frames)";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace dimer::tracking
