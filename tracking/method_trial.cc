@@ -79,6 +79,35 @@ bool SilhouetteWinsTrial(const TrialScores& tmpl, const TrialScores& silhouette)
   return !std::isfinite(tmpl.score) || silhouette.score <= kTrialMargin * tmpl.score;
 }
 
+bool DiscFitWinsTrial(const TrialScores& centroid, const TrialScores& discfit) {
+  if (!std::isfinite(discfit.score)) return false;
+  return !std::isfinite(centroid.score) || discfit.score <= kDiscFitMargin * centroid.score;
+}
+
+MethodTrial TrySilhouetteMethods(const std::vector<Frame>& frames,
+                                 const FollowerOptions& centroid_options, int threads) {
+  FollowerOptions discfit = centroid_options;
+  discfit.method = Method::kDiscFit;
+  const std::array<const FollowerOptions*, 2> options{&centroid_options, &discfit};
+  MethodTrial t;
+  t.candidates.resize(2);
+  ParallelFor(2, threads, [&](size_t i) {
+    t.candidates[i] = ScoreTrial(Follow(frames, *options[i]), options[i]->method);
+  });
+  const bool discfit_better = DiscFitWinsTrial(t.candidates[0], t.candidates[1]);
+  t.chosen = discfit_better ? Method::kDiscFit : Method::kCentroid;
+  char margin[32];
+  std::snprintf(margin, sizeof margin, "%g", kDiscFitMargin);
+  t.reason = "; tried on " + std::to_string(frames.size()) + " consecutive frames, the noise the "
+             "film shows: " + Describe(t.candidates[0]) + ", " + Describe(t.candidates[1]) +
+             "; " +
+             (discfit_better ? std::string("discfit, at most ") + margin +
+                                   " of the centroid's noise, is run"
+                             : std::string("the centroid is kept (discfit is run only at ") +
+                                   margin + " of its noise or less)");
+  return t;
+}
+
 MethodTrial TryMethods(const std::vector<Frame>& frames, const FollowerOptions& template_options,
                        int threads) {
   FollowerOptions silhouette = template_options;

@@ -54,6 +54,17 @@ TrialScores ScoreTrial(const std::vector<FrameTrack>& track, Method method);
 // above).
 bool SilhouetteWinsTrial(const TrialScores& tmpl, const TrialScores& silhouette);
 
+// Clean silhouettes: the centroid, or discfit (a fit of the exact pixel-coverage disc, twice
+// the centroid's CPU a frame: bench_tracking) where the film shows discfit's noise at most
+// kDiscFitMargin of the centroid's. On our renderer's backlit films it scores 0.4-0.6 of the
+// centroid's and scatters 0.0017-0.0041 px about the truth against 0.0047-0.0057; on POV-Ray's
+// backlit steel both end with the rim fit and score alike, and the centroid is kept
+// (docs/BENCHMARKS.md, auto_choice.sh).
+inline constexpr double kDiscFitMargin = 0.9;
+
+// Whether discfit's scores `discfit` replace the centroid's `centroid` (the rule above).
+bool DiscFitWinsTrial(const TrialScores& centroid, const TrialScores& discfit);
+
 struct MethodTrial {
   std::vector<TrialScores> candidates;  // the template first, then the silhouette locator
   Method chosen = Method::kTemplate;
@@ -66,5 +77,10 @@ struct MethodTrial {
 // (the result does not depend on it).
 MethodTrial TryMethods(const std::vector<Frame>& frames, const FollowerOptions& template_options,
                        int threads);
+
+// The same between the silhouette locators: `centroid_options` and the same options with
+// discfit, chosen by DiscFitWinsTrial (candidates: the centroid first).
+MethodTrial TrySilhouetteMethods(const std::vector<Frame>& frames,
+                                 const FollowerOptions& centroid_options, int threads);
 
 }  // namespace dimer::tracking

@@ -69,7 +69,8 @@ void WritePrecisionGroup(H5Writer& w, const SequenceResult& r) {
 }
 
 // The template method's learnt appearances and offsets (docs/FORMATS.md).
-// auto's trial (method_trial.h): one row per candidate, the template first.
+// auto's trial (method_trial.h): one row per candidate, the template (or, on clean
+// silhouettes, the centroid) first.
 void WriteMethodTrial(H5Writer& w, const SequenceResult& r) {
   if (r.method_trial.empty()) return;
   std::vector<double> v;
@@ -86,7 +87,8 @@ void WriteMethodTrial(H5Writer& w, const SequenceResult& r) {
             "smooth_px is each centre's noise from its third differences, length_px the "
             "dimer's length's, score the larger of smooth_px and length_px / sqrt(2) (NaN: "
             "both spheres found in under 90 % of the frames); the centroid replaces the template "
-            "only at half its score or less, or where the template has none");
+            "only at half its score or less, or where the template has none; on clean "
+            "silhouettes discfit replaces the centroid at 0.9 of its score or less");
 }
 
 void WriteTemplateGroup(H5Writer& w, const SequenceResult& r) {

@@ -180,20 +180,28 @@ double ReferenceLength(const std::array<LearntSphere, 2>& learnt,
   return d.empty() ? kNaN : MedianOf(d);
 }
 
+// The film's first kTrialFrames frames (those that decode at the film's size), cleaned as
+// every frame is: the run auto's trials follow (method_trial.h).
+std::vector<Frame> TrialRun(const FrameAt& frame_at, size_t available, const Film& film,
+                            const SequenceResult& result) {
+  std::vector<Frame> run;
+  for (size_t i = 0; i < std::min(available, kTrialFrames); ++i) {
+    Frame f = frame_at(i);
+    if (!f.error.empty() || f.image.cols != film.ref.width || f.image.rows != film.ref.height) {
+      continue;
+    }
+    f.image = CleanFrame(f.image, result.defects, film.undistort);
+    run.push_back(std::move(f));
+  }
+  return run;
+}
+
 // Stage "trial" (auto, where the template was learnt): the silhouette locator beside the
 // template on the film's first consecutive frames (method_trial.h); the lower noise is run.
 void TryTheSilhouettes(const FrameAt& frame_at, size_t available, int threads, Film* film,
                        SequenceResult* result) {
-  std::vector<Frame> run;
-  for (size_t i = 0; i < std::min(available, kTrialFrames); ++i) {
-    Frame f = frame_at(i);
-    if (!f.error.empty() || f.image.cols != film->ref.width || f.image.rows != film->ref.height) {
-      continue;
-    }
-    f.image = CleanFrame(f.image, result->defects, film->undistort);
-    run.push_back(std::move(f));
-  }
-  const MethodTrial trial = TryMethods(run, WithReference(film->chunk_opts, film->ref), threads);
+  const MethodTrial trial = TryMethods(TrialRun(frame_at, available, *film, *result),
+                                       WithReference(film->chunk_opts, film->ref), threads);
   film->prepared.choice.reason += trial.reason;
   result->method_trial = trial.candidates;
   if (trial.chosen != Method::kCentroid) return;
@@ -212,6 +220,20 @@ void TryTheSilhouettes(const FrameAt& frame_at, size_t available, int threads, F
   }
   c.dimer_length_px = ReferenceLength(film->prepared.learnt, c.cut_offset);
   c.appearance.reset();
+}
+
+// `--method auto` on clean silhouettes: the centroid and discfit tried on the film's first
+// consecutive frames (method_trial.h, TrySilhouetteMethods); discfit is run where it shows the
+// lower noise by the trial's margin.
+void TryTheDiscFit(const FrameAt& frame_at, size_t available, int threads, Film* film,
+                   SequenceResult* result) {
+  const MethodTrial trial =
+      TrySilhouetteMethods(TrialRun(frame_at, available, *film, *result),
+                           WithReference(film->chunk_opts, film->ref), threads);
+  film->prepared.choice.reason += trial.reason;
+  result->method_trial = trial.candidates;
+  film->prepared.choice.method = trial.chosen;
+  film->chunk_opts.method = trial.chosen;
 }
 
 // Stage "choose method, learn" (template and auto): the learning frames, `learning_at(i)` for i
@@ -253,6 +275,9 @@ void LearnFilm(const FrameAt& learning_at, size_t available, const SequenceOptio
   }
   if (options.follower.method == Method::kAuto && film->chunk_opts.method == Method::kTemplate) {
     TryTheSilhouettes(learning_at, available, threads, film, result);
+  } else if (options.follower.method == Method::kAuto && film->prepared.choice.silhouettes &&
+             film->chunk_opts.method == Method::kCentroid) {
+    TryTheDiscFit(learning_at, available, threads, film, result);
   }
 }
 

@@ -74,5 +74,19 @@ TEST(MethodTrial, TheSilhouettesReplaceTheTemplateOnlyAtHalfItsNoiseOrWhereItCan
   EXPECT_TRUE(SilhouetteWinsTrial(tmpl, sil));
 }
 
+TEST(MethodTrial, DiscFitReplacesTheCentroidWhereItShowsLessNoiseByTheMargin) {
+  TrialScores centroid, discfit;
+  centroid.score = 0.0050, discfit.score = 0.0016;  // our renderer's backlit film, A_r 3.9
+  EXPECT_TRUE(DiscFitWinsTrial(centroid, discfit));
+  discfit.score = 0.0050;  // POV-Ray's backlit steel: both end with the rim fit
+  EXPECT_FALSE(DiscFitWinsTrial(centroid, discfit));
+  discfit.score = 0.0046;
+  EXPECT_FALSE(DiscFitWinsTrial(centroid, discfit));
+  discfit.score = NAN;
+  EXPECT_FALSE(DiscFitWinsTrial(centroid, discfit));
+  centroid.score = NAN, discfit.score = 0.01;
+  EXPECT_TRUE(DiscFitWinsTrial(centroid, discfit));
+}
+
 }  // namespace
 }  // namespace dimer::tracking
