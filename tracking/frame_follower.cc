@@ -10,6 +10,7 @@
 #include "tracking/sphere/detector.h"
 #include "tracking/sphere/precision_bound.h"
 #include "tracking/plate/plate_edge.h"
+#include "tracking/plate/plate_under_dimer.h"
 #include "tracking/sphere/template_locator.h"
 #include "tracking/tolerances.h"
 
@@ -458,12 +459,62 @@ bool FrameFollower::PlaceCutBeside(const cv::Mat& frame, const FrameTrack& adjac
   return !(adjacent.found[0] && !t->found[0]) && !(adjacent.found[1] && !t->found[1]);
 }
 
+double FrameFollower::LowestReach(const FrameTrack& t, double col) const {
+  double lowest = std::numeric_limits<double>::quiet_NaN();
+  for (int k = 0; k < 2; ++k) {
+    if (!t.found[k]) continue;
+    const double reach = AcquireReach((*options_.appearance)[size_t(t.appearance[k])]);
+    const double row = t.centre[k].y() + reach + options_.plate_slope * (col - t.centre[k].x());
+    if (!(row <= lowest)) lowest = row;
+  }
+  return lowest;
+}
+
 void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
+  const Detection det = DetectSpheres(frame, polarity_, options_.plate_slope, radius_px_);
+  AcquireAbove(frame, det, out);
+  if (!uses_template()) return;
+  // The plate is the edge the dimer stands on. The detector tells it from the spheres' blobs;
+  // where a ruler's or a backdrop's edge cuts them, it can take that edge, and the search above
+  // it then misses the spheres or finds them reaching below it (no sphere's reference point
+  // comes nearer the plate than its reach, AcquireReach). The spheres are then searched for
+  // above each candidate edge further down, nearest first, and the first under which both
+  // stand (neither reaching below it) is the plate (ruler_above_plate's resting sphere, the
+  // ruler's lower edge taken in chunks of 3 frames: povray.ruler_in_chunks).
+  const double det_col = 0.5 * (frame.cols - 1);
+  const double lowest = LowestReach(*out, det_col);
+  const int found = int(out->found[0]) + int(out->found[1]);
+  const bool through = lowest > det.plate_row + kPlateMeetPx;
+  if (found > 0 && !through) return;
+  const std::vector<PlateCandidate> candidates = PlateCandidates(frame, options_.plate_slope);
+  for (const PlateCandidate& c : candidates) {
+    if (!(c.row > det.plate_row + kPlateMeetPx) || (through && c.row < lowest - kPlateMeetPx)) {
+      continue;
+    }
+    Detection moved = det;
+    moved.plate_row = c.row;
+    FrameTrack again;
+    again.index = out->index;
+    AcquireAbove(frame, moved, &again);
+    if (!again.found[0] || !again.found[1] ||
+        LowestReach(again, det_col) > c.row + kPlateMeetPx) {
+      continue;
+    }
+    for (const PlateCandidate& strongest : candidates) {
+      if (strongest.strongest && strongest.row != c.row) again.strongest_edge_row = strongest.row;
+    }
+    *out = again;
+    return;
+  }
+}
+
+void FrameFollower::AcquireAbove(const cv::Mat& frame, const Detection& detection,
+                                 FrameTrack* out) {
+  Detection det = detection;
   const size_t index = out->index;
   *out = FrameTrack{};
   out->index = index;
   out->acquired = true;
-  Detection det = DetectSpheres(frame, polarity_, options_.plate_slope, radius_px_);
   out->strongest_edge_row = det.strongest_edge_row;
   // The coarse plate row is the edge's at the frame's centre column; the plate's lowest point
   // bounds the search for the spheres.

@@ -33,6 +33,8 @@
 
 namespace dimer::tracking {
 
+struct Detection;  // sphere/detector.h
+
 // FollowerOptions::lone_search_every's default: a whole-frame search costs a few times a
 // following's ~0.4 ms (kCoarseCandidates; bench_cut_spheres), so every 16th frame adds a
 // fraction of a following's time a frame and a sphere missed twice in a row waits at most 15
@@ -178,6 +180,11 @@ class FrameFollower {
   // searched again (FollowerOptions::lone_search_every).
   void PlanSearches(const cv::Mat& frame, const FrameTrack& t);
   void Acquire(const cv::Mat& frame, FrameTrack* out);
+  // Acquire's search with the plate at the detection's `det.plate_row`.
+  void AcquireAbove(const cv::Mat& frame, const Detection& detection, FrameTrack* out);
+  // The lowest row, at column `col` along the plate's slope, above which t's found spheres'
+  // reference points stand by their reach (AcquireReach); NaN where none was found.
+  double LowestReach(const FrameTrack& t, double col) const;
   // A frame between whole-frame searches while nothing is in view: the plate's row near its
   // last, no sphere. False where the plate is not found there (the frame is then acquired).
   bool MeasurePlateOnly(const cv::Mat& frame, FrameTrack* out);

@@ -319,6 +319,34 @@ TEST(PovrayDetectionAgreement, TheSphereARulerHoldsIsLearntAgainAndFollowed) {
   }
 }
 
+// The plate is the edge the dimer stands on at every acquisition, not only at the film's first
+// frame: ruler_above_plate tracked in chunks of 3 frames, each acquired afresh. In its frame 3
+// the detector takes the ruler's lower edge (11 px above the plate) for the plate, and the
+// spheres searched for above it were missed, that frame's plate row 11 px off; they are found
+// above the edge below it, on which they stand (FrameFollower::Acquire).
+TEST(PovrayRulerInChunks, EveryAcquisitionTakesTheEdgeTheDimerStandsOn) {
+  const Case c{"ruler_above_plate", Lighting::kRulerAbovePlate, 3.9};
+  const std::string dir = Footage(c);
+  double radius = 0;
+  const std::vector<TruthRow> truth = ReadTruthCsv(dir + "/truth.csv", &radius);
+  tracking::SequenceOptions o;
+  o.threads = 2;
+  o.chunk_frames = 3;
+  o.follower.method = tracking::Method::kAuto;
+  o.contact_radius_px = radius;
+  auto source = tracking::OpenFrameSource(dir);
+  const tracking::SequenceResult r = tracking::TrackSequence(*source, o);
+  ASSERT_EQ(r.frames.size(), truth.size());
+  for (size_t i = 0; i < truth.size(); ++i) {
+    const tracking::FrameTrack& f = r.frames[i];
+    EXPECT_LE(std::abs(f.plate_row - truth[i].plate_row), kPlateTargetPx) << "frame " << i;
+    for (int k = 0; k < 2; ++k) {
+      ASSERT_TRUE(f.found[k]) << "frame " << i << " sphere " << k;
+      EXPECT_LE((f.centre[k] - truth[i].centre[k]).norm(), 0.3) << "frame " << i << " sphere " << k;
+    }
+  }
+}
+
 // Bit-identical for 1 and 2 threads, where the sequence-level steps run: the template learnt,
 // the plate's contact line measured from the spheres' mirror images and its motion scaled by
 // the resting sphere (mirror_plate).

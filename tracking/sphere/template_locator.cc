@@ -514,19 +514,20 @@ cv::Mat SearchCoarseToFine(const cv::Mat& image, const cv::Mat& templ, const cv:
 
 }  // namespace
 
+double AcquireReach(const Appearance& a) {
+  return std::isfinite(a.lowest_gap_px)
+             ? std::clamp(a.lowest_gap_px - kAcquireGapMarginR * a.radius_px, 0.0, a.radius_px)
+             : a.radius_px;
+}
+
 std::vector<Located> FindAppearance(const cv::Mat& frame, const Appearance& a, double plate_row,
                                     double min_separation_px, double min_score,
                                     int coarse_candidates) {
   std::vector<Located> found;
   const int size = 2 * a.half + 1;
   // A resting sphere's template reaches below the plate: rows from `reach` - guard below the
-  // reference are cut, and the frame is searched down to where such a template ends. The reach
-  // is the radius, or less where the reference point came nearer the plate in the learning
-  // frames (it lies below the sphere's centre).
-  const double reach =
-      std::isfinite(a.lowest_gap_px)
-          ? std::clamp(a.lowest_gap_px - kAcquireGapMarginR * a.radius_px, 0.0, a.radius_px)
-          : a.radius_px;
+  // reference are cut, and the frame is searched down to where such a template ends.
+  const double reach = AcquireReach(a);
   cv::Mat mask = a.mask.clone();
   const double rod_half = kAcquireRodHalfWidthR * a.radius_px;
   const double rod_inset = a.radius_px - kRodCutInsetPx;

@@ -57,6 +57,11 @@ struct MaskContext {
 // reference point at `position` (frame coordinates, px).
 cv::Mat FrameMask(const Appearance& a, const Eigen::Vector2d& position, const MaskContext& ctx);
 
+// How far above the plate the whole-frame search (FindAppearance) looks for `a`'s reference
+// point, px: the radius, or less where the reference came nearer the plate in the learning
+// frames (Appearance::lowest_gap_px): no sphere's reference point is nearer the plate.
+double AcquireReach(const Appearance& a);
+
 struct Located {
   bool ok = false;              // false: window outside the frame, too few pixels, flat peak
   bool clipped = false;         // too little of the sphere is in the frame to match
