@@ -37,12 +37,14 @@ constexpr double kEccMaxMovePx = 1.0;
 // Acquisition: the rod's direction is unknown, so a horizontal corridor on both sides of this
 // half-width (units of R) is cut; the dimer's tilt stays well inside it near the sphere.
 constexpr double kAcquireRodHalfWidthR = 0.45;
-// A sphere's reference point is searched for down to its least height above the plate in the
-// learning frames (Appearance::lowest_gap_px) less this margin, in radii (learning frames
-// that missed the impacts by a frame) where that is under a radius. On our renderer's
-// reflect films of the jump mode the reference lies 5-9 px below the centre, and a sphere
-// touching the plate at a chunk's first frame was found 2.4-3.4 px high with the search
-// bounded a radius above the plate (TemplateAcquisition.FindsSpheresTouching...).
+// Where a sphere is found pressed against the whole-frame search's bound a radius above the
+// plate, it is searched for again down to its reference point's least height above the plate
+// in the learning frames (Appearance::lowest_gap_px) less this margin, in radii (learning
+// frames that missed the impacts by a frame). On our renderer's reflect films of the jump mode
+// the reference lies 5-9 px below the centre, and a sphere touching the plate at a chunk's
+// first frame was found 2.4-3.4 px high at the bound (TemplateAcquisition.FindsSpheresTouching
+// ThePlateAtAChunksFirstFrame). Searched so on every acquisition, a film tracked with a guessed
+// radius found one sphere twice (povray.dimer_length.underexposed's --ar passes).
 constexpr double kAcquireGapMarginR = 0.1;
 // The whole-frame search (FindAppearance) at half resolution first only for spheres of at least
 // this radius (smaller ones are too few pixels at half size), px; the full-resolution windows
@@ -520,14 +522,18 @@ double AcquireReach(const Appearance& a) {
              : a.radius_px;
 }
 
-std::vector<Located> FindAppearance(const cv::Mat& frame, const Appearance& a, double plate_row,
-                                    double min_separation_px, double min_score,
-                                    int coarse_candidates) {
+namespace {
+
+// FindAppearance's search for reference points down to `reach` above the plate; `at_bound`:
+// whether a peak found lies on the lowest row searched.
+std::vector<Located> SearchAbovePlate(const cv::Mat& frame, const Appearance& a, double plate_row,
+                                      double reach, double min_separation_px, double min_score,
+                                      int coarse_candidates, bool* at_bound) {
   std::vector<Located> found;
+  *at_bound = false;
   const int size = 2 * a.half + 1;
   // A resting sphere's template reaches below the plate: rows from `reach` - guard below the
   // reference are cut, and the frame is searched down to where such a template ends.
-  const double reach = AcquireReach(a);
   cv::Mat mask = a.mask.clone();
   const double rod_half = kAcquireRodHalfWidthR * a.radius_px;
   const double rod_inset = a.radius_px - kRodCutInsetPx;
@@ -562,7 +568,28 @@ std::vector<Located> FindAppearance(const cv::Mat& frame, const Appearance& a, d
     const Eigen::Vector2d peak = PeakWithVertex(res, at);
     l.position = {peak.x() + a.half, peak.y() + a.half};
     found.push_back(l);
+    *at_bound = *at_bound || (rows < frame.rows && at.y == res.rows - 1);
     cv::circle(res, at, int(std::ceil(min_separation_px)), cv::Scalar(-2.0), cv::FILLED);
+  }
+  return found;
+}
+
+}  // namespace
+
+std::vector<Located> FindAppearance(const cv::Mat& frame, const Appearance& a, double plate_row,
+                                    double min_separation_px, double min_score,
+                                    int coarse_candidates) {
+  // Down to a radius above the plate, as for a reference point at the sphere's centre; where a
+  // sphere is found pressed against that bound and the learning frames put the reference
+  // point lower (AcquireReach), down to there.
+  bool at_bound = false;
+  std::vector<Located> found = SearchAbovePlate(frame, a, plate_row, a.radius_px,
+                                                min_separation_px, min_score, coarse_candidates,
+                                                &at_bound);
+  const double reach = AcquireReach(a);
+  if (at_bound && reach < a.radius_px) {
+    found = SearchAbovePlate(frame, a, plate_row, reach, min_separation_px, min_score,
+                             coarse_candidates, &at_bound);
   }
   return found;
 }

@@ -57,9 +57,10 @@ struct MaskContext {
 // reference point at `position` (frame coordinates, px).
 cv::Mat FrameMask(const Appearance& a, const Eigen::Vector2d& position, const MaskContext& ctx);
 
-// How far above the plate the whole-frame search (FindAppearance) looks for `a`'s reference
-// point, px: the radius, or less where the reference came nearer the plate in the learning
-// frames (Appearance::lowest_gap_px): no sphere's reference point is nearer the plate.
+// How near the plate `a`'s reference point can come, px: the radius, or less where it came
+// nearer the plate in the learning frames (Appearance::lowest_gap_px), less a margin. The
+// whole-frame search (FindAppearance) reaches down to there where a sphere is found pressed
+// against its bound a radius above the plate.
 double AcquireReach(const Appearance& a);
 
 struct Located {
