@@ -18,27 +18,11 @@
 namespace dimer::tracking {
 namespace {
 
-struct Film {
-  std::vector<cv::Mat> frames;
-  std::vector<SceneGeometry> truth;
-};
+using Film = testing::RenderedFilm;
 
 // Drift-like motion (left sphere resting, right one bouncing), 512 x 256 at 2e-4 m/px.
 Film Render(Lighting lighting, size_t n) {
-  const Trajectory traj = testing::DriftTrajectory(n, 2000.0);
-  RenderPlan plan;
-  plan.map = {testing::kMPerPx, 200.0, 256.0};
-  plan.radius_px = 0.5 * testing::kDiameterM / plan.map.m_per_px;
-  plan.rod_half_width_px = 3.75;
-  RenderOptions o;
-  o.lighting = lighting;
-  o.noise = 2.0;
-  Film f;
-  for (size_t i = 0; i < n; ++i) {
-    f.truth.push_back(plan.SceneAt(traj, traj.t[i]));
-    f.frames.push_back(RenderFrame({f.truth.back()}, o, i));
-  }
-  return f;
+  return testing::RenderTrajectory(testing::DriftTrajectory(n, 2000.0), lighting);
 }
 
 SequenceResult Track(const Film& f, Method m, int threads) {

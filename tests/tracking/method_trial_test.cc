@@ -75,17 +75,19 @@ TEST(MethodTrial, TheSilhouettesReplaceTheTemplateOnlyAtHalfItsNoiseOrWhereItCan
 }
 
 TEST(MethodTrial, DiscFitReplacesTheCentroidWhereItShowsLessNoiseByTheMargin) {
-  TrialScores centroid, discfit;
-  centroid.score = 0.0050, discfit.score = 0.0016;  // our renderer's backlit film, A_r 3.9
-  EXPECT_TRUE(DiscFitWinsTrial(centroid, discfit));
-  discfit.score = 0.0050;  // POV-Ray's backlit steel: both end with the rim fit
-  EXPECT_FALSE(DiscFitWinsTrial(centroid, discfit));
-  discfit.score = 0.0046;
-  EXPECT_FALSE(DiscFitWinsTrial(centroid, discfit));
-  discfit.score = NAN;
-  EXPECT_FALSE(DiscFitWinsTrial(centroid, discfit));
-  centroid.score = NAN, discfit.score = 0.01;
-  EXPECT_TRUE(DiscFitWinsTrial(centroid, discfit));
+  struct Trial {
+    double centroid, discfit;
+    bool discfit_wins;
+  };
+  for (const Trial& t : {Trial{0.0050, 0.0016, true},   // our renderer's backlit film, A_r 3.9
+                         Trial{0.0050, 0.0050, false},  // POV-Ray's steel: both end with the rim fit
+                         Trial{0.0050, 0.0046, false}, Trial{0.0050, NAN, false},
+                         Trial{NAN, 0.01, true}}) {
+    TrialScores centroid, discfit;
+    centroid.score = t.centroid, discfit.score = t.discfit;
+    EXPECT_EQ(DiscFitWinsTrial(centroid, discfit), t.discfit_wins)
+        << t.centroid << " against " << t.discfit;
+  }
 }
 
 }  // namespace

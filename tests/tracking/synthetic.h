@@ -11,6 +11,7 @@
 #include "common/provenance.h"
 #include "common/trajectory.h"
 #include "common/trajectory_io.h"
+#include "render/render.h"
 #include "render/scene_renderer.h"
 
 namespace dimer::tracking::testing {
@@ -79,6 +80,29 @@ inline Trajectory JumpTrajectory(size_t n, double fps, double freq_hz = 25.0) {
     traj.Append(t, Eigen::Vector2d(-half, z), Eigen::Vector2d(half, z), plate, 0.0);
   }
   return traj;
+}
+
+// A trajectory in metres as our renderer films it: 512 x 256 at kMPerPx, plate row 200, the
+// dimer's centre column 256, rod 7.5 px, sensor noise 2 grey levels, frame i's noise seeded by
+// i; with each frame's exact scene.
+struct RenderedFilm {
+  std::vector<cv::Mat> frames;
+  std::vector<SceneGeometry> truth;
+};
+inline RenderedFilm RenderTrajectory(const Trajectory& traj, Lighting lighting) {
+  RenderPlan plan;
+  plan.map = {kMPerPx, 200.0, 256.0};
+  plan.radius_px = 0.5 * kDiameterM / plan.map.m_per_px;
+  plan.rod_half_width_px = 3.75;
+  RenderOptions o;
+  o.lighting = lighting;
+  o.noise = 2.0;
+  RenderedFilm f;
+  for (size_t i = 0; i < traj.size(); ++i) {
+    f.truth.push_back(plan.SceneAt(traj, traj.t[i]));
+    f.frames.push_back(RenderFrame({f.truth.back()}, o, i));
+  }
+  return f;
 }
 
 // A file that looks like a simulator's output (kind sim, diameter, fps), from a trajectory.

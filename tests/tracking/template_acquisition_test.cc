@@ -8,7 +8,6 @@
 #include <cmath>
 
 #include "tests/tracking/synthetic.h"
-#include "render/render.h"
 #include "tracking/io/frame_source.h"
 #include "tracking/track_sequence.h"
 
@@ -18,26 +17,15 @@ namespace {
 TEST(TemplateAcquisition, FindsSpheresTouchingThePlateAtAChunksFirstFrame) {
   // Three plate periods of 80 frames; chunks of 16 frames start at each landing (0, 80, 160).
   const size_t n = 161;
-  const Trajectory traj = testing::JumpTrajectory(n, 2000.0);
-  RenderPlan plan;
-  plan.map = {testing::kMPerPx, 200.0, 256.0};
-  plan.radius_px = 0.5 * testing::kDiameterM / plan.map.m_per_px;
-  plan.rod_half_width_px = 3.75;
-  RenderOptions o;
-  o.lighting = Lighting::kReflect;
-  o.noise = 2.0;
-  std::vector<cv::Mat> frames;
-  std::vector<SceneGeometry> truth;
-  for (size_t i = 0; i < n; ++i) {
-    truth.push_back(plan.SceneAt(traj, traj.t[i]));
-    frames.push_back(RenderFrame({truth.back()}, o, i));
-  }
-  MemorySource src(frames);
+  const testing::RenderedFilm film =
+      testing::RenderTrajectory(testing::JumpTrajectory(n, 2000.0), Lighting::kReflect);
+  const std::vector<SceneGeometry>& truth = film.truth;
+  MemorySource src(film.frames);
   SequenceOptions so;
   so.follower.method = Method::kTemplate;
   so.threads = 2;
   so.chunk_frames = 16;
-  so.contact_radius_px = plan.radius_px;  // the scale is known (--m-per-px)
+  so.contact_radius_px = 0.5 * testing::kDiameterM / testing::kMPerPx;  // --m-per-px given
   const SequenceResult r = TrackSequence(src, so);
   ASSERT_EQ(r.frames.size(), n);
   // Each sphere's rows less their median error (the offset's own uncertainty is not what is
