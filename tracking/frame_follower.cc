@@ -485,8 +485,11 @@ void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
   const double lowest = LowestReach(*out, det_col);
   const int found = int(out->found[0]) + int(out->found[1]);
   const bool through = lowest > det.plate_row + kPlateMeetPx;
-  if (found > 0 && !through) return;
+  // A frame where the detector saw no sphere's blob either (the dimer out of view) is not
+  // searched again: whole-frame searches are what such frames cost (bench_cut_spheres).
+  if ((found > 0 || det.centres.empty()) && !through) return;
   const std::vector<PlateCandidate> candidates = PlateCandidates(frame, options_.plate_slope);
+  const int first_candidates = acquired_candidates_;
   for (const PlateCandidate& c : candidates) {
     if (!(c.row > det.plate_row + kPlateMeetPx) || (through && c.row < lowest - kPlateMeetPx)) {
       continue;
@@ -506,6 +509,7 @@ void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
     *out = again;
     return;
   }
+  acquired_candidates_ = first_candidates;  // the searches below found no dimer: as it was
 }
 
 void FrameFollower::AcquireAbove(const cv::Mat& frame, const Detection& detection,
