@@ -7,15 +7,17 @@
 # floors as set, the factor the fit scaled them by (compare/fit.h), simulations and the
 # fit's wall time (`compare --fit` on one core, nice); then the coverage of the stated ranges
 # per start, as text.
-#   bench/fit_study_tracked.sh [BUILD_DIR] [WORK_DIR] [SCENES]
+#   bench/fit_study_tracked.sh [BUILD_DIR] [WORK_DIR] [SCENES] [BACKLIT_METHOD]
 # SCENES: indices into the list below (default all six, "0 1 2 3 4 5"; ~1 h on one core). Frames: 0.4 mm/px, 700x128, noise 2 grey levels, 100 periods at
 # 2000 frames/s (8001 frames, ~340 MB of PNG per film, deleted once tracked; a track is reused
-# while WORK_DIR holds it). The commands' own lines go to WORK_DIR/log.txt.
+# while WORK_DIR holds it). The commands' own lines go to WORK_DIR/log.txt. BACKLIT_METHOD: the
+# backlit films' `track --method` (default auto; the mirror-lit films are tracked with auto).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 work=${2:-fit_study_tracked}
 scenes=${3:-"0 1 2 3 4 5"}
+backlit_method=${4:-auto}
 dimerlab="$build/app/dimerlab"
 scale=4e-4
 mkdir -p "$work"
@@ -36,8 +38,10 @@ for i in $scenes; do
     if [ ! -f "$dir/track_$lighting.h5" ]; then
       nice "$dimerlab" render "$dir/sim.h5" -o "$dir/frames" --force --m-per-px "$scale" --width 700 \
         --height 128 --lighting "$lighting" --noise 2 --threads 1 -q >> "$work/log.txt"
+      method=auto
+      [ "$lighting" = backlit ] && method=$backlit_method
       nice "$dimerlab" track "$dir/frames" -o "$dir/track_$lighting.h5" --m-per-px "$scale" --force -q \
-        --threads 1 >> "$work/log.txt"
+        --threads 1 --method "$method" >> "$work/log.txt"
       rm -rf "$dir/frames"
     fi
     for start in paper far; do
