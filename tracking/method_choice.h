@@ -5,11 +5,12 @@
 // The centroid (and discfit) are unbiased exactly when a sphere is a clean uniform silhouette
 // (backlit, a bright background, matte discs): then they reach the noise limit and need no
 // learning, so auto keeps them (the centroid here; which of the two runs, the film's first
-// frames decide: method_trial.h, TrySilhouetteMethods). A sphere that is not uniform (polished steel under front light:
-// highlights, reflections, a dim rim) goes to the rim fit in those methods, whose result depends
-// on a rim contrast a given camera and lighting may not have (pixels of bias on ray-traced
-// steel); auto then takes the template method, which assumes no appearance. Too few spheres
-// found by the silhouette detector also means the footage is not silhouettes.
+// frames decide: method_trial.h, TrySilhouetteMethods). A sphere that is not uniform (polished
+// steel under front light: highlights, reflections, a dim rim) goes to the rim fit in those
+// methods, whose result depends on a rim contrast a given camera and lighting may not have
+// (pixels of bias on ray-traced steel); auto then takes the template method, which assumes no
+// appearance. Too few spheres found by the silhouette detector also means the footage is not
+// silhouettes.
 #include <array>
 #include <string>
 #include <vector>

@@ -157,17 +157,6 @@ TEST(PlateUnderTheDimer, TheCandidateTheLowestPointMeets) {
   EXPECT_EQ(CandidateTheDimerStandsOn(c, std::nan("")), -1);
 }
 
-// A sphere found reaching below the edge taken for the plate stands on the nearest edge below.
-TEST(PlateUnderTheDimer, TheCandidateBelowTheSpheresLowestReach) {
-  const std::vector<PlateCandidate> c = {{100.5, 80, true, true}, {120.5, 40, false, false},
-                                         {140.5, 60, false, false}};
-  EXPECT_EQ(CandidateBelow(c, 110.0), 1);
-  EXPECT_EQ(CandidateBelow(c, 120.5 + kPlateMeetPx), 1);  // within the meeting distance
-  EXPECT_EQ(CandidateBelow(c, 120.5 + kPlateMeetPx + 0.1), 2);
-  EXPECT_EQ(CandidateBelow(c, 150.0), -1);
-  EXPECT_EQ(CandidateBelow(c, std::nan("")), -1);
-}
-
 // `track` says it: one note naming the stronger edge (RunTrack's report).
 TEST(PlateUnderTheDimer, TrackSaysTheStrongestEdgeIsNotThePlate) {
   const Distractor ruler{"ruler", true, -20, -10, 250};

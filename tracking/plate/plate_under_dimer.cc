@@ -19,12 +19,4 @@ int CandidateTheDimerStandsOn(const std::vector<PlateCandidate>& candidates,
   return best;
 }
 
-int CandidateBelow(const std::vector<PlateCandidate>& candidates, double lowest_row) {
-  if (!std::isfinite(lowest_row)) return -1;
-  for (size_t i = 0; i < candidates.size(); ++i) {
-    if (candidates[i].row >= lowest_row - kPlateMeetPx) return int(i);
-  }
-  return -1;
-}
-
 }  // namespace dimer::tracking

@@ -25,9 +25,4 @@ inline constexpr double kPlateMeetPx = 3.0;
 int CandidateTheDimerStandsOn(const std::vector<PlateCandidate>& candidates,
                               double lowest_point_row);
 
-// Index into `candidates` (top to bottom) of the nearest one at or below `lowest_row` less
-// kPlateMeetPx: the plate, where a found sphere reaches below the edge taken for it (a sphere
-// cannot stand below the plate's top); -1 if none (or the row is NaN).
-int CandidateBelow(const std::vector<PlateCandidate>& candidates, double lowest_row);
-
 }  // namespace dimer::tracking
