@@ -34,6 +34,18 @@ std::vector<FrameTrack> Follow(const std::vector<Frame>& frames, const FollowerO
   return track;
 }
 
+// Both candidates followed over `frames` and scored, `a` first, on up to `threads` threads (each
+// on its own follower: the scores do not depend on the count).
+std::vector<TrialScores> ScoreBoth(const std::vector<Frame>& frames, const FollowerOptions& a,
+                                   const FollowerOptions& b, int threads) {
+  const std::array<const FollowerOptions*, 2> options{&a, &b};
+  std::vector<TrialScores> scores(2);
+  ParallelFor(2, threads, [&](size_t i) {
+    scores[i] = ScoreTrial(Follow(frames, *options[i]), options[i]->method);
+  });
+  return scores;
+}
+
 std::string Describe(const TrialScores& s) {
   char text[160];
   std::snprintf(text, sizeof text, "%s %.3f px (smoothness %.3f, length %.3f; both in %zu of %zu)",
@@ -88,12 +100,8 @@ MethodTrial TrySilhouetteMethods(const std::vector<Frame>& frames,
                                  const FollowerOptions& centroid_options, int threads) {
   FollowerOptions discfit = centroid_options;
   discfit.method = Method::kDiscFit;
-  const std::array<const FollowerOptions*, 2> options{&centroid_options, &discfit};
   MethodTrial t;
-  t.candidates.resize(2);
-  ParallelFor(2, threads, [&](size_t i) {
-    t.candidates[i] = ScoreTrial(Follow(frames, *options[i]), options[i]->method);
-  });
+  t.candidates = ScoreBoth(frames, centroid_options, discfit, threads);
   const bool discfit_better = DiscFitWinsTrial(t.candidates[0], t.candidates[1]);
   t.chosen = discfit_better ? Method::kDiscFit : Method::kCentroid;
   char margin[32];
@@ -113,12 +121,8 @@ MethodTrial TryMethods(const std::vector<Frame>& frames, const FollowerOptions& 
   FollowerOptions silhouette = template_options;
   silhouette.method = Method::kCentroid;
   silhouette.appearance.reset();
-  const std::array<const FollowerOptions*, 2> options{&template_options, &silhouette};
   MethodTrial t;
-  t.candidates.resize(2);
-  ParallelFor(2, threads, [&](size_t i) {
-    t.candidates[i] = ScoreTrial(Follow(frames, *options[i]), options[i]->method);
-  });
+  t.candidates = ScoreBoth(frames, template_options, silhouette, threads);
   const TrialScores& tmpl = t.candidates[0];
   const TrialScores& sil = t.candidates[1];
   const bool silhouette_better = SilhouetteWinsTrial(tmpl, sil);
