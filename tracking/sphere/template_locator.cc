@@ -40,11 +40,12 @@ constexpr double kAcquireRodHalfWidthR = 0.45;
 // Where a sphere is found pressed against the whole-frame search's bound a radius above the
 // plate, it is searched for again down to its reference point's least height above the plate
 // in the learning frames (Appearance::lowest_gap_px) less this margin, in radii (learning
-// frames that missed the impacts by a frame). On our renderer's reflect films of the jump mode
-// the reference lies 5-9 px below the centre, and a sphere touching the plate at a chunk's
-// first frame was found 2.4-3.4 px high at the bound (TemplateAcquisition.FindsSpheresTouching
-// ThePlateAtAChunksFirstFrame). Searched so on every acquisition, a film tracked with a guessed
-// radius found one sphere twice (povray.dimer_length.underexposed's --ar passes).
+// frames that missed the impacts by a frame). Where the reference lies below the centre (5-9 px
+// on our renderer's reflect jump films with the flights' samples taken for a rest), a sphere
+// touching the plate at a chunk's first frame was found 2.4-3.4 px high at the bound
+// (TemplateAcquisition.FindsSpheresTouchingThePlateAtAChunksFirstFrame). Searched so on every
+// acquisition, a film tracked with a guessed radius found one sphere twice
+// (povray.dimer_length.underexposed's --ar passes).
 constexpr double kAcquireGapMarginR = 0.1;
 // The whole-frame search (FindAppearance) at half resolution first only for spheres of at least
 // this radius (smaller ones are too few pixels at half size), px; the full-resolution windows
