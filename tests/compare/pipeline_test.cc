@@ -172,6 +172,8 @@ TEST_P(Pipeline, TrackedFilmGivesTheSimulationsPhysics) {
   EXPECT_FALSE(c.mirrored);
   // The time shift comes from the fitted plate phase: good to its 0.01 rad / (2 pi f).
   EXPECT_NEAR(c.time_offset_s, r.raw.t_start, 0.01 / (2 * M_PI * 25.0));
+  std::printf("  tip residuals rms (um): x %.2f / %.2f, z %.2f / %.2f\n", 1e6 * c.rms_x[0],
+              1e6 * c.rms_x[1], 1e6 * c.rms_z[0], 1e6 * c.rms_z[1]);
   for (int sp = 0; sp < 2; ++sp) {
     EXPECT_LT(c.rms_x[sp], 0.25 * f.m_per_px);
     EXPECT_LT(c.rms_z[sp], 0.25 * f.m_per_px);
