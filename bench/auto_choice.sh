@@ -7,42 +7,55 @@
 # truth.csv (the worst of the two spheres), frames with a sphere more than 0.5 px from its mean
 # error, and the wall time; then auto's choice and its scatter over the best method's per axis
 # (the target: within 10 %). docs/BENCHMARKS.md, auto_choice.sh.
-#   bench/auto_choice.sh [BUILD_DIR] [WORK_DIR]
-# Defaults: build, auto_choice (the films are rendered again on each run: ~1 s each).
+# FOOTAGE: folders of POV-Ray footage from bench_tracking_footage's cache (frames and truth.csv,
+# A_r 3.9), tracked as they are with the scale in their truth.csv, rows of their own.
+#   bench/auto_choice.sh [BUILD_DIR] [WORK_DIR] [FOOTAGE...]
+# Defaults: build, auto_choice (the films are rendered again on each run: ~1 s each), none.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
 work=${2:-auto_choice}
+footage=("${@:3}")
 dimerlab="$build/app/dimerlab"
 scale=2e-4
 methods="centroid discfit template auto"
 mkdir -p "$work"
 results="$work/results.txt"
 : >"$results"
+
+# Each method on FRAMES at SCALE, a line of results.txt keyed by A_r and LIGHTING.
+track_all() {
+  local ar=$1 lighting=$2 frames=$3 scale=$4 method track start end
+  for method in $methods; do
+    track="$work/track_${ar}_${lighting}_$method.h5"
+    start=$(date +%s.%N)
+    # A method that cannot track the film (exit 1, one line) is a row of its own.
+    if "$dimerlab" track "$frames" -o "$track" --method "$method" --m-per-px "$scale" \
+         --force -q >/dev/null 2>"$work/stderr.txt"; then
+      end=$(date +%s.%N)
+      echo "$ar $lighting $method $(echo "$end - $start" | bc) $track $frames/truth.csv" >>"$results"
+    else
+      echo "$ar $lighting $method fail $(head -1 "$work/stderr.txt" | sed 's/^.*error: [^:]*: //; s/ (.*//')" \
+        >>"$results"
+    fi
+  done
+}
 for ar in 2.0 3.9 6.1; do
   "$dimerlab" sim --ar "$ar" --init jump --cycles 4 -o "$work/sim_$ar.h5" --force -q &>/dev/null
   for lighting in reflect backlit; do
     frames="$work/frames_${ar}_$lighting"
     "$dimerlab" render "$work/sim_$ar.h5" -o "$frames" --lighting "$lighting" --noise 2 --force \
       -q >/dev/null
-    for method in $methods; do
-      track="$work/track_${ar}_${lighting}_$method.h5"
-      start=$(date +%s.%N)
-      # A method that cannot track the film (exit 1, one line) is a row of its own.
-      if "$dimerlab" track "$frames" -o "$track" --method "$method" --m-per-px "$scale" \
-           --force -q >/dev/null 2>"$work/stderr.txt"; then
-        end=$(date +%s.%N)
-        echo "$ar $lighting $method $(echo "$end - $start" | bc) $track $frames/truth.csv" >>"$results"
-      else
-        echo "$ar $lighting $method fail $(head -1 "$work/stderr.txt" | sed 's/^.*error: [^:]*: //; s/ (.*//')" \
-          >>"$results"
-      fi
-    done
+    track_all "$ar" "$lighting" "$frames" "$scale"
   done
 done
+for frames in "${footage[@]}"; do
+  track_all 3.9 "POV-Ray_$(basename "$frames")" "$frames" \
+    "$(grep -o 'm_per_px=[0-9.e-]*' "$frames/truth.csv" | cut -d= -f2)"
+done
 
-printf 'Our renderer, 512x256, 0.2 mm/px, noise 2 grey levels; 321 frames; %s cores, load average %s\n\n' \
-  "$(nproc)" "$(cut -d' ' -f1 /proc/loadavg)"
+printf 'Our renderer, 512x256, 0.2 mm/px, noise 2 grey levels; 321 frames; POV-Ray footage: %s; %s cores, load average %s\n\n' \
+  "${footage[*]:-none}" "$(nproc)" "$(cut -d' ' -f1 /proc/loadavg)"
 /usr/bin/python3 - "$results" <<'EOF'
 import subprocess, sys
 import numpy as np
@@ -95,7 +108,7 @@ for key, by in films.items():
     ratio = auto[1] / best
     rates = " / ".join("-" if isinstance(by[m], str) else f"{by[m][3]:.0f}"
                        for m in ("centroid", "discfit", "template", "auto"))
-    print(f"| {key[0]}, {key[1]} | {cell(by['centroid'])} | {cell(by['discfit'])} "
+    print(f"| {key[0]}, {key[1].replace('_', ' ')} | {cell(by['centroid'])} | {cell(by['discfit'])} "
           f"| {cell(by['template'])} | {auto[0]} | {cell(auto)} | {ratio[0]:.2f} / {ratio[1]:.2f} "
           f"| {'yes' if (ratio <= 1.1).all() else 'no'} | {rates} |")
 EOF
