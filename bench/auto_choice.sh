@@ -25,12 +25,12 @@ results="$work/results.txt"
 
 # Each method on FRAMES at SCALE, a line of results.txt keyed by A_r and LIGHTING.
 track_all() {
-  local ar=$1 lighting=$2 frames=$3 scale=$4 method track start end
+  local ar=$1 lighting=$2 frames=$3 film_scale=$4 method track start end
   for method in $methods; do
     track="$work/track_${ar}_${lighting}_$method.h5"
     start=$(date +%s.%N)
     # A method that cannot track the film (exit 1, one line) is a row of its own.
-    if "$dimerlab" track "$frames" -o "$track" --method "$method" --m-per-px "$scale" \
+    if "$dimerlab" track "$frames" -o "$track" --method "$method" --m-per-px "$film_scale" \
          --force -q >/dev/null 2>"$work/stderr.txt"; then
       end=$(date +%s.%N)
       echo "$ar $lighting $method $(echo "$end - $start" | bc) $track $frames/truth.csv" >>"$results"

@@ -513,9 +513,12 @@ double RestingRowShift(const LearningSet& set, const std::array<LearntSphere, 2>
     const size_t support = std::max(kRestShiftMinSupport,
                                     size_t(std::ceil(kRestShiftSupportFraction * double(g.size()))));
     const double cluster = LowestSupported(g, kRestShiftSupportPx, support);
-    const size_t below = size_t(std::lower_bound(g.begin(), g.end(),
-                                                 cluster - kRestShiftSupportPx) - g.begin());
-    if (std::isfinite(cluster) && below < kRestShiftMinSupport) {
+    // Samples clearly below the cluster, counted only where there is one (g is sorted).
+    const bool rests =
+        std::isfinite(cluster) &&
+        std::lower_bound(g.begin(), g.end(), cluster - kRestShiftSupportPx) - g.begin() <
+            std::ptrdiff_t(kRestShiftMinSupport);
+    if (rests) {
       rest = std::min(rest, cluster);
     } else {
       landing = std::min(landing, g[std::min<size_t>(1, g.size() - 1)]);
