@@ -486,8 +486,12 @@ void FrameFollower::Acquire(const cv::Mat& frame, FrameTrack* out) {
   const int found = int(out->found[0]) + int(out->found[1]);
   const bool through = lowest > det.plate_row + kPlateMeetPx;
   // A frame where the detector saw no sphere's blob either (the dimer out of view) is not
-  // searched again: whole-frame searches are what such frames cost (bench_cut_spheres).
-  if ((found > 0 || det.centres.empty()) && !through) return;
+  // searched again: whole-frame searches are what such frames cost (bench_cut_spheres). Nor is
+  // one where the search found as many spheres as the detector saw blobs: where it found fewer,
+  // the part of a sphere above a wrong edge can have passed for it (the right's appearance
+  // matched the hopping sphere's top above the ruler's lower edge at 0.54: povray.ruler_in_chunks).
+  const bool fewer_than_blobs = found < int(det.centres.size());
+  if ((found > 0 || det.centres.empty()) && !through && !fewer_than_blobs) return;
   const std::vector<PlateCandidate> candidates = PlateCandidates(frame, options_.plate_slope);
   const int first_candidates = acquired_candidates_;
   for (const PlateCandidate& c : candidates) {
@@ -528,11 +532,23 @@ void FrameFollower::AcquireAbove(const cv::Mat& frame, const Detection& detectio
     // The learnt appearance finds the spheres whatever they look like (a silhouette detector
     // can miss a sphere that shows only its highlights).
     det.centres.clear();
-    for (const Located& l :
-         FindAppearance(frame, (*options_.appearance)[0], plate_low,
-                        kTemplateSeparationR * radius_px_, kMinTemplateScore,
-                        options_.coarse_candidates)) {
+    const double apart = kTemplateSeparationR * radius_px_;
+    for (const Located& l : FindAppearance(frame, (*options_.appearance)[0], plate_low, apart,
+                                           kMinTemplateScore, options_.coarse_candidates)) {
       det.centres.push_back(l.position);
+    }
+    // The two spheres need not look alike (something standing behind one of them, a lamp to
+    // one side): where the left's appearance finds fewer than two, the right's looks for the
+    // rest (ruler_above_plate's hopping sphere scores under kMinTemplateScore against its
+    // resting partner's appearance in every frame: FrameFollower.FindsASphereUnlikeItsPartner).
+    if (det.centres.size() < 2) {
+      for (const Located& l : FindAppearance(frame, (*options_.appearance)[1], plate_low, apart,
+                                             kMinTemplateScore, options_.coarse_candidates)) {
+        const bool new_sphere = std::none_of(
+            det.centres.begin(), det.centres.end(),
+            [&](const Eigen::Vector2d& c) { return (c - l.position).norm() < apart; });
+        if (new_sphere && det.centres.size() < 2) det.centres.push_back(l.position);
+      }
     }
     det.radii_px.assign(det.centres.size(), radius_px_);
   }
