@@ -278,6 +278,26 @@ void ReportPrecision(const TrackArgs& args, const SequenceResult& r, Diagnostics
   }
 }
 
+// A sphere whose rows neither moved with the plate under it nor fell (held_rows.h).
+void ReportHeldRows(const TrackArgs& args, const SequenceResult& r, Diagnostics* diag) {
+  for (int k = 0; k < 2; ++k) {
+    const HeldRows& h = r.held_rows[k];
+    if (h.held == 0) continue;
+    const size_t first = r.frames[h.first].index;
+    const size_t last = r.frames[h.first + h.window_frames - 1].index;
+    diag->Warn("rows_held",
+               Format("%s: the %s sphere's rows stood within %.2f px over frames %zu-%zu while "
+                      "the plate under it moved %.2f px, and a free fall would move them by "
+                      "%.0f px or more (%zu of %zu windows of %zu frames): neither resting nor "
+                      "falling, they are held by something that stands still behind it (a "
+                      "ruler's or a backdrop's edge), and its rows, with the offset measured on "
+                      "them, may be pixels off; a plain background behind the dimer helps",
+                      args.input.c_str(), k == 0 ? "left" : "right", h.row_range, first, last,
+                      h.plate_range, kHeldFallPx, h.held, h.windows,
+                      h.window_frames));
+  }
+}
+
 // A sphere whose learnt appearance did not move with its detections on the learning frames
 // (detection_agreement.h): its positions may be held by something that does not move with it.
 // Where it was learnt again without that (learn_method.h, RelearnHeldSpheres), a note says so.
@@ -348,6 +368,7 @@ void ReportFilm(const TrackArgs& args, const Recording& rec, const SequenceResul
   ReportTemplate(r, diag);
   ReportDetectionAgreement(args, r, diag);
   ReportPrecision(args, r, diag);
+  ReportHeldRows(args, r, diag);
 }
 
 void ReportLengthScale(const TrackArgs& args, const Calibration& cal, Diagnostics* diag) {

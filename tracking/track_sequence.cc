@@ -338,6 +338,15 @@ void FinishFilm(const Film& film, const SequenceOptions& options, bool sequence_
   PlaceContactLine(film.prepared, options, result);
   PlaceOffsets(film, options, result);
   result->precision = MeasurePrecision(result->frames, result->precision_bound);
+  for (int k = 0; k < 2; ++k) {
+    std::vector<double> rows, plate;
+    for (const FrameTrack& f : result->frames) {
+      rows.push_back(f.whole(k) ? f.centre[k].y() : std::nan(""));
+      plate.push_back(f.PlateRowAt(f.centre[k].x()));
+    }
+    result->held_rows[k] =
+        FindHeldRows(rows, plate, options.gravity_per_radius_px * film.ref.radius_px);
+  }
   result->polarity = film.ref.polarity;
   result->width = film.ref.width;
   result->height = film.ref.height;

@@ -30,6 +30,7 @@
 #include "tracking/match_scores.h"
 #include "tracking/plate_slope.h"
 #include "tracking/learn_method.h"
+#include "tracking/held_rows.h"
 #include "tracking/track_precision.h"
 #include "tracking/frame_follower.h"
 #include "tracking/method_trial.h"
@@ -114,6 +115,9 @@ struct SequenceResult {
       Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN())};
   // Each sphere's centres' scatter from frame to frame beside that bound (track_precision.h).
   std::array<SpherePrecision, 2> precision;
+  // Each sphere's rows against the plate under it and a free fall (held_rows.h): windows where
+  // they did neither, held by something standing still behind it.
+  std::array<HeldRows, 2> held_rows;
   // Template: each sphere's learnt positions against its rough centres (detection_agreement.h).
   std::array<DetectionAgreement, 2> detection_agreement;
   // Template: the spheres learnt again after the referee rejected their first appearance
