@@ -16,15 +16,22 @@ HeldRows FindHeldRows(const std::vector<double>& rows, const std::vector<double>
   double least = std::numeric_limits<double>::infinity();
   // Windows half overlapping: every frame is in two, but the first and last half window's.
   for (size_t first = 0; first + window <= rows.size(); first += window / 2) {
-    double row_lo = INFINITY, row_hi = -INFINITY, plate_lo = INFINITY, plate_hi = -INFINITY;
+    double row_lo = INFINITY, row_hi = -INFINITY;
+    std::vector<double> edge;
     bool complete = true;
     for (size_t i = first; i < first + window && complete; ++i) {
       complete = std::isfinite(rows[i]) && std::isfinite(plate[i]);
       row_lo = std::min(row_lo, rows[i]), row_hi = std::max(row_hi, rows[i]);
-      plate_lo = std::min(plate_lo, plate[i]), plate_hi = std::max(plate_hi, plate[i]);
+      edge.push_back(plate[i]);
     }
-    const double row_range = row_hi - row_lo, plate_range = plate_hi - plate_lo;
-    if (!complete || plate_range < kHeldMinPlateExcursionPx) continue;
+    if (!complete) continue;
+    // The plate's excursion between its kHeldPlateQuantile and 1 - that: a frame where another
+    // edge was taken for the plate does not stretch it.
+    std::sort(edge.begin(), edge.end());
+    const auto at = [&](double q) { return edge[size_t(std::lround(q * double(edge.size() - 1)))]; };
+    const double row_range = row_hi - row_lo;
+    const double plate_range = at(1.0 - kHeldPlateQuantile) - at(kHeldPlateQuantile);
+    if (plate_range < kHeldMinPlateExcursionPx) continue;
     ++h.windows;
     if (row_range >= kHeldFraction * std::min(plate_range, kHeldFallPx)) continue;
     ++h.held;

@@ -10,10 +10,10 @@
 //
 // The track is cut into windows long enough for a sphere in free flight to drop kHeldFallPx from
 // its apex at the window's middle to either end. In a window where the plate under the sphere
-// moves by kHeldMinPlateExcursionPx or more, rows whose range is under kHeldFraction of both the
-// plate's excursion (a resting sphere's rows move with it, within ~15 % where the edge seen is
-// nearer or further than the dimer: plate_contact.h) and that drop (a flight's rows move by at
-// least it) are held.
+// moves by kHeldMinPlateExcursionPx or more (between its kHeldPlateQuantile and 1 - that), rows
+// whose range is under kHeldFraction of both the plate's excursion (a resting sphere's rows move
+// with it, within ~15 % where the edge seen is nearer or further than the dimer:
+// plate_contact.h) and that drop (a flight's rows move by at least it) are held.
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -23,6 +23,8 @@ namespace dimer::tracking {
 inline constexpr double kHeldFallPx = 5.0;
 inline constexpr double kHeldMinPlateExcursionPx = 1.0;
 inline constexpr double kHeldFraction = 0.25;
+// The plate's excursion in a window is read between these quantiles of its rows.
+inline constexpr double kHeldPlateQuantile = 0.1;
 
 struct HeldRows {
   size_t window_frames = 0;  // frames a window; 0: none fits the track (or gravity unknown)
