@@ -8,6 +8,7 @@
 
 #include "tracking/detection_agreement.h"
 #include "tracking/plate_agreement.h"
+#include "tracking/plate_consensus.h"
 #include "tracking/sphere/appearance_mismatch.h"
 #include "tracking/sphere/clipped_highlights.h"
 #include "tracking/sphere/highlight_seed.h"
@@ -61,6 +62,19 @@ Probes ProbeLearningFrames(const std::vector<Frame>& learning, const FollowerOpt
     }
   });
   return p;
+}
+
+// The learning frames' plate rows made one plate's (plate_consensus.h); returns what is added
+// to the method's reason ("" where none was moved).
+std::string OnePlateThroughTheFilm(double radius_px, std::vector<LearningSample>* samples) {
+  const size_t moved = KeepOnePlate(radius_px, samples);
+  if (moved == 0) return "";
+  char clause[160];
+  std::snprintf(clause, sizeof clause,
+                "; in %zu learning frames another edge was taken for the plate, which was "
+                "measured again near the others' row",
+                moved);
+  return clause;
 }
 
 // Rough centres from the highlights where the silhouette methods give both spheres in fewer
@@ -306,7 +320,9 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
   SequenceMethod m;
   Probes probes = ProbeLearningFrames(learning, reference, learn.threads);
   std::vector<LearningSample>& samples = probes.samples;
+  const std::string replated = OnePlateThroughTheFilm(reference.radius_px, &samples);
   m.choice = ChooseMethod(probes.tracks, probes.clean, requested);
+  m.choice.reason += replated;
   if (m.choice.method != Method::kTemplate) {
     m.plate_shift = EstimatePlateShift(samples, reference.radius_px, learn.threads);
     return m;
