@@ -81,6 +81,10 @@ SANITIZE_SKIP=(
   # The ruler's relearning runs sanitized in povray.detection_agreement; its 1- and 2-thread
   # rerun checks identical results, not memory.
   '^povray[.]identity[.]ruler_above_plate$'
+  # The ruler's 100-frame film: its acquisition, the learning frames' one plate and the held
+  # rows' referee run sanitized in their unit tests (FrameFollower.*, PlateConsensus.*,
+  # HeldRows.*) and on the 20-frame film.
+  '^povray[.]long_ruler$'
   '^povray[.]dimer_length[.](cluttered_backdrop|front_point_ar2_0|front_softbox|mistaken_ar|one_sided_gain_ramp|rolled_8_degrees|underexposed)$'
   '^PovrayTiltedPlate[.]'
   # Films render -> track -> compare: jump_backlit stays; the drifts add the fit (below) and

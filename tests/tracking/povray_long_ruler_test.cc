@@ -1,0 +1,114 @@
+// The ruler's POV-Ray film rendered to 100 frames (the right sphere hopping up to 16.5 px, the
+// camera centred on the longer path, 5 px further right than on the 20-frame case): what its
+// first 20 frames hid. With the scale given, auto follows both spheres on the plate: before
+// each sphere's own appearance looked for it (FrameFollower.FindsASphereUnlikeItsPartner) it
+// found the hopping one in none of its trial frames and ran the centroid, 10 px off; before the
+// learning frames kept one plate (plate_consensus.h) the resting sphere's rows, held by the
+// ruler, scattered 0.53 px about the truth. Without the scale the track is wrong, and must say
+// so (held_rows.h). CTest `povray.long_ruler`; its own film.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tests/footage/povray_footage.h"
+#include "tests/footage/track_accuracy.h"
+#include "tracking/io/frame_source.h"
+#include "tracking/track_sequence.h"
+
+namespace dimer::footage {
+namespace {
+
+constexpr size_t kLongRulerFrames = 100;
+
+struct LongRuler {
+  std::string dir;
+  std::vector<TruthRow> truth;
+  double radius_px = 0;
+  double gravity_per_radius_px = 0;
+};
+
+const LongRuler& Film() {
+  static const LongRuler film = [] {
+    LongRuler f;
+    FootageOptions o = FootageOptions::For(Lighting::kRulerAbovePlate);
+    o.subframes = 2;
+    o.reuse = true;
+    o.quiet = true;
+    f.dir = std::string(DIMERLAB_POVRAY_CACHE) + "/ruler_above_plate_100_frames";
+    std::filesystem::create_directories(DIMERLAB_POVRAY_CACHE);
+    WriteFootage(HopMotion(o.shape, kLongRulerFrames, o.fps), o, f.dir);
+    f.truth = ReadTruthCsv(f.dir + "/truth.csv", &f.radius_px);
+    // As `dimerlab track` sets it: gravity in px per frame^2 per px of radius.
+    f.gravity_per_radius_px = 2.0 * 9.81 / (o.shape.diameter * o.fps * o.fps);
+    return f;
+  }();
+  return film;
+}
+
+tracking::SequenceResult Track(const LongRuler& f, bool scale_given) {
+  tracking::SequenceOptions o;
+  o.threads = 2;
+  o.follower.method = tracking::Method::kAuto;
+  o.gravity_per_radius_px = f.gravity_per_radius_px;
+  if (scale_given) o.contact_radius_px = f.radius_px;
+  auto source = tracking::OpenFrameSource(f.dir);
+  return tracking::TrackSequence(*source, o);
+}
+
+TEST(PovrayLongRuler, WithTheScaleBothSpheresAreFollowedOnThePlate) {
+  const LongRuler& f = Film();
+  const tracking::SequenceResult r = Track(f, true);
+  ASSERT_EQ(r.frames.size(), f.truth.size());
+  for (int k = 0; k < 2; ++k) {
+    Eigen::Vector2d sum(0, 0), sum2(0, 0);
+    for (size_t i = 0; i < f.truth.size(); ++i) {
+      const tracking::FrameTrack& t = r.frames[i];
+      ASSERT_TRUE(t.found[k]) << "frame " << i << " sphere " << k;
+      // Under its own name: nearer its own truth than the other's by far.
+      ASSERT_LT((t.centre[k] - f.truth[i].centre[k]).norm(), 2.0) << "frame " << i;
+      EXPECT_LE(std::abs(t.plate_row - f.truth[i].plate_row), 0.3) << "frame " << i;
+      const Eigen::Vector2d e = t.centre[k] - f.truth[i].centre[k];
+      sum += e, sum2 += e.cwiseProduct(e);
+    }
+    const double n = double(f.truth.size());
+    const Eigen::Vector2d bias = sum / n;
+    const Eigen::Vector2d sd = (sum2 / n - bias.cwiseProduct(bias)).cwiseSqrt();
+    std::printf("[ stats    ] long ruler, %s sphere: bias %.3f / %.3f px, scatter %.3f / %.3f px "
+                "(col / row)\n",
+                k == 0 ? "left" : "right", bias.x(), bias.y(), sd.x(), sd.y());
+    EXPECT_LE(bias.norm(), 0.1) << "sphere " << k;
+    // The hopping sphere meets the scatter target; the resting one, its rows still partly held
+    // by the ruler, scatters 0.084 px in rows (0.096 both axes together, as docs/TRACKING.md,
+    // Limits, states it: a finding).
+    if (k == 1) {
+      EXPECT_LE(sd.x(), 0.05);
+      EXPECT_LE(sd.y(), 0.05);
+    }
+    EXPECT_EQ(r.held_rows[k].held, 0u) << "sphere " << k;
+  }
+}
+
+TEST(PovrayLongRuler, WithoutTheScaleAWrongTrackSaysSo) {
+  const LongRuler& f = Film();
+  const tracking::SequenceResult r = Track(f, false);
+  ASSERT_EQ(r.frames.size(), f.truth.size());
+  // The left sphere rests: its rows are right (within a pixel) or the track says they were held.
+  double worst = 0;
+  for (size_t i = 0; i < f.truth.size(); ++i) {
+    if (!r.frames[i].found[0]) continue;
+    worst = std::max(worst, std::abs(r.frames[i].centre[0].y() - f.truth[i].centre[0].y()));
+  }
+  std::printf("[ stats    ] long ruler without the scale: left rows up to %.2f px off, held in "
+              "%zu of %zu windows\n",
+              worst, r.held_rows[0].held, r.held_rows[0].windows);
+  if (worst > 1.0) {
+    EXPECT_GT(r.held_rows[0].held, 0u);
+  }
+}
+
+}  // namespace
+}  // namespace dimer::footage
