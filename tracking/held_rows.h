@@ -5,8 +5,8 @@
 // where the learning's referees could not tell (the plate's needs frames it recognises as
 // resting, detection_agreement.h rough centres that move): on POV-Ray ruler_above_plate
 // rendered to 100 frames and tracked without the scale, the resting left sphere's rows stayed
-// within 0.3 px while the plate moved 2.6 px, 11.8 px above their truth, and the track said
-// nothing of it (HeldRows.*).
+// within 0.39 px while the plate moved 2.47 px, 11.8 px above their truth, and the track said
+// nothing of it (HeldRows.RowsThatNeitherRestNorFallAreHeld, povray.long_ruler).
 //
 // The track is cut into windows long enough for a sphere in free flight to drop kHeldFallPx from
 // its apex at the window's middle to either end. In a window where the plate under the sphere
