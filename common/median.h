@@ -25,6 +25,15 @@ inline double FiniteMedian(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+// The value of rank round(q (n - 1)) in a sample of n (0 <= q <= 1: q 0.5 is MedianOf for an odd
+// count), NaN for an empty one.
+inline double QuantileOf(std::vector<double> v, double q) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto at = v.begin() + std::ptrdiff_t(std::lround(q * double(v.size() - 1)));
+  std::nth_element(v.begin(), at, v.end());
+  return *at;
+}
+
 // The lowest value of `v` that at least `min_count` values of `v` (itself included) lie within
 // `support` above: the low end of the lowest cluster, a lone low outlier passed over. NaN
 // (non-finite values ignored) when no value has that support.

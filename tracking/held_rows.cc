@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/median.h"
+
 namespace dimer::tracking {
 
 HeldRows FindHeldRows(const std::vector<double>& rows, const std::vector<double>& plate,
@@ -27,10 +29,9 @@ HeldRows FindHeldRows(const std::vector<double>& rows, const std::vector<double>
     if (!complete) continue;
     // The plate's excursion between its kHeldPlateQuantile and 1 - that: a frame where another
     // edge was taken for the plate does not stretch it.
-    std::sort(edge.begin(), edge.end());
-    const auto at = [&](double q) { return edge[size_t(std::lround(q * double(edge.size() - 1)))]; };
     const double row_range = row_hi - row_lo;
-    const double plate_range = at(1.0 - kHeldPlateQuantile) - at(kHeldPlateQuantile);
+    const double plate_range =
+        QuantileOf(edge, 1.0 - kHeldPlateQuantile) - QuantileOf(edge, kHeldPlateQuantile);
     if (plate_range < kHeldMinPlateExcursionPx) continue;
     ++h.windows;
     if (row_range >= kHeldFraction * std::min(plate_range, kHeldFallPx)) continue;

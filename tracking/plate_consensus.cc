@@ -3,20 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/median.h"
 #include "tracking/plate/plate_edge.h"
 #include "tracking/plate/plate_step.h"
 #include "tracking/tolerances.h"
 
 namespace dimer::tracking {
-namespace {
-
-double Quantile(std::vector<double> v, double q) {
-  const auto at = v.begin() + std::ptrdiff_t(q * double(v.size() - 1) + 0.5);
-  std::nth_element(v.begin(), at, v.end());
-  return *at;
-}
-
-}  // namespace
 
 size_t KeepOnePlate(double radius_px, std::vector<LearningSample>* samples) {
   std::vector<double> rows;
@@ -24,8 +16,8 @@ size_t KeepOnePlate(double radius_px, std::vector<LearningSample>* samples) {
     if (std::isfinite(s.plate_row)) rows.push_back(s.plate_row);
   }
   if (rows.size() < kPlateConsensusMinFrames) return 0;
-  const double median = Quantile(rows, 0.5);
-  const double iqr = Quantile(rows, 0.75) - Quantile(rows, 0.25);
+  const double median = QuantileOf(rows, 0.5);
+  const double iqr = QuantileOf(rows, 0.75) - QuantileOf(rows, 0.25);
   const double tolerance = std::max(double(kPlateCandidateSeparationRows), kPlateConsensusIqr * iqr);
   const double clear = (std::isfinite(radius_px) ? radius_px : 0.0) + kPlateSphereClearPx;
   size_t moved = 0;

@@ -318,6 +318,19 @@ void PlaceOffsets(const Film& film, const SequenceOptions& options, SequenceResu
   ApplyOffsets(result->offsets, &result->frames);
 }
 
+// Stage "held rows": each sphere's rows against the plate under it and a free fall of
+// `gravity_px` px per frame^2 (held_rows.h).
+void JudgeHeldRows(double gravity_px, SequenceResult* result) {
+  for (int k = 0; k < 2; ++k) {
+    std::vector<double> rows, plate;
+    for (const FrameTrack& f : result->frames) {
+      rows.push_back(f.whole(k) ? f.centre[k].y() : std::nan(""));
+      plate.push_back(f.PlateRowAt(f.centre[k].x()));
+    }
+    result->held_rows[k] = FindHeldRows(rows, plate, gravity_px);
+  }
+}
+
 // The stages after the last chunk, in order.
 void FinishFilm(const Film& film, const SequenceOptions& options, bool sequence_level,
                 SequenceResult* result) {
@@ -338,15 +351,7 @@ void FinishFilm(const Film& film, const SequenceOptions& options, bool sequence_
   PlaceContactLine(film.prepared, options, result);
   PlaceOffsets(film, options, result);
   result->precision = MeasurePrecision(result->frames, result->precision_bound);
-  for (int k = 0; k < 2; ++k) {
-    std::vector<double> rows, plate;
-    for (const FrameTrack& f : result->frames) {
-      rows.push_back(f.whole(k) ? f.centre[k].y() : std::nan(""));
-      plate.push_back(f.PlateRowAt(f.centre[k].x()));
-    }
-    result->held_rows[k] =
-        FindHeldRows(rows, plate, options.gravity_per_radius_px * film.ref.radius_px);
-  }
+  JudgeHeldRows(options.gravity_per_radius_px * film.ref.radius_px, result);
   result->polarity = film.ref.polarity;
   result->width = film.ref.width;
   result->height = film.ref.height;
