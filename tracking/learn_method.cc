@@ -229,12 +229,12 @@ PlateAgreement RegisteredWithThePlate(const LearntSphere& s,
 // it left out (LearnOptions::still_background_spread; its highlights, which RelearnHeldSpheres
 // seeds from, put its rows 0.14 px off there) and its rows in the frames where it rests set by
 // the plate (LearnOptions::rows_on_plate; registered instead, 0.55 +- 0.04 and rows scattering
-// 0.056 px, and only the cut's spreads 5-6 took). Both appearances are followed on the learning
-// frames, and it takes the new one where its rows move more nearly with the plate
-// (povray.detection_agreement; on the ruler 0.62 +- 0.04, its rows' scatter about the truth
-// 0.135 -> 0.047 px; the cut's spreads 3-12 all gave 0.58-0.63, 20 gave 0.50). Returns what is
-// added to the method's reason. `relearnt_from`: the samples of the spheres RelearnHeldSpheres
-// learnt again.
+// 0.056 px, measured before the cut's margin, kStillBackgroundMarginPx). Both appearances are
+// followed on the learning frames, and it takes the new one where its rows move more nearly
+// with the plate (povray.detection_agreement; on the ruler 0.83 +- 0.06, its rows' scatter about
+// the truth 0.135 -> 0.025 px; the cut's spreads 5-20 gave 0.83-0.90 and 0.021-0.028 px, 3-4
+// gave 0.72-0.73 and 0.11-0.12 px). Returns what is added to the method's reason.
+// `relearnt_from`: the samples of the spheres RelearnHeldSpheres learnt again.
 std::string RelearnHeldByThePlate(const std::vector<Frame>& learning,
                                   const FollowerOptions& reference,
                                   const std::vector<LearningSample>& samples,

@@ -240,8 +240,9 @@ void ExpectIdentical(const std::array<tracking::SequenceResult, 2>& r) {
 // followed: its rows and columns within the targets' 0.1 px of the truth and scattering by no
 // more than 0.05 px, and the referee passes it. The resting sphere, whose rows the ruler holds
 // (0.09 px per px of the plate's), is learnt again from its own rough centres without them
-// and with its resting rows set by the plate (RelearnHeldByThePlate): its rows then move more
-// with the plate, scatter about the truth by no more than 0.07 px (0.047; held: 0.135), and their
+// and a margin about them, and with its resting rows set by the plate (RelearnHeldByThePlate):
+// its rows then move more with the plate, scatter about the truth by no more than the target's
+// 0.05 px (0.025; held: 0.135; without the margin kStillBackgroundMarginPx: 0.047), and their
 // bias lies within twice their stated uncertainty. On front_point, where both follow the
 // spheres, nothing is learnt again.
 TEST(PovrayDetectionAgreement, TheSphereARulerHoldsIsLearntAgainAndFollowed) {
@@ -294,7 +295,7 @@ TEST(PovrayDetectionAgreement, TheSphereARulerHoldsIsLearntAgainAndFollowed) {
       std::printf("[ stats    ] ruler's left sphere: row bias %.3f px, scatter %.3f px, stated "
                   "+- %.3f px\n",
                   bias, sd, r.offsets.row[0].err);
-      EXPECT_LE(sd, 0.07);
+      EXPECT_LE(sd, 0.05);
       EXPECT_LE(std::abs(bias), 2 * r.offsets.row[0].err);
     }
     EXPECT_NE(r.method_reason.find("learnt again from its highlights"), std::string::npos)

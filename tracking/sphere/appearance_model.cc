@@ -233,7 +233,7 @@ Appearance Framing(int half, double radius_px, double slope) {
 
 // Leaves out of `a` the known pixels whose values spread over the samples (sd, from the sums)
 // by more than `times` the median spread of its known pixels (LearnOptions::
-// still_background_spread).
+// still_background_spread), and those within kStillBackgroundMarginPx of them.
 void CutStillBackground(const PatchSums& p, double times, Appearance* a) {
   cv::Mat var;
   cv::divide(p.sumsq, cv::max(p.count, 1.0f), var);
@@ -249,7 +249,10 @@ void CutStillBackground(const PatchSums& p, double times, Appearance* a) {
   if (known.empty()) return;
   std::nth_element(known.begin(), known.begin() + std::ptrdiff_t(known.size() / 2), known.end());
   const float limit = float(times) * known[known.size() / 2];
-  a->mask.setTo(0, sd > limit);
+  cv::Mat cut = sd > limit;
+  const int m = kStillBackgroundMarginPx;
+  cv::dilate(cut, cut, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * m + 1, 2 * m + 1)));
+  a->mask.setTo(0, cut);
 }
 
 // The mean appearance from its sums: pixels seen by too few samples unknown, and those of still

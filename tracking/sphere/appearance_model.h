@@ -99,9 +99,16 @@ struct LearnOptions {
 // The median spread is the noise's; a sphere's own edges spread by their gradient times the
 // registration's error, the edges of what stands still behind it by their gradient times the
 // sphere's motion. On POV-Ray ruler_above_plate the hopping sphere learnt again is followed
-// (rows and columns within 0.08 px of the truth, scatter <= 0.03 px) with 5 to 8; it scatters
-// by 0.07-0.27 px with 4 or 12 to 20, by 0.5-1.9 px with 2 or 3 (povray.detection_agreement).
+// (rows and columns within 0.06 px of the truth, scatter <= 0.031 px) with 5 to 20 (with the
+// margin below); it scatters by 0.12-0.16 px with 4, by 1.2-1.4 px with 2 or 3
+// (povray.detection_agreement).
 inline constexpr double kStillBackgroundSpread = 6.0;
+// The pixels within this of still background are left out with it: the edge's blur spreads it
+// over them, and the template's gradient and its sub-pixel shift reach them. A still edge's
+// flat side kept beside the cut held the rows: on the ruler's 100-frame film the resting left
+// sphere, learnt again, scattered 0.084 px in rows about the truth with no margin, 0.048 with
+// 1 px and 0.023 with 2 or 3 (povray.long_ruler).
+inline constexpr int kStillBackgroundMarginPx = 2;
 // Frames whose reference row is within this of the lowest (relative to the plate) rest, px;
 // where the gap's noise (impact_vertex.h, GapNoise) is larger than a third of it, within
 // kContactBandNoise times the noise.
