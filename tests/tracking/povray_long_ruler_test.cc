@@ -59,32 +59,48 @@ tracking::SequenceResult Track(const LongRuler& f, bool scale_given) {
   return tracking::TrackSequence(*source, o);
 }
 
+// Sphere k's error against the truth over the film: every frame found under its own name
+// (nearer its own truth than the other's by far) with the plate within its target.
+struct RulerError {
+  bool whole = false;  // found in every frame, under its own name
+  Eigen::Vector2d bias{0, 0}, sd{0, 0};
+};
+
+RulerError RulerSphereError(const tracking::SequenceResult& r, const LongRuler& f, int k) {
+  RulerError a;
+  Eigen::Vector2d sum(0, 0), sum2(0, 0);
+  for (size_t i = 0; i < f.truth.size(); ++i) {
+    const tracking::FrameTrack& t = r.frames[i];
+    if (!t.found[k] || !((t.centre[k] - f.truth[i].centre[k]).norm() < 2.0)) {
+      ADD_FAILURE() << "frame " << i << " sphere " << k << " not found under its own name";
+      return a;
+    }
+    EXPECT_LE(std::abs(t.plate_row - f.truth[i].plate_row), 0.3) << "frame " << i;
+    const Eigen::Vector2d e = t.centre[k] - f.truth[i].centre[k];
+    sum += e, sum2 += e.cwiseProduct(e);
+  }
+  const double n = double(f.truth.size());
+  a.whole = true;
+  a.bias = sum / n;
+  a.sd = (sum2 / n - a.bias.cwiseProduct(a.bias)).cwiseSqrt();
+  return a;
+}
+
 TEST(PovrayLongRuler, WithTheScaleBothSpheresAreFollowedOnThePlate) {
   const LongRuler& f = Film();
   const tracking::SequenceResult r = Track(f, true);
   ASSERT_EQ(r.frames.size(), f.truth.size());
   for (int k = 0; k < 2; ++k) {
-    Eigen::Vector2d sum(0, 0), sum2(0, 0);
-    for (size_t i = 0; i < f.truth.size(); ++i) {
-      const tracking::FrameTrack& t = r.frames[i];
-      ASSERT_TRUE(t.found[k]) << "frame " << i << " sphere " << k;
-      // Under its own name: nearer its own truth than the other's by far.
-      ASSERT_LT((t.centre[k] - f.truth[i].centre[k]).norm(), 2.0) << "frame " << i;
-      EXPECT_LE(std::abs(t.plate_row - f.truth[i].plate_row), 0.3) << "frame " << i;
-      const Eigen::Vector2d e = t.centre[k] - f.truth[i].centre[k];
-      sum += e, sum2 += e.cwiseProduct(e);
-    }
-    const double n = double(f.truth.size());
-    const Eigen::Vector2d bias = sum / n;
-    const Eigen::Vector2d sd = (sum2 / n - bias.cwiseProduct(bias)).cwiseSqrt();
+    const RulerError a = RulerSphereError(r, f, k);
+    ASSERT_TRUE(a.whole);
     std::printf("[ stats    ] long ruler, %s sphere: bias %.3f / %.3f px, scatter %.3f / %.3f px "
                 "(col / row)\n",
-                k == 0 ? "left" : "right", bias.x(), bias.y(), sd.x(), sd.y());
-    EXPECT_LE(bias.norm(), 0.1) << "sphere " << k;
+                k == 0 ? "left" : "right", a.bias.x(), a.bias.y(), a.sd.x(), a.sd.y());
+    EXPECT_LE(a.bias.norm(), 0.1) << "sphere " << k;
     // Both meet the scatter target; the resting one's rows scattered 0.084 px with the flat
     // side of the ruler's still edge kept beside the cut (kStillBackgroundMarginPx).
-    EXPECT_LE(sd.x(), 0.05) << "sphere " << k;
-    EXPECT_LE(sd.y(), 0.05) << "sphere " << k;
+    EXPECT_LE(a.sd.x(), 0.05) << "sphere " << k;
+    EXPECT_LE(a.sd.y(), 0.05) << "sphere " << k;
     EXPECT_EQ(r.held_rows[k].held, 0u) << "sphere " << k;
   }
 }
@@ -101,26 +117,16 @@ TEST(PovrayLongRuler, WithoutTheScaleTheOutlinesRadiusFramesTheLearning) {
   // track without the scale is.
   EXPECT_NE(r.method_reason.find("learnt again at the outline's radius"), std::string::npos);
   for (int k = 0; k < 2; ++k) {
-    Eigen::Vector2d sum(0, 0), sum2(0, 0);
-    for (size_t i = 0; i < f.truth.size(); ++i) {
-      const tracking::FrameTrack& t = r.frames[i];
-      ASSERT_TRUE(t.found[k]) << "frame " << i << " sphere " << k;
-      ASSERT_LT((t.centre[k] - f.truth[i].centre[k]).norm(), 2.0) << "frame " << i;
-      EXPECT_LE(std::abs(t.plate_row - f.truth[i].plate_row), 0.3) << "frame " << i;
-      const Eigen::Vector2d e = t.centre[k] - f.truth[i].centre[k];
-      sum += e, sum2 += e.cwiseProduct(e);
-    }
-    const double n = double(f.truth.size());
-    const Eigen::Vector2d bias = sum / n;
-    const Eigen::Vector2d sd = (sum2 / n - bias.cwiseProduct(bias)).cwiseSqrt();
+    const RulerError a = RulerSphereError(r, f, k);
+    ASSERT_TRUE(a.whole);
     std::printf("[ stats    ] long ruler without the scale (radius %.2f px, truth %.2f), %s "
                 "sphere: bias %.3f / %.3f px, scatter %.3f / %.3f px (col / row)\n",
-                radius, f.radius_px, k == 0 ? "left" : "right", bias.x(), bias.y(), sd.x(),
-                sd.y());
-    EXPECT_LE(std::abs(bias.x()), 0.1) << "sphere " << k;
-    EXPECT_LE(std::abs(bias.y() - (f.radius_px - radius)), 0.1) << "sphere " << k;
-    EXPECT_LE(sd.x(), 0.05) << "sphere " << k;
-    EXPECT_LE(sd.y(), 0.05) << "sphere " << k;
+                radius, f.radius_px, k == 0 ? "left" : "right", a.bias.x(), a.bias.y(),
+                a.sd.x(), a.sd.y());
+    EXPECT_LE(std::abs(a.bias.x()), 0.1) << "sphere " << k;
+    EXPECT_LE(std::abs(a.bias.y() - (f.radius_px - radius)), 0.1) << "sphere " << k;
+    EXPECT_LE(a.sd.x(), 0.05) << "sphere " << k;
+    EXPECT_LE(a.sd.y(), 0.05) << "sphere " << k;
     EXPECT_EQ(r.held_rows[k].held, 0u) << "sphere " << k;
   }
 }
