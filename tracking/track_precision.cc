@@ -24,8 +24,10 @@ std::array<SpherePrecision, 2> MeasurePrecision(const std::vector<FrameTrack>& f
       // The second difference of a flight or a rest is ~0.01 px at most (gravity at 0.2 mm/px,
       // 2000 frames/s); an impact's kink is a few frames of hundreds, which the median passes.
       p.measured[axis] = GapNoise(v);
-      if (p.measured[axis] > kNotFollowedFactor * p.bound[axis] &&
-          p.measured[axis] > kNotFollowedMinPx) {
+      // Without a bound (the silhouette methods) the scatter and the length decide alone.
+      const bool beyond_bound = !(p.bound[axis] >= 0) ||
+                                p.measured[axis] > kNotFollowedFactor * p.bound[axis];
+      if (beyond_bound && p.measured[axis] > kNotFollowedMinPx) {
         if (length_holds) {
           p.uneven_motion = true;
         } else {

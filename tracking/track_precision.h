@@ -41,8 +41,12 @@ struct SpherePrecision {
   // tells the motion's unevenness from the tracker's: separate poses of a calibration film, or a
   // jolt, scatter the centres and leave the length as it is.
   double length_measured = std::numeric_limits<double>::quiet_NaN();
-  // false: measured beyond kNotFollowedFactor x bound and kNotFollowedMinPx, and the length too
-  // beyond kNotFollowedMinPx (or unknown)
+  // false: measured beyond kNotFollowedFactor x bound (where the bound is known) and
+  // kNotFollowedMinPx, and the length too beyond kNotFollowedMinPx (or unknown). Without a bound
+  // the rigid dimer decides: on the ruler's 100-frame POV-Ray film, frames 20-40, auto ran the
+  // centroid (the template found both spheres in none of its trial frames), whose centres were
+  // 9-15 px off, scattering 0.84 / 0.18 px with the length 0.86 px, and nothing was said
+  // (TrackPrecision.WithoutABoundTheLengthDecides).
   bool followed = true;
   // Measured beyond those while the length holds within kNotFollowedMinPx: the centres move
   // unevenly, the tracker follows them (TrackPrecision.SeparatePosesAreMotionNotScatter).

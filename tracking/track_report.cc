@@ -265,7 +265,17 @@ void ReportPrecision(const TrackArgs& args, const SequenceResult& r, Diagnostics
                         "(separate poses, a jolt), not the tracking",
                         side, p.measured.x(), p.measured.y(), p.length_measured));
     }
-    if (!p.followed) {
+    if (!p.followed && !p.bound.allFinite()) {
+      diag->Warn("not_followed",
+                 Format("%s: the %s sphere's centres scatter %.2f / %.2f px from frame to frame, "
+                        "and the dimer's length %.2f px (a rigid rod's is constant): it is not "
+                        "followed as a sub-pixel tracker should, and many frames may be pixels "
+                        "off; on steel that is not a clean silhouette the silhouette methods "
+                        "can find a reflection instead of the sphere: compare the track with the "
+                        "frames, or track the frames where the template follows (--frames)",
+                        args.input.c_str(), side, p.measured.x(), p.measured.y(),
+                        p.length_measured));
+    } else if (!p.followed) {
       diag->Warn("not_followed",
                  Format("%s: the %s sphere's centres scatter %.2f / %.2f px from frame to frame, "
                         "more than %.0f times what the footage allows (%.3f / %.3f px): it is not "
