@@ -129,9 +129,12 @@ MethodTrial TryMethods(const std::vector<Frame>& frames, const FollowerOptions& 
   t.chosen = silhouette_better ? Method::kCentroid : Method::kTemplate;
   t.reason = "; tried on " + std::to_string(frames.size()) + " consecutive frames, the noise the "
              "film shows: " + Describe(tmpl) + ", " + Describe(sil) + "; " +
-             (silhouette_better ? "the centroid, at most half the template's noise, is run"
-                                : "the template is kept (the centroid is run only at half its "
-                                  "noise or less)");
+             (!silhouette_better ? "the template is kept (the centroid is run only at half its "
+                                   "noise or less)"
+              : std::isfinite(tmpl.score)
+                  ? "the centroid, at most half the template's noise, is run"
+                  : "the template found both spheres in too few of them to compete: the "
+                    "centroid is run");
   return t;
 }
 
