@@ -328,7 +328,11 @@ RootAttrs RootAttributes(const TrackArgs& args, const SequenceResult& r, const C
                     {"rest_slope_right", RestSlope(r.plate_agreement[1]).first},
                     {"rest_slope_err_right", RestSlope(r.plate_agreement[1]).second},
                     {"rest_slope_frames_right", int64_t(r.plate_agreement[1].frames)},
-                    {"dimer_length_px", r.scores.length_px}};
+                    {"dimer_length_px", r.scores.length_px},
+                    {"dimer_length_noise_px", r.length.noise_px},
+                    {"dimer_length_tolerance_px", r.length.tolerance_px},
+                    {"dimer_length_departing_frames", int64_t(r.length.departing)},
+                    {"dimer_length_worst_px", r.length.worst_px}};
   AttrUnits units = {{"fps", "1/s"}, {"plate_shift", "px"}, {"plate_shift_err", "px"},
                      {"plate_shift_edge_ref", "px"}, {"plate_motion_scale", "1"},
                      {"plate_motion_scale_err", "1"}, {"plate_m_per_px", "m/px"},
@@ -344,6 +348,8 @@ RootAttrs RootAttributes(const TrackArgs& args, const SequenceResult& r, const C
                      {"rest_slope_err_left", "px/px"}, {"rest_slope_frames_left", "1"},
                      {"rest_slope_right", "px/px"}, {"rest_slope_err_right", "px/px"},
                      {"rest_slope_frames_right", "1"}, {"dimer_length_px", "px"},
+                     {"dimer_length_noise_px", "px"}, {"dimer_length_tolerance_px", "px"},
+                     {"dimer_length_departing_frames", "1"}, {"dimer_length_worst_px", "px"},
                      {"m_per_px", "m/px"}, {"row0", "px"}, {"col0", "px"}, {"ar", "1"},
                      {"ar_length_px", "px"}, {"ar_length_frames", "1"}, {"ar_radius_px", "px"},
                      {"ar_outline_radius_px", "px"},

@@ -308,6 +308,22 @@ void ReportHeldRows(const TrackArgs& args, const SequenceResult& r, Diagnostics*
   }
 }
 
+// Frames whose two centres part from the dimer's length by more than its noise allows
+// (length_constancy.h): one sphere or both are off there, whatever the other referees said.
+void ReportLengthConstancy(const TrackArgs& args, const SequenceResult& r, Diagnostics* diag) {
+  const LengthConstancy& c = r.length;
+  if (c.departing == 0) return;
+  diag->Warn("length_departs",
+             Format("%s: the dimer's length (the two centres' distance) departs from its median "
+                    "%.2f px by up to %.2f px in %zu of %zu frames (frames %zu-%zu), while from "
+                    "frame to frame it scatters %.3f px: a rigid rod's is constant, so there one "
+                    "sphere or both are off by at least half that (held by something behind "
+                    "it, or a lens's distortion as the dimer crosses the field: track --lens); "
+                    "compare the track with those frames",
+                    args.input.c_str(), c.median_px, c.worst_px, c.departing, c.frames,
+                    r.frames[c.first].index, r.frames[c.last].index, c.noise_px));
+}
+
 // A sphere whose learnt appearance did not move with its detections on the learning frames
 // (detection_agreement.h): its positions may be held by something that does not move with it.
 // Where it was learnt again without that (learn_method.h, RelearnHeldSpheres), a note says so.
@@ -379,6 +395,7 @@ void ReportFilm(const TrackArgs& args, const Recording& rec, const SequenceResul
   ReportDetectionAgreement(args, r, diag);
   ReportPrecision(args, r, diag);
   ReportHeldRows(args, r, diag);
+  ReportLengthConstancy(args, r, diag);
 }
 
 void ReportLengthScale(const TrackArgs& args, const Calibration& cal, Diagnostics* diag) {

@@ -386,6 +386,7 @@ void FinishFilm(const Film& film, const SequenceOptions& options, bool sequence_
   PlaceOffsets(film, options, result);
   result->precision = MeasurePrecision(result->frames, result->precision_bound);
   JudgeHeldRows(options.gravity_per_radius_px * film.ref.radius_px, result);
+  result->length = JudgeLengthConstancy(result->frames);
   result->polarity = film.ref.polarity;
   result->width = film.ref.width;
   result->height = film.ref.height;

@@ -31,6 +31,7 @@
 #include "tracking/plate_slope.h"
 #include "tracking/learn_method.h"
 #include "tracking/held_rows.h"
+#include "tracking/length_constancy.h"
 #include "tracking/track_precision.h"
 #include "tracking/frame_follower.h"
 #include "tracking/method_trial.h"
@@ -118,6 +119,9 @@ struct SequenceResult {
   // Each sphere's rows against the plate under it and a free fall (held_rows.h): windows where
   // they did neither, held by something standing still behind it.
   std::array<HeldRows, 2> held_rows;
+  // The dimer's length against its own frame-to-frame noise (length_constancy.h): frames where
+  // it departs, one sphere or both off.
+  LengthConstancy length;
   // Template: each sphere's learnt positions against its rough centres (detection_agreement.h).
   std::array<DetectionAgreement, 2> detection_agreement;
   // Template: the spheres learnt again after the referee rejected their first appearance
