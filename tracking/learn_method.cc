@@ -154,7 +154,9 @@ std::string RelearnHeldSpheres(const std::vector<LearningSample>& samples, doubl
                                std::array<LearntSphere, 2>* learnt, std::array<bool, 2>* taken,
                                std::vector<LearningSample>* from) {
   std::array<bool, 2> held{};
-  for (int k = 0; k < 2; ++k) held[k] = !AgreementWithDetections((*learnt)[k]).agrees;
+  for (int k = 0; k < 2; ++k) {
+    held[k] = !AgreementWithDetections((*learnt)[k]).agrees || learn.relearn_held[size_t(k)];
+  }
   if (!held[0] && !held[1]) return "";
   *from = samples;
   const std::string seeded = SeedFromHighlights(radius_px, learn, from, true);

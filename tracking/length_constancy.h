@@ -4,10 +4,12 @@
 // a single frame's wrong pair against a tolerance of 10 robust sigmas of the lengths about
 // their median; a sphere held for tens of frames by something behind it bends the length
 // slowly, that spread grows with it, and nothing is dropped or said. On POV-Ray
-// ruler_above_plate rendered to 100 frames and tracked over frames 20-100 with the scale, the
-// hopping right sphere's rows stood still, then stepped, up to 11 px off its truth, scattering
-// 0.005 px from frame to frame, and the dimer's length ranged over 3.3 px (137.75 in truth)
-// while it scattered 0.075 px from frame to frame (LengthConstancy.*, povray.long_ruler).
+// ruler_above_plate rendered to 100 frames and tracked over frames 20-100 with the scale, as
+// learnt without the learning's length referee (length_relearn.h), the hopping right sphere's
+// rows stood still, then stepped, up to 11 px off its truth, scattering 0.005 px from frame to
+// frame, and the dimer's length ranged over 3.3 px (137.75 in truth) while it scattered 0.075
+// px from frame to frame; over frames 20-80 without the scale the left sphere is 2.1 px off and
+// only the length says so (LengthConstancy.*, povray.long_ruler).
 //
 // So the length is judged against its own frame-to-frame noise, which a slow bend leaves
 // small: frames whose length departs from the track's median by more than kLengthNoiseSigmas times

@@ -12,6 +12,7 @@
 #include "common/interrupt.h"
 #include "common/median.h"
 #include "tracking/cut_spheres.h"
+#include "tracking/length_relearn.h"
 #include "tracking/method_trial.h"
 #include "tracking/sphere/precision_bound.h"
 
@@ -199,10 +200,10 @@ std::vector<Frame> TrialRun(const FrameAt& frame_at, size_t available, const Fil
 
 // Stage "trial" (auto, where the template was learnt): the silhouette locator beside the
 // template on the film's first consecutive frames (method_trial.h); the lower noise is run.
-void TryTheSilhouettes(const FrameAt& frame_at, size_t available, int threads, Film* film,
+void TryTheSilhouettes(const std::vector<Frame>& frames, int threads, Film* film,
                        SequenceResult* result) {
-  const MethodTrial trial = TryMethods(TrialRun(frame_at, available, *film, *result),
-                                       WithReference(film->chunk_opts, film->ref), threads);
+  const MethodTrial trial =
+      TryMethods(frames, WithReference(film->chunk_opts, film->ref), threads);
   film->prepared.choice.reason += trial.reason;
   result->method_trial = trial.candidates;
   if (trial.chosen != Method::kCentroid) return;
@@ -248,16 +249,18 @@ void TryTheDiscFit(const FrameAt& frame_at, size_t available, int threads, Film*
 // it learns the template again.
 constexpr double kRelearnRadiusFraction = 0.05;
 
-void LearnAtTheOutlinesRadius(const std::vector<Frame>& learning, FollowerOptions reference,
+// True where it did: `reference`'s radius is then the outline's, held as a scale's.
+bool LearnAtTheOutlinesRadius(const std::vector<Frame>& learning, FollowerOptions* reference,
                               Method requested, const LearnOptions& learn,
                               SequenceMethod* prepared) {
-  if (!prepared->radius_from_outline || !prepared->appearance) return;
+  if (!prepared->radius_from_outline || !prepared->appearance) return false;
   const double outline = (*prepared->appearance)[0].radius_px;
-  const double first = reference.radius_px;
-  if (!(std::abs(outline - first) > kRelearnRadiusFraction * outline)) return;
-  reference.radius_px = outline;
-  SequenceMethod again = PrepareSequenceMethod(learning, reference, requested, true, learn);
-  if (again.choice.method != Method::kTemplate || !again.appearance) return;
+  const double first = reference->radius_px;
+  if (!(std::abs(outline - first) > kRelearnRadiusFraction * outline)) return false;
+  FollowerOptions at_outline = *reference;
+  at_outline.radius_px = outline;
+  SequenceMethod again = PrepareSequenceMethod(learning, at_outline, requested, true, learn);
+  if (again.choice.method != Method::kTemplate || !again.appearance) return false;
   again.radius_from_outline = true;
   char clause[200];
   std::snprintf(clause, sizeof clause,
@@ -266,6 +269,8 @@ void LearnAtTheOutlinesRadius(const std::vector<Frame>& learning, FollowerOption
                 outline, first);
   again.choice.reason += clause;
   *prepared = std::move(again);
+  *reference = at_outline;
+  return true;
 }
 
 // Stage "choose method, learn" (template and auto): the learning frames, `learning_at(i)` for i
@@ -290,15 +295,13 @@ void LearnFilm(const FrameAt& learning_at, size_t available, const SequenceOptio
                                                                  : film->ref.radius_px;
   const LearnOptions learn{options.learn_passes, threads, film->chunk_opts.plate_slope,
                            options.jackknife_groups, options.seed_agreement_px};
+  bool radius_known = std::isfinite(options.contact_radius_px);
   film->prepared = PrepareSequenceMethod(learning, reference, options.follower.method,
-                                         std::isfinite(options.contact_radius_px), learn);
-  if (!std::isfinite(options.contact_radius_px)) {
-    LearnAtTheOutlinesRadius(learning, reference, options.follower.method, learn,
-                             &film->prepared);
+                                         radius_known, learn);
+  if (!radius_known) {
+    radius_known = LearnAtTheOutlinesRadius(learning, &reference, options.follower.method, learn,
+                                            &film->prepared);
   }
-  film->chunk_opts.method = film->prepared.choice.method;
-  film->chunk_opts.appearance = film->prepared.appearance;
-  film->chunk_opts.dimer_length_px = ReferenceLength(film->prepared.learnt);
   // The template's radius (the scale's, or its outline's) is every frame's radius, which
   // calibrates the scale when it is not given.
   if (film->prepared.appearance) {
@@ -307,8 +310,20 @@ void LearnFilm(const FrameAt& learning_at, size_t available, const SequenceOptio
                             : film->prepared.radius_from_outline     ? "outline"
                                                                      : "silhouette";
   }
+  std::vector<Frame> trial;
+  if (film->prepared.choice.method == Method::kTemplate) {
+    trial = TrialRun(learning_at, available, *film, *result);
+    FollowerOptions follow = WithReference(film->chunk_opts, film->ref);
+    follow.dimer_length_px = ReferenceLength(film->prepared.learnt);
+    film->prepared.choice.reason +=
+        RefereeTheLearningByTheLength(learning, trial, reference, follow, options.follower.method,
+                                      radius_known, learn, &film->prepared);
+  }
+  film->chunk_opts.method = film->prepared.choice.method;
+  film->chunk_opts.appearance = film->prepared.appearance;
+  film->chunk_opts.dimer_length_px = ReferenceLength(film->prepared.learnt);
   if (options.follower.method == Method::kAuto && film->chunk_opts.method == Method::kTemplate) {
-    TryTheSilhouettes(learning_at, available, threads, film, result);
+    TryTheSilhouettes(trial, threads, film, result);
   } else if (options.follower.method == Method::kAuto && film->prepared.choice.silhouettes &&
              film->chunk_opts.method == Method::kCentroid) {
     TryTheDiscFit(learning_at, available, threads, film, result);

@@ -95,6 +95,11 @@ struct LearnOptions {
   // hold its registrations. PrepareSequenceMethod sets them where it learns a resting sphere
   // again whose rows did not move with the plate (learn_method.cc, RelearnHeldByThePlate).
   std::array<std::vector<uint8_t>, 2> rows_on_plate{};
+  // Per sphere: learnt again from its highlights without what stands still behind it whatever
+  // its detections' referee says (learn_method.cc, RelearnHeldSpheres), and kept where that
+  // referee then passes it. Set where the dimer's length, followed over the film's first
+  // frames, departs (length_relearn.h).
+  std::array<bool, 2> relearn_held{false, false};
 };
 // The median spread is the noise's; a sphere's own edges spread by their gradient times the
 // registration's error, the edges of what stands still behind it by their gradient times the
