@@ -30,10 +30,11 @@ std::string RefereeTheLearningByTheLength(const std::vector<Frame>& learning,
                                           const FollowerOptions& reference,
                                           const FollowerOptions& follow, Method requested,
                                           bool radius_known, const LearnOptions& learn,
+                                          const LengthConstancy* followed,
                                           SequenceMethod* prepared) {
   if (prepared->choice.method != Method::kTemplate || !prepared->appearance) return "";
   const std::array<Appearance, 2>& learnt = *prepared->appearance;
-  const LengthConstancy before = FollowedLength(trial, follow, learnt);
+  const LengthConstancy before = followed ? *followed : FollowedLength(trial, follow, learnt);
   if (before.departing == 0) return "";
   char clause[400];
   std::snprintf(clause, sizeof clause,

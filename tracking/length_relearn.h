@@ -27,14 +27,16 @@ namespace dimer::tracking {
 
 // `trial`: the film's first consecutive frames, cleaned; `follow`: the chunks' follower options
 // (the reference's polarity and radius applied; method and appearance are set here); the rest
-// as PrepareSequenceMethod takes them. `*prepared` (a template method) is replaced where a pair
-// learnt again keeps the length better. Returns what is added to the method's reason ("" where
-// nothing changed or the length held).
+// as PrepareSequenceMethod takes them. `followed`: the learnt appearances' length over `trial`
+// where `auto`'s trial measured it already (method_trial.h; null: followed here). `*prepared` (a
+// template method) is replaced where a pair learnt again keeps the length better. Returns what
+// is added to the method's reason ("" where the length held).
 std::string RefereeTheLearningByTheLength(const std::vector<Frame>& learning,
                                           const std::vector<Frame>& trial,
                                           const FollowerOptions& reference,
                                           const FollowerOptions& follow, Method requested,
                                           bool radius_known, const LearnOptions& learn,
+                                          const LengthConstancy* followed,
                                           SequenceMethod* prepared);
 
 // The length of `appearance` followed over `frames` (consecutive), judged.

@@ -83,6 +83,7 @@ TrialScores ScoreTrial(const std::vector<FrameTrack>& track, Method method) {
   const bool competes = double(s.both_found) >= kTrialMinFoundFraction * double(s.frames) &&
                         std::isfinite(s.smooth_px) && std::isfinite(s.length_px);
   s.score = competes ? std::max(s.smooth_px, s.length_px / std::sqrt(2.0)) : nan;
+  s.constancy = JudgeLengthConstancy(track);
   return s;
 }
 

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "tracking/frame_follower.h"
+#include "tracking/length_constancy.h"
 #include "tracking/io/frame.h"
 
 namespace dimer::tracking {
@@ -45,6 +46,9 @@ struct TrialScores {
   double smooth_px = 0;    // RMS over spheres and axes of each centre's noise from smoothness
   double length_px = 0;    // noise of the dimer's length from its constancy
   double score = 0;        // max(smooth_px, length_px / sqrt 2); NaN where it cannot compete
+  // The dimer's length over the trial frames against its own noise (length_constancy.h): the
+  // template's refers its learning (length_relearn.h).
+  LengthConstancy constancy;
 };
 
 // The noise figures of one method's track of consecutive frames.

@@ -198,12 +198,9 @@ std::vector<Frame> TrialRun(const FrameAt& frame_at, size_t available, const Fil
   return run;
 }
 
-// Stage "trial" (auto, where the template was learnt): the silhouette locator beside the
-// template on the film's first consecutive frames (method_trial.h); the lower noise is run.
-void TryTheSilhouettes(const std::vector<Frame>& frames, int threads, Film* film,
-                       SequenceResult* result) {
-  const MethodTrial trial =
-      TryMethods(frames, WithReference(film->chunk_opts, film->ref), threads);
+// `auto`'s trial where the template was learnt (method_trial.h, TryMethods): the method with the
+// lower noise is run.
+void TakeTheTrial(const MethodTrial& trial, Film* film, SequenceResult* result) {
   film->prepared.choice.reason += trial.reason;
   result->method_trial = trial.candidates;
   if (trial.chosen != Method::kCentroid) return;
@@ -310,20 +307,31 @@ void LearnFilm(const FrameAt& learning_at, size_t available, const SequenceOptio
                             : film->prepared.radius_from_outline     ? "outline"
                                                                      : "silhouette";
   }
-  std::vector<Frame> trial;
-  if (film->prepared.choice.method == Method::kTemplate) {
-    trial = TrialRun(learning_at, available, *film, *result);
-    FollowerOptions follow = WithReference(film->chunk_opts, film->ref);
-    follow.dimer_length_px = ReferenceLength(film->prepared.learnt);
-    film->prepared.choice.reason +=
-        RefereeTheLearningByTheLength(learning, trial, reference, follow, options.follower.method,
-                                      radius_known, learn, &film->prepared);
-  }
   film->chunk_opts.method = film->prepared.choice.method;
   film->chunk_opts.appearance = film->prepared.appearance;
   film->chunk_opts.dimer_length_px = ReferenceLength(film->prepared.learnt);
-  if (options.follower.method == Method::kAuto && film->chunk_opts.method == Method::kTemplate) {
-    TryTheSilhouettes(trial, threads, film, result);
+  if (film->chunk_opts.method == Method::kTemplate) {
+    // Stage "trial": the learnt appearances followed over the film's first consecutive frames,
+    // refereed by the dimer's length (length_relearn.h) and, with auto, beside the silhouette
+    // locator (method_trial.h); auto's trial measures the length, so that a film whose length
+    // holds is followed there once.
+    const std::vector<Frame> trial = TrialRun(learning_at, available, *film, *result);
+    const bool try_methods = options.follower.method == Method::kAuto;
+    auto try_them = [&] {
+      return TryMethods(trial, WithReference(film->chunk_opts, film->ref), threads);
+    };
+    std::optional<MethodTrial> tried;
+    if (try_methods) tried = try_them();
+    film->prepared.choice.reason += RefereeTheLearningByTheLength(
+        learning, trial, reference, WithReference(film->chunk_opts, film->ref),
+        options.follower.method, radius_known, learn,
+        tried ? &tried->candidates[0].constancy : nullptr, &film->prepared);
+    if (film->prepared.appearance != film->chunk_opts.appearance) {
+      film->chunk_opts.appearance = film->prepared.appearance;
+      film->chunk_opts.dimer_length_px = ReferenceLength(film->prepared.learnt);
+      if (try_methods) tried = try_them();
+    }
+    if (tried) TakeTheTrial(*tried, film, result);
   } else if (options.follower.method == Method::kAuto && film->prepared.choice.silhouettes &&
              film->chunk_opts.method == Method::kCentroid) {
     TryTheDiscFit(learning_at, available, threads, film, result);
