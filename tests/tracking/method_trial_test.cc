@@ -52,6 +52,26 @@ TEST(MethodTrial, ReadsTheCentresNoiseFromTheirSmoothnessAndTheLengthsConstancy)
   }
 }
 
+// The template's trial also judges the dimer's length against its noise (length_constancy.h),
+// which the learning's referee reads (length_relearn.h): a rigid track passes; one whose right
+// sphere drifts 3 px along the rod over the trial's second half, as a held appearance does,
+// departs there.
+TEST(MethodTrial, JudgesTheLengthsConstancyForTheLearningsReferee) {
+  const auto none = [](size_t, int) { return false; };
+  const TrialScores rigid = ScoreTrial(Track(kTrialFrames, 0.03, 2, none), Method::kTemplate);
+  EXPECT_EQ(rigid.constancy.frames, kTrialFrames);
+  EXPECT_EQ(rigid.constancy.departing, 0u);
+  std::vector<FrameTrack> held = Track(kTrialFrames, 0.03, 2, none);
+  for (size_t i = kTrialFrames / 2; i < kTrialFrames; ++i) {
+    const Eigen::Vector2d along = (held[i].centre[1] - held[i].centre[0]).normalized();
+    held[i].centre[1] += 3.0 * double(i - kTrialFrames / 2) / double(kTrialFrames / 2) * along;
+  }
+  const TrialScores t = ScoreTrial(held, Method::kTemplate);
+  EXPECT_GT(t.constancy.departing, 0u);
+  EXPECT_GE(t.constancy.first, kTrialFrames / 2);
+  EXPECT_GT(t.constancy.worst_px, 1.0);
+}
+
 TEST(MethodTrial, AMethodThatMissesASphereInMoreThanATenthOfTheFramesCannotCompete) {
   const auto every_fifth = [](size_t i, int k) { return k == 1 && i % 5 == 0; };
   const TrialScores t = ScoreTrial(Track(kTrialFrames, 0.05, 1, every_fifth), Method::kCentroid);
