@@ -41,6 +41,9 @@ struct SequenceMethod {
   // (RelearnHeldByThePlate; relearnt is then true too).
   std::array<PlateAgreement, 2> plate_agreement;
   std::array<bool, 2> relearnt_by_plate{false, false};
+  // Whether the dimer's length over the trial frames had it learnt again (length_relearn.h;
+  // relearnt is then true too).
+  std::array<bool, 2> relearnt_by_length{false, false};
 };
 
 // Measures the learning frames with the existing methods (a fresh acquisition each, with the

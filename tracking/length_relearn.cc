@@ -76,8 +76,10 @@ std::string RefereeTheLearningByTheLength(const std::vector<Frame>& learning,
       again.relearnt[k] = prepared->relearnt[k];
       again.plate_agreement[k] = prepared->plate_agreement[k];
       again.relearnt_by_plate[k] = prepared->relearnt_by_plate[k];
+      again.relearnt_by_length[k] = prepared->relearnt_by_length[k];
     } else {
       follow_pair[size_t(k)] = (*again.appearance)[size_t(k)];
+      again.relearnt_by_length[k] = true;
     }
   }
   again.appearance = std::make_shared<const std::array<Appearance, 2>>(follow_pair);

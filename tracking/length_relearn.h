@@ -15,6 +15,7 @@
 // frames, the one whose length departs in the fewest frames, then by the least, is kept where
 // it departs in fewer frames than the learnt pair (povray.long_ruler,
 // WhereTheLengthDepartsTheHeldSphereIsLearntAgain).
+#include <array>
 #include <string>
 #include <vector>
 

@@ -331,7 +331,16 @@ void ReportDetectionAgreement(const TrackArgs& args, const SequenceResult& r, Di
   if (r.method != Method::kTemplate) return;
   for (int k = 0; k < 2; ++k) {
     const DetectionAgreement& a = r.detection_agreement[k];
-    if (r.relearnt_by_plate[k]) {
+    if (r.relearnt_by_length[k]) {
+      diag->Note("learnt_again",
+                 Format("%s: followed over the film's first frames, the dimer's length departed "
+                        "from its median by more than its noise allows (a rigid rod's is "
+                        "constant): the %s sphere's appearance was held by something standing "
+                        "still behind it (a ruler's or a backdrop's edge), and it was learnt "
+                        "again from its highlights without the pixels that stand still, with "
+                        "which the length holds better (method_reason gives the figures)",
+                        args.input.c_str(), k == 0 ? "left" : "right"));
+    } else if (r.relearnt_by_plate[k]) {
       const PlateAgreement& p = r.plate_agreement[k];
       diag->Note("learnt_again",
                  Format("%s: the %s sphere's rows did not move with the plate it rests on "

@@ -398,6 +398,7 @@ void FinishFilm(const Film& film, const SequenceOptions& options, bool sequence_
   result->relearnt = film.prepared.relearnt;
   result->plate_agreement = film.prepared.plate_agreement;
   result->relearnt_by_plate = film.prepared.relearnt_by_plate;
+  result->relearnt_by_length = film.prepared.relearnt_by_length;
   // Before anything reads the found spheres (the plate's motion scale, the offsets): the chunks'
   // names made the film's, then the matches that are not a sphere dropped.
   result->dimer_names = NameSpheresByTheDimer(&result->frames);

@@ -131,6 +131,7 @@ struct SequenceResult {
   // (SequenceMethod::plate_agreement), and whether that referee had it learnt again.
   std::array<PlateAgreement, 2> plate_agreement;
   std::array<bool, 2> relearnt_by_plate{false, false};
+  std::array<bool, 2> relearnt_by_length{false, false};  // length_relearn.h
   LevelScale level_scale;        // a 10- or 12-bit camera's levels, scaled (level_scale.h)
   // The lens calibration the frames were undistorted with (null: none), and the largest shift
   // its undistortion made in these frames, px.

@@ -168,6 +168,8 @@ TEST(PovrayLongRuler, WhereTheLengthDepartsTheHeldSphereIsLearntAgain) {
     EXPECT_NE(r.method_reason.find("the right sphere learnt again from the highlights"),
               std::string::npos)
         << frames << ": " << r.method_reason;
+    EXPECT_TRUE(r.relearnt_by_length[1]) << frames;
+    EXPECT_FALSE(r.relearnt_by_length[0]) << frames;
     EXPECT_LE(worst, 0.3) << frames;
     EXPECT_EQ(r.length.departing, 0u) << frames;
   }
