@@ -42,13 +42,18 @@ DimerPresence MeasureDimerPresence(const SequenceResult& r) {
   return p;
 }
 
-std::string NoDimerMessage(const DimerPresence& p) {
+std::string NoDimerMessage(const DimerPresence& p, bool scale_given) {
+  const char* without_scale =
+      scale_given ? ""
+                  : "; without --m-per-px the spheres are looked for at the first frame's "
+                    "silhouette size, which can miss dim or front-lit steel: give the scale if "
+                    "the film shows the dimer";
   return Format("no dimer: two spheres a constant distance apart in %zu of %zu frames (needed: "
                 "half of the %zu that show anything, and %zu at least); found two objects in "
                 "%zu (any distance), one in %zu (%zu with the other's place out of view), none "
-                "in %zu; track the frames that show the dimer (--frames)",
+                "in %zu; track the frames that show the dimer (--frames)%s",
                 p.dimer, p.frames, p.shown(), p.needed(), p.both, p.one, p.leaving,
-                p.frames - p.shown());
+                p.frames - p.shown(), without_scale);
 }
 
 std::string DimerOutOfViewNote(const DimerPresence& p) {

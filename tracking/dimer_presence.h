@@ -43,7 +43,10 @@ struct DimerPresence {
 DimerPresence MeasureDimerPresence(const SequenceResult& r);
 
 // The one-line reason a film is refused ("no dimer ..."), naming what was found instead.
-std::string NoDimerMessage(const DimerPresence& p);
+// Without the scale (`scale_given` false) the spheres were looked for at the size of the first
+// frame's silhouettes, which on dim or front-lit steel finds none: POV-Ray underexposed and a
+// camera rolled 8 degrees are refused so and tracked with the scale; the line says so.
+std::string NoDimerMessage(const DimerPresence& p, bool scale_given);
 
 // The note for a film whose dimer is in view in fewer than half of its frames ("" otherwise).
 std::string DimerOutOfViewNote(const DimerPresence& p);

@@ -183,9 +183,10 @@ SequenceResult TrackWithLibraryMessagesCaptured(const TrackArgs& args, const Seq
 
 // Stage "a dimer is here" (dimer_presence.h): a film of something else is refused before anything
 // is written.
-void RequireADimer(const std::string& input, const SequenceResult& r, Diagnostics* diag) {
+void RequireADimer(const std::string& input, bool scale_given, const SequenceResult& r,
+                   Diagnostics* diag) {
   const DimerPresence dimer = MeasureDimerPresence(r);
-  if (!dimer.seen()) throw InputError(input + ": " + NoDimerMessage(dimer));
+  if (!dimer.seen()) throw InputError(input + ": " + NoDimerMessage(dimer, scale_given));
   const std::string out_of_view = DimerOutOfViewNote(dimer);
   if (!out_of_view.empty()) diag->Note("dimer_out_of_view", input + ": " + out_of_view);
 }
@@ -230,7 +231,7 @@ void RunTrack(const TrackArgs& args) {
     throw InputError(args.input + ": no readable frame (all " +
                      std::to_string(r.skipped.size()) + " were skipped)");
   }
-  if (r.complete) RequireADimer(args.input, r, &diag);  // a partial film is kept whatever it shows
+  if (r.complete) RequireADimer(args.input, args.m_per_px.has_value(), r, &diag);  // a partial film is kept whatever it shows
   ReportFilm(args, rec, r, &diag);
   const Calibration cal = Calibrate(args, r, length_scale);
   if (args.ar) ReportLengthScale(args, cal, &diag);

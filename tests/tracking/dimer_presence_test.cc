@@ -75,6 +75,7 @@ void ExpectRefused(const std::filesystem::path& dir, const std::string& found) {
   EXPECT_NE(e.find("no dimer"), std::string::npos) << e;
   EXPECT_NE(e.find(found), std::string::npos) << e;
   EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  EXPECT_EQ(e.find("without --m-per-px"), std::string::npos) << "the scale was given: " << e;
   EXPECT_FALSE(std::filesystem::exists(dir / "track.h5"));
 }
 
@@ -109,6 +110,8 @@ TEST(RunTrack, ARealCameraFilmWithoutADimerIsRefused) {
     FAIL() << "tracked";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("no dimer"), std::string::npos) << e.what();
+    // Tracked without the scale: the line says the spheres were sized by the silhouettes.
+    EXPECT_NE(std::string(e.what()).find("without --m-per-px"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "track.h5"));
 }
