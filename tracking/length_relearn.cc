@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <memory>
 
+#include "tracking/method_trial.h"
+
 namespace dimer::tracking {
 namespace {
 
@@ -19,10 +21,7 @@ LengthConstancy FollowedLength(const std::vector<Frame>& frames, FollowerOptions
                                const std::array<Appearance, 2>& appearance) {
   follow.method = Method::kTemplate;
   follow.appearance = std::make_shared<const std::array<Appearance, 2>>(appearance);
-  FrameFollower follower(follow);
-  std::vector<FrameTrack> track;
-  for (const Frame& f : frames) track.push_back(follower.Process(f.image, f.index));
-  return JudgeLengthConstancy(track);
+  return JudgeLengthConstancy(FollowFrames(frames, follow));
 }
 
 std::string RefereeTheLearningByTheLength(const std::vector<Frame>& learning,

@@ -27,13 +27,6 @@ double NoiseFromThirdDifferences(const std::vector<double>& x) {
   return kMadToSigma * MedianOf(d) / std::sqrt(kThirdDifferenceVariance);
 }
 
-std::vector<FrameTrack> Follow(const std::vector<Frame>& frames, const FollowerOptions& o) {
-  FrameFollower follower(o);
-  std::vector<FrameTrack> track;
-  for (const Frame& f : frames) track.push_back(follower.Process(f.image, f.index));
-  return track;
-}
-
 // Both candidates followed over `frames` and scored, `a` first, on up to `threads` threads (each
 // on its own follower: the scores do not depend on the count).
 std::vector<TrialScores> ScoreBoth(const std::vector<Frame>& frames, const FollowerOptions& a,
@@ -41,7 +34,7 @@ std::vector<TrialScores> ScoreBoth(const std::vector<Frame>& frames, const Follo
   const std::array<const FollowerOptions*, 2> options{&a, &b};
   std::vector<TrialScores> scores(2);
   ParallelFor(2, threads, [&](size_t i) {
-    scores[i] = ScoreTrial(Follow(frames, *options[i]), options[i]->method);
+    scores[i] = ScoreTrial(FollowFrames(frames, *options[i]), options[i]->method);
   });
   return scores;
 }
@@ -55,6 +48,13 @@ std::string Describe(const TrialScores& s) {
 }
 
 }  // namespace
+
+std::vector<FrameTrack> FollowFrames(const std::vector<Frame>& frames, const FollowerOptions& o) {
+  FrameFollower follower(o);
+  std::vector<FrameTrack> track;
+  for (const Frame& f : frames) track.push_back(follower.Process(f.image, f.index));
+  return track;
+}
 
 TrialScores ScoreTrial(const std::vector<FrameTrack>& track, Method method) {
   const double nan = std::numeric_limits<double>::quiet_NaN();

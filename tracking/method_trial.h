@@ -51,6 +51,9 @@ struct TrialScores {
   LengthConstancy constancy;
 };
 
+// `frames` (consecutive, cleaned) followed by one follower with options `o`, in order.
+std::vector<FrameTrack> FollowFrames(const std::vector<Frame>& frames, const FollowerOptions& o);
+
 // The noise figures of one method's track of consecutive frames.
 TrialScores ScoreTrial(const std::vector<FrameTrack>& track, Method method);
 
