@@ -231,7 +231,7 @@ void WriteFit(Out& o, const FitResult& f) {
   const hsize_t m = f.observable_names.size();
   o.Strings("/fit/observables/name", f.observable_names, "observable compared (velocities in g/f, phases in periods)");
   o.Doubles("/fit/observables/observed", f.observed, {m}, "1", "the track's value (dimensionless)");
-  o.Doubles("/fit/observables/observed_err", f.observed_err, {m}, "1", "its error, with the analysis floor");
+  o.Doubles("/fit/observables/observed_err", f.observed_err, {m}, "1", "its error, with the analysis floor as scaled and the locked error's share (/fit/locked_error)");
   o.Doubles("/fit/observables/simulated", f.simulated, {m}, "1", "the simulation's value at the optimum");
   Rows goodness = {f.chi2 / f.dof, f.p_value, f.acceptable ? 1.0 : 0.0};
   o.Doubles("/fit/goodness", goodness, {1, 3}, "1", "chi2/dof at the optimum, its p-value P(chi2 >= found), "
@@ -240,6 +240,16 @@ void WriteFit(Out& o, const FitResult& f) {
   o.Doubles("/fit/floors", floors, {1, 3}, "1", "the factor the analysis floors were scaled by so that an "
             "acceptable fit's chi2/dof is 1 (1: not scaled), and chi2/dof at the optimum and its p-value with the "
             "floors as set (the goodness test)", "floor_scale,chi2_per_dof_at_floors,p_value_at_floors");
+  Rows locked = {f.locked.col_m, f.locked.row_m};
+  o.Doubles("/fit/locked_error", locked, {1, 2}, "m", "the tracker's error that repeats with the drive's phase, "
+            "per sphere's column and row (standard deviation over phase bins; compare/locked_error.h): from the "
+            "dimer's length, and from the resting sphere's height above the plate (row_source); its covariance "
+            "over the observables is in chi2", "col,row");
+  Rows bins = {double(f.locked.phase_bins), double(f.locked.length_bins), double(f.locked.rest_bins)};
+  o.Doubles("/fit/locked_error_bins", bins, {1, 3}, "1", "phase bins of the drive, and those the column and "
+            "row estimates rest on (0: none)", "phase_bins,length_bins,rest_bins");
+  o.Strings("/fit/locked_error_row_source", {f.locked.row_source.empty() ? std::string("none") : f.locked.row_source},
+            "where the row estimate comes from: resting_height, length (the columns' figure) or none");
   // (No wall time: files are bit-identical on rerun; it is printed on stderr.)
   Rows summary = {f.chi2, static_cast<double>(f.dof), f.threshold, static_cast<double>(f.evaluations)};
   o.Doubles("/fit/summary", summary, {1, 4}, "1", "chi2 at the optimum, degrees of freedom, chi2 range "

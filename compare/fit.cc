@@ -2,6 +2,8 @@
 
 #include <nlopt.h>
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -15,6 +17,7 @@
 #include "compare/fit_observables.h"
 #include "compare/fit_search.h"
 #include "compare/goodness_of_fit.h"
+#include "compare/locked_error.h"
 #include "compare/simulate.h"
 
 namespace dimer::compare {
@@ -42,6 +45,13 @@ constexpr double kProfileStep = 0.03;     // profile: its initial step, fraction
 constexpr double kRefineStep = 0.1;       // range ends for correlations: step, fraction of a range
 constexpr double kRefineXtol = 0.01;      // ... and the search's stop, fraction of that step
 constexpr int kScatterTrials = 8;         // trials per estimate of the sampling scatter
+// Draws of the tracker's phase-locked error whose spread enters chi2 (locked_error.h). On
+// fit_study_tracked.sh's mirror-lit A_r 4.8 another seed's 128 draws moved the ranges'
+// half-widths by up to 8 % and their centres by up to 0.65 of a half-width (32 draws: 18 %,
+// and too few to span the slip bins' covariance:
+// LockedError.TheTruthStaysAnAcceptableFitOfATrackWithALockedError); the draws cost about
+// 0.7 s a fit of 8001 frames, against its ~60 s of simulations.
+constexpr int kLockedDraws = 128;
 constexpr int kNeighbourTrials = 8;       // chi2's roughness: the optimum and 7 neighbours
 constexpr double kNeighbourStep = 1e-7;   // their spacing, fraction of each coefficient's range
 // Times the fit moves to a point its own profiles found lower than its optimum by more than the
@@ -90,6 +100,8 @@ class Objective : public Chi2Objective {
       if (o.name == "bouncing_impact_phase") observed_phase_ = o.value;
     }
     scatter_var_.assign(observed_.size(), 0.0);
+    locked_ = MeasureLockedError(track);
+    locked_dev_ = LockedErrorDeviations(track, locked_, observed_, kLockedDraws);
   }
 
   sim::SimOptions Options(const std::vector<double>& values) const {
@@ -179,11 +191,17 @@ class Objective : public Chi2Objective {
   int evaluations() const { return evaluations_; }
 
  private:
-  // chi2 of a trial's observables against the track's (empty: the trial failed).
+  // chi2 of a trial's observables against the track's (empty: the trial failed): r^T C^-1 r
+  // over the observables both have, C the diagonal of the errors, floors and scatter plus the
+  // covariance of the tracker's phase-locked error (locked_error.h), which moves observables
+  // together (a slip bin with its neighbours), taken as V V^T from its draws' deviations and
+  // inverted by the Woodbury identity.
   double Chi2Of(const std::vector<Observable>& sim, std::vector<double>* simulated = nullptr) const {
     if (sim.empty()) return kFailedTrial;
     double chi2 = 0;
     if (simulated) simulated->assign(observed_.size(), kNaN);
+    std::vector<size_t> used;
+    std::vector<double> r, var;
     for (size_t k = 0; k < observed_.size(); ++k) {
       const Observable& o = observed_[k];
       if (!std::isfinite(o.value)) continue;
@@ -196,12 +214,42 @@ class Objective : public Chi2Objective {
       const double e_o = std::isfinite(o.err) ? o.err : 0, e_s = std::isfinite(s->err) ? s->err : 0;
       // The scatter enters twice: the track and the trial are each one sampling of the motion.
       const double floor = o.floor * floor_scale_;
-      const double var = e_o * e_o + e_s * e_s + floor * floor + 2 * scatter_var_[k];
-      chi2 += (s->value - o.value) * (s->value - o.value) / var;
+      used.push_back(k);
+      r.push_back(s->value - o.value);
+      var.push_back(e_o * e_o + e_s * e_s + floor * floor + 2 * scatter_var_[k]);
     }
-    return chi2;
+    return chi2 + LockedChi2(used, r, var);
   }
 
+  // r^T (D + V V^T)^-1 r, D = diag(var), V's columns the locked draws' deviations / sqrt(draws).
+  double LockedChi2(const std::vector<size_t>& used, const std::vector<double>& r,
+                    const std::vector<double>& var) const {
+    double plain = 0;
+    for (size_t j = 0; j < r.size(); ++j) plain += r[j] * r[j] / var[j];
+    const size_t m = locked_dev_.size();
+    if (m == 0 || r.empty()) return plain;
+    Eigen::MatrixXd w(r.size(), m);  // D^-1/2 V
+    Eigen::VectorXd q(r.size());     // D^-1/2 r
+    for (size_t j = 0; j < r.size(); ++j) {
+      const double sd = std::sqrt(var[j]);
+      q(j) = r[j] / sd;
+      for (size_t d = 0; d < m; ++d) w(j, d) = locked_dev_[d][used[j]] / std::sqrt(double(m)) / sd;
+    }
+    const Eigen::MatrixXd inner = Eigen::MatrixXd::Identity(m, m) + w.transpose() * w;
+    const Eigen::VectorXd b = w.transpose() * q;
+    return plain - b.dot(inner.ldlt().solve(b));
+  }
+
+ public:
+  const LockedError& locked() const { return locked_; }
+  // Each observable's standard deviation from the locked error alone (the diagonal of V V^T).
+  double LockedSd(size_t k) const {
+    double q = 0;
+    for (const std::vector<double>& d : locked_dev_) q += d[k] * d[k];
+    return locked_dev_.empty() ? 0.0 : std::sqrt(q / locked_dev_.size());
+  }
+
+ private:
   const Analysis& track_;
   sim::SimOptions scene_;
   FitOptions fo_;
@@ -212,6 +260,8 @@ class Objective : public Chi2Objective {
   std::vector<double> scatter_var_;  // per observable, AddScatter
   double floor_scale_ = 1;           // ScaleFloors
   double observed_phase_ = kNaN;  // the track's bouncing-end impact phase (drift)
+  LockedError locked_;            // the tracker's phase-locked error (locked_error.h)
+  std::vector<std::vector<double>> locked_dev_;  // per draw, each observable's deviation
 };
 
 struct NloptData {
@@ -587,8 +637,11 @@ FitResult FitCoefficients(const Analysis& track, const sim::SimOptions& scene,
   for (const Observable& o : obj.observed()) {
     r.observable_names.push_back(o.name);
     r.observed.push_back(o.value);
-    r.observed_err.push_back(std::hypot(std::isfinite(o.err) ? o.err : 0.0, o.floor * obj.floor_scale()));
+    const size_t k = r.observed_err.size();
+    r.observed_err.push_back(std::hypot(std::hypot(std::isfinite(o.err) ? o.err : 0.0, o.floor * obj.floor_scale()),
+                                        obj.LockedSd(k)));
   }
+  r.locked = obj.locked();
   if (!r.acceptable) r.off = WorstObservables(r);
   r.best = obj.Options(x);
   r.evaluations = obj.evaluations();

@@ -6,7 +6,10 @@
 //   (v_after / -v_before) and its mean impact phase; the phase-averaged slip profile and the
 //   slip after / before the bouncing end's impact. (Jump/flutter: each sphere's take-off speed
 //   and impact phase.)
-//   chi2 = sum ((sim - track) / sigma)^2, sigma^2 = sigma_track^2 + sigma_sim^2 + floor^2 + 2 s^2,
+//   chi2 = r^T (D + V V^T)^-1 r, r = sim - track, D = diag(sigma_track^2 + sigma_sim^2 +
+// floor^2 + 2 s^2), V V^T the covariance the tracker's error locked to the drive's phase gives
+// the observables (measured on the track: locked_error.h; zero for a sim file, where chi2 is
+// the plain sum of squares), and
 // s the observable's spread over trials whose frames fall at other instants of the motion (the
 // release moved by fractions of a frame; fit.cc, AddScatter), estimated at the start, at the
 // paper's coefficients and at the optimum: a slip bin that holds a jump of U moves in steps as
@@ -44,6 +47,7 @@
 #include <vector>
 
 #include "compare/analysis.h"
+#include "compare/locked_error.h"
 #include "sim/model.h"
 
 namespace dimer::compare {
@@ -92,6 +96,9 @@ struct FitResult {
   double floor_scale = 1;
   double chi2_per_dof_at_floors = kNaN;
   double p_value_at_floors = kNaN;
+  // The tracker's error locked to the drive's phase, measured on the track; its covariance over
+  // the observables is in chi2 (locked_error.h), and observed_err includes its diagonal.
+  LockedError locked;
   int evaluations = 0;           // simulations run
   double seconds = 0;            // wall time
   std::vector<std::string> observable_names;

@@ -311,6 +311,27 @@ void Correlations(const FitResult& f, std::ostringstream& o) {
   o << "\n";
 }
 
+// The tracker's error that repeats with the drive's phase (compare/locked_error.h), as chi2
+// holds it.
+void LockedErrorNote(const LockedError& e, std::ostringstream& o) {
+  if (e.phase_bins == 0) return;
+  o << "The tracker's error that repeats with the drive's phase (averaging periods does not shrink it): ";
+  if (e.col_m == 0 && e.row_m == 0) {
+    o << "none measured (the dimer's length and the resting sphere's height keep their phase averages "
+         "within their noise), so chi2 has no term for it.\n\n";
+    return;
+  }
+  o << NumOrNa(e.col_m * 1e6, "%.2f") << " um per column, from the dimer's length over " << e.length_bins
+    << " of " << e.phase_bins << " phase bins, and " << NumOrNa(e.row_m * 1e6, "%.2f") << " um per row, ";
+  if (e.row_source == "resting_height") {
+    o << "from the resting sphere's height above the plate over " << e.rest_bins << " bins of steady contact";
+  } else {
+    o << "taken from the columns (no sphere rests long enough to measure the rows)";
+  }
+  o << ". Its covariance over the observables (from the track analysed again with such errors drawn) is in "
+       "chi2, and in each observable's error below.\n\n";
+}
+
 void Fitting(const FitResult& f, std::ostringstream& o) {
   o << "## Fit of the contact coefficients\n\n| parameter | fitted | status | value |\n"
        "|---|---|---|---|\n";
@@ -339,6 +360,7 @@ void Fitting(const FitResult& f, std::ostringstream& o) {
   }
   o << " " << f.evaluations
     << " simulations (their wall time is on stderr, so that reports are identical on rerun).\n\n";
+  LockedErrorNote(f.locked, o);
   Correlations(f, o);
   if (f.observable_names.empty()) return;
   o << "| observable | track | simulation at the optimum |\n|---|---|---|\n";
