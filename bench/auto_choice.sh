@@ -57,19 +57,11 @@ done
 printf 'Our renderer, 512x256, 0.2 mm/px, noise 2 grey levels; 321 frames; POV-Ray footage: %s; %s cores, load average %s\n\n' \
   "${footage[*]:-none}" "$(nproc)" "$(cut -d' ' -f1 /proc/loadavg)"
 /usr/bin/python3 - "$results" <<'EOF'
-import subprocess, sys
+import sys
 import numpy as np
 
-def dataset(path, name):
-    out = subprocess.run(["h5dump", "-d", name, "-y", "-w", "0", "-m", "%.10g", path],
-                         capture_output=True, text=True, check=True).stdout
-    body = out.split("DATA {")[1].split("}")[0]
-    return np.array([float(x) for x in body.replace("\n", " ").split(",") if x.strip()])
-
-def attribute(path, name):
-    out = subprocess.run(["h5dump", "-a", name, path], capture_output=True, text=True,
-                         check=True).stdout
-    return out.split('(0): "')[1].split('"')[0]
+sys.path.insert(0, "bench")  # the scripts run from the repository's top
+from h5dump_read import dataset, attribute
 
 films = {}  # (A_r, lighting) -> method -> (run, scatter per axis, frames off, frames/s) or note
 for line in open(sys.argv[1]):

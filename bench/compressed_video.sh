@@ -36,14 +36,11 @@ for e in "${exports[@]}"; do
     >/dev/null 2>"$work/$base.compare_error" || true
   /usr/bin/python3 - "$work/$name" "$work/$base.h5" "$film/frames/truth.csv" \
     "$work/$base.compare/summary.md" <<'PY'
-import os, re, subprocess, sys
+import os, re, sys
 import numpy as np
 
-def dataset(path, name):
-    out = subprocess.run(["h5dump", "-d", name, "-y", "-w", "0", "-m", "%.10g", path],
-                         capture_output=True, text=True, check=True).stdout
-    body = out.split("DATA {")[1].split("}")[0]
-    return np.array([float(x) for x in body.replace("\n", " ").split(",") if x.strip()])
+sys.path.insert(0, "bench")  # the scripts run from the repository's top
+from h5dump_read import dataset
 
 video, track, truth_csv, summary = sys.argv[1:5]
 rows = [l.split(",") for l in open(truth_csv) if l[:1].isdigit()]

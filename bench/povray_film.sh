@@ -46,14 +46,11 @@ printf 'dimerlab track: %.1f s (the scene: Gamma 0.9, f 25 Hz)\n' "$(echo "$end 
 echo
 # The tracked centres and plate against truth.csv (px): mean and sd of the error per axis.
 /usr/bin/python3 - "$work/track.h5" "$work/frames/truth.csv" <<'EOF'
-import subprocess, sys
+import sys
 import numpy as np
 
-def dataset(path, name):
-    out = subprocess.run(["h5dump", "-d", name, "-y", "-w", "0", "-m", "%.10g", path],
-                         capture_output=True, text=True, check=True).stdout
-    body = out.split("DATA {")[1].split("}")[0]
-    return np.array([float(x) for x in body.replace("\n", " ").split(",") if x.strip()])
+sys.path.insert(0, "bench")  # the scripts run from the repository's top
+from h5dump_read import dataset
 
 track, truth_csv = sys.argv[1], sys.argv[2]
 rows = [l.split(",") for l in open(truth_csv) if l[:1].isdigit()]

@@ -49,19 +49,11 @@ done
 printf 'ruler_windows.sh: %s, %s frames; %s cores, load average %s\n\n' "$film" "$frames" \
   "$(nproc)" "$(cut -d' ' -f1 /proc/loadavg)"
 /usr/bin/python3 - "$results" "$film/truth.csv" <<'EOF'
-import subprocess, sys
+import sys
 import numpy as np
 
-def dataset(path, name):
-    out = subprocess.run(["h5dump", "-d", name, "-y", "-w", "0", "-m", "%.10g", path],
-                         capture_output=True, text=True, check=True).stdout
-    body = out.split("DATA {")[1].split("}")[0]
-    return np.array([float(x) for x in body.replace("\n", " ").split(",") if x.strip()])
-
-def attribute(path, name):
-    out = subprocess.run(["h5dump", "-a", name, path], capture_output=True, text=True,
-                         check=True).stdout
-    return out.split('(0): "')[1].split('"')[0]
+sys.path.insert(0, "bench")  # the scripts run from the repository's top
+from h5dump_read import dataset, attribute
 
 lines = [l.split(",") for l in open(sys.argv[2]) if l[:1].isdigit()]
 truth = np.array([[float(x) for i, x in enumerate(r) if i != 1] for r in lines])
