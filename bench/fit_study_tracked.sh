@@ -59,13 +59,10 @@ done
 
 printf 'fit_study_tracked.sh: %s cores, load average %s\n\n' "$(nproc)" "$(cut -d' ' -f1 /proc/loadavg)"
 /usr/bin/python3 - "$results" <<'EOF'
-import subprocess, sys
+import sys
 
-def dataset(path, name):
-    out = subprocess.run(["h5dump", "-d", name, "-y", "-w", "0", "-m", "%.10g", path],
-                         capture_output=True, text=True, check=True).stdout
-    body = out.split("DATA {")[1].split("}")[0]
-    return [x.strip().strip('"') for x in body.replace("\n", " ").split(",") if x.strip()]
+sys.path.insert(0, "bench")  # the scripts run from the repository's top
+from h5dump_read import values as dataset
 
 names = {"paper": "paper's", "far": "far"}
 tally = {}
