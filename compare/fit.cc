@@ -189,6 +189,13 @@ class Objective : public Chi2Objective {
   const std::vector<Observable>& observed() const { return observed_; }
   int usable() const override { return usable_; }
   int evaluations() const { return evaluations_; }
+  const LockedError& locked() const { return locked_; }
+  // Each observable's standard deviation from the locked error alone (the diagonal of V V^T).
+  double LockedSd(size_t k) const {
+    double q = 0;
+    for (const std::vector<double>& d : locked_dev_) q += d[k] * d[k];
+    return locked_dev_.empty() ? 0.0 : std::sqrt(q / locked_dev_.size());
+  }
 
  private:
   // chi2 of a trial's observables against the track's (empty: the trial failed): r^T C^-1 r
@@ -240,16 +247,6 @@ class Objective : public Chi2Objective {
     return plain - b.dot(inner.ldlt().solve(b));
   }
 
- public:
-  const LockedError& locked() const { return locked_; }
-  // Each observable's standard deviation from the locked error alone (the diagonal of V V^T).
-  double LockedSd(size_t k) const {
-    double q = 0;
-    for (const std::vector<double>& d : locked_dev_) q += d[k] * d[k];
-    return locked_dev_.empty() ? 0.0 : std::sqrt(q / locked_dev_.size());
-  }
-
- private:
   const Analysis& track_;
   sim::SimOptions scene_;
   FitOptions fo_;
