@@ -6,6 +6,7 @@
 #include <random>
 
 #include "common/error.h"
+#include "compare/slip.h"
 
 namespace dimer::compare {
 namespace {
@@ -30,21 +31,18 @@ struct BinStats {
   int kept = 0;
 };
 
-BinStats AverageByPhase(const std::vector<double>& v, const std::vector<int>& bin, int bins) {
-  std::vector<double> sum(bins, 0), sq(bins, 0);
-  std::vector<int> count(bins, 0);
-  for (size_t i = 0; i < v.size(); ++i) {
-    if (bin[i] < 0 || !std::isfinite(v[i])) continue;
-    sum[bin[i]] += v[i], sq[bin[i]] += v[i] * v[i], ++count[bin[i]];
-  }
+// slip.h's phase average, less the bins of fewer than kMinPerBin frames. `phase` is NaN on the
+// frames left out.
+BinStats AverageByPhase(const std::vector<double>& v, const std::vector<double>& phase, int bins) {
+  std::vector<double> centres, mean, err;
+  std::vector<int> count;
+  PhaseAverage(phase, v, bins, &centres, &mean, &err, &count);
   BinStats s;
   s.mean.assign(bins, NAN);
   for (int b = 0; b < bins; ++b) {
     if (count[b] < kMinPerBin) continue;
-    const double m = sum[b] / count[b];
-    const double var = std::max(0.0, (sq[b] - count[b] * m * m) / (count[b] - 1));
-    s.mean[b] = m;
-    s.noise_var += var / count[b];
+    s.mean[b] = mean[b];
+    s.noise_var += err[b] * err[b];
     ++s.kept;
   }
   if (s.kept) s.noise_var /= s.kept;
@@ -94,18 +92,16 @@ LockedError MeasureLockedError(const Analysis& a) {
   const int bins = std::clamp(static_cast<int>(std::lround(1.0 / (run.dt * a.plate.freq_hz))), kMinBins, kMaxBins);
   e.phase_bins = bins;
   const ModeWindow& w = a.periods.settled;
-  std::vector<int> bin(run.n, -1);
+  std::vector<double> phase(run.n, NAN);
   for (size_t i = 0; i < run.n; ++i) {
     const double t = run.Time(i);
-    if (w.count > 0 && (t < w.t_start || t >= w.t_end)) continue;
-    const double p = a.plate.PhaseFraction(t);
-    if (std::isfinite(p)) bin[i] = std::min(bins - 1, static_cast<int>(p * bins));
+    if (w.count == 0 || (t >= w.t_start && t < w.t_end)) phase[i] = a.plate.PhaseFraction(t);
   }
   // The length: its phase averages spread by the two centres' error along the rod.
   std::vector<double> length(run.n, NAN);
   for (size_t i = 0; i < run.n; ++i)
     if (run.Valid(i)) length[i] = std::hypot(run.x[1][i] - run.x[0][i], run.z[1][i] - run.z[0][i]);
-  const BinStats ls = AverageByPhase(length, bin, bins);
+  const BinStats ls = AverageByPhase(length, phase, bins);
   if (ls.kept >= kMinEstimateBins) {
     double mean = 0, q = 0;
     for (double m : ls.mean)
@@ -132,7 +128,7 @@ LockedError MeasureLockedError(const Analysis& a) {
     for (long j = i - kSteadyFrames; j <= i + kSteadyFrames && steady; ++j) steady = c.resting[j] != 0;
     if (steady) height[i] = c.gap[i];
   }
-  const BinStats hs = AverageByPhase(height, bin, bins);
+  const BinStats hs = AverageByPhase(height, phase, bins);
   if (hs.kept < kMinEstimateBins) return e;
   std::vector<double> kept;
   for (double m : hs.mean)
