@@ -114,7 +114,7 @@ LockedError MeasureLockedError(const Analysis& a) {
     e.length_bins = ls.kept;
   }
   // The resting sphere's height above the plate over steady contact: only its spread below the
-  // median is error (a hop too small to be seen as one only ever raises it).
+  // core is error (a hop too small to be seen as one only ever raises it; SpreadBelowCore).
   int rs = a.slip.resting_sphere;
   if (rs < 0 && w.summary.bouncing_sphere >= 0) rs = 1 - w.summary.bouncing_sphere;
   e.row_m = e.col_m;

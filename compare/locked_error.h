@@ -17,7 +17,8 @@
 //     two centres' error along the rod, each sphere's column taking half its variance;
 //   - the resting sphere's height above the plate while it stays on the plate: it can only rise
 //     off the plate (a hop too small for the contact threshold), never sink, so the spread of
-//     its phase averages below their median, less the noise's share, is the rows' error.
+//     its phase averages below their core (the median of those not raised by hops), less the
+//     noise's share, is the rows' error.
 // Where no sphere rests long enough (jump, flutter) the rows are given the columns' figure.
 #include <string>
 #include <vector>
