@@ -207,6 +207,47 @@ bool RegisterTranslation(const cv::Mat& fixed, const cv::Mat& moving, const cv::
   return RegisterInWindow(fixed, moving, mask, whole, t, rho, residual_gauss, stop);
 }
 
+namespace {
+
+// The pixels of `a` about and beyond its disc's rim where the film's still background
+// (Appearance::still) differs from the background the appearance learnt there: background it
+// did not learn at this place. Beyond the rim the appearance holds that background itself; on
+// the rim, whose blur mixes the sphere with what is behind it, it is read just beyond the rim
+// on the same ray (kept where the appearance did not learn it). Inside, the sphere hides it.
+void CutStillBackground(const Appearance& a, const Eigen::Vector2d& position, cv::Mat* mask) {
+  const StillBackground& still = *a.still;
+  const cv::Point g(int(std::lround(position.x())), int(std::lround(position.y())));
+  const double inner = std::max(0.0, a.radius_px - kStillRimPx);
+  const double outer = a.radius_px + kStillRimPx;
+  for (int y = 0; y < mask->rows; ++y) {
+    const int r = g.y + y - a.half;
+    if (r < 0 || r >= still.level.rows) continue;
+    uint8_t* row = mask->ptr<uint8_t>(y);
+    const float* level = still.level.ptr<float>(r);
+    const double dy = y - a.half;
+    for (int x = 0; x < mask->cols; ++x) {
+      const int c = g.x + x - a.half;
+      if (!row[x] || c < 0 || c >= still.level.cols || std::isnan(level[c])) continue;
+      const double dx = x - a.half;
+      const double d2 = dx * dx + dy * dy;
+      if (d2 <= inner * inner) continue;  // the sphere's own
+      int bx = x, by = y;                 // where the appearance holds the background
+      if (d2 <= outer * outer) {
+        const double scale = (outer + 1.0) / std::sqrt(d2);
+        bx = a.half + int(std::lround(dx * scale));
+        by = a.half + int(std::lround(dy * scale));
+        if (bx < 0 || by < 0 || bx >= mask->cols || by >= mask->rows ||
+            !a.mask.at<uint8_t>(by, bx)) {
+          continue;
+        }
+      }
+      if (std::abs(double(level[c]) - a.image.at<float>(by, bx)) > still.spread) row[x] = 0;
+    }
+  }
+}
+
+}  // namespace
+
 cv::Mat FrameMask(const Appearance& a, const Eigen::Vector2d& position, const MaskContext& ctx) {
   cv::Mat m = a.mask.clone();
   const bool rod = ctx.rod_dir.squaredNorm() > 0;
@@ -245,6 +286,7 @@ cv::Mat FrameMask(const Appearance& a, const Eigen::Vector2d& position, const Ma
       if (along > rod_inset && across < rod_half) row[x] = 0;
     }
   }
+  if (a.still) CutStillBackground(a, position, &m);
   return m;
 }
 

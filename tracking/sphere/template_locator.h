@@ -20,7 +20,10 @@
 
 #include <Eigen/Core>
 #include <limits>
+#include <memory>
 #include <vector>
+
+#include "tracking/sphere/still_background.h"
 
 namespace dimer::tracking {
 
@@ -38,6 +41,9 @@ struct Appearance {
   // rough centres put the sphere, which on mirror-lit spheres can be pixels below its centre;
   // a sphere touching the plate is searched for down to there (FindAppearance).
   double lowest_gap_px = std::numeric_limits<double>::quiet_NaN();
+  // What stands still behind the sphere in the film (still_background.h), set where the sphere
+  // was learnt without it; FrameMask cuts it outside the disc. Null: nothing cut.
+  std::shared_ptr<const StillBackground> still;
   bool valid() const { return !image.empty(); }
 };
 
