@@ -13,7 +13,7 @@
 #include "tracking/sphere/clipped_highlights.h"
 #include "tracking/sphere/highlight_seed.h"
 #include "tracking/sphere/impact_vertex.h"
-#include "tracking/sphere/still_background.h"
+#include "tracking/sphere/measure_still_background.h"
 #include "common/parallel_for.h"
 #include "tracking/plate/plate_edge.h"
 
@@ -307,6 +307,19 @@ std::string RelearnHeldByThePlate(const std::vector<Frame>& learning,
   return reason;
 }
 
+// A sphere learnt without what stands still behind it is followed without it wherever it goes
+// (still_background.h), measured on the learning frames by the centres it was learnt from.
+void FollowWithoutStillBackground(const SequenceMethod& m,
+                                  const std::vector<LearningSample>& learnt_from,
+                                  std::array<Appearance, 2>* follow) {
+  if (!m.relearnt[0] && !m.relearnt[1]) return;
+  const std::shared_ptr<const StillBackground> still =
+      MeasureStillBackground(learnt_from, (*follow)[0].radius_px);
+  for (int k = 0; k < 2; ++k) {
+    if (m.relearnt[k]) (*follow)[size_t(k)].still = still;
+  }
+}
+
 }  // namespace
 
 std::vector<size_t> LearningIndices(size_t frames) {
@@ -380,15 +393,7 @@ SequenceMethod PrepareSequenceMethod(const std::vector<Frame>& learning,
                                            !m.choice.silhouettes,
                                            !m.choice.silhouettes && !radius_known, learn, &m,
                                            &follow);
-  // A sphere learnt without what stands still behind it is followed without it wherever it goes
-  // (still_background.h), measured on the learning frames by the centres it was learnt from.
-  if (m.relearnt[0] || m.relearnt[1]) {
-    const std::shared_ptr<const StillBackground> still = MeasureStillBackground(
-        relearnt_from.empty() ? samples : relearnt_from, follow[0].radius_px);
-    for (int k = 0; k < 2; ++k) {
-      if (m.relearnt[k]) follow[size_t(k)].still = still;
-    }
-  }
+  FollowWithoutStillBackground(m, relearnt_from.empty() ? samples : relearnt_from, &follow);
   m.appearance = std::make_shared<const std::array<Appearance, 2>>(follow);
   // The learnt positions refereed by the rough ones (detection_agreement.h).
   for (int k = 0; k < 2; ++k) {

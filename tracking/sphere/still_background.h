@@ -12,12 +12,7 @@
 // background the appearance did not learn is cut wherever the sphere is (FrameMask).
 #include <opencv2/core.hpp>
 
-#include <memory>
-#include <vector>
-
 namespace dimer::tracking {
-
-struct LearningSample;
 
 struct StillBackground {
   // CV_32F, the frame's size: each pixel's median over the learning frames in which no sphere
@@ -30,22 +25,9 @@ struct StillBackground {
   double spread = 0;
 };
 
-// A still pixel's robust spread over the frames that show it (1.4826 MAD) is within this many
-// times the frames' noise.
-inline constexpr double kStillPixelNoise = 2.0;
-// A learning frame shows a pixel where both spheres' rough centres are further than this many
-// radii from it (rough centres can be half a radius off: learning_reach, tolerances.h).
-inline constexpr double kStillCoverRadii = 1.5;
-// Learning frames that must show a pixel for it to be told still.
-inline constexpr int kStillMinFrames = 8;
 // An appearance's pixels within this of its disc's rim mix the sphere with what is behind it
 // (the rim's blur): they are compared with the background the appearance learnt just beyond the
 // rim, and never cut nearer the centre (StillBackground.FrameMaskCutsTheBackground...).
 inline constexpr double kStillRimPx = 2.0;
-
-// The still background of the learning frames `samples` (their rough centres and images);
-// null where the frames' noise cannot be measured or fewer than kStillMinFrames show any pixel.
-std::shared_ptr<const StillBackground> MeasureStillBackground(
-    const std::vector<LearningSample>& samples, double radius_px);
 
 }  // namespace dimer::tracking

@@ -1,4 +1,4 @@
-#include "tracking/sphere/still_background.h"
+#include "tracking/sphere/measure_still_background.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,9 @@
-#include "tracking/sphere/still_background.h"
+#include "tracking/sphere/measure_still_background.h"
 
 #include <cmath>
 #include <limits>
 
 #include "common/median.h"
-#include "tracking/sphere/appearance_model.h"
 #include "tracking/sphere/precision_bound.h"
 
 namespace dimer::tracking {
