@@ -156,6 +156,9 @@ TEST_P(PovrayFootage, PlateRowWithinTheTargetInEveryFrame) {
 // uncertainty must cover the bias, within kCoverageSigmas of it and the bias's own sampling
 // error, per sphere and axis, in every case the template method runs on (CTest
 // `povray.coverage.CASE`); a case with no offset to state (silhouettes, the centroid) skips.
+// Where a case meets the targets, the uncertainty is also the at most 0.3 px, never
+// inflated past it (cluttered_backdrop stated 0.48-0.70 px for a bias under 0.06:
+// PairsModelError, tracking/sphere/appearance_model.cc).
 TEST_P(PovrayFootage, StatedOffsetUncertaintyCoversTheBias) {
   const Case& c = GetParam();
   const TrackAccuracy a = Accuracy(c);
@@ -173,6 +176,7 @@ TEST_P(PovrayFootage, StatedOffsetUncertaintyCoversTheBias) {
       EXPECT_LE(s.bias_sigmas(ax), kCoverageSigmas)
           << names[k] << " " << axes[ax] << ": bias " << s.bias(ax) << " px, stated +-"
           << s.stated_err(ax) << " px";
+      if (a.MeetsTargets()) EXPECT_LE(s.stated_err(ax), 0.3) << names[k] << " " << axes[ax];
     }
   }
 }
