@@ -42,7 +42,7 @@ struct Appearance {
   // a sphere touching the plate is searched for down to there (FindAppearance).
   double lowest_gap_px = std::numeric_limits<double>::quiet_NaN();
   // What stands still behind the sphere in the film (still_background.h), set where the sphere
-  // was learnt without it; FrameMask cuts it outside the disc. Null: nothing cut.
+  // was learnt without it; FrameMask cuts it about and beyond the rim. Null: nothing cut.
   std::shared_ptr<const StillBackground> still;
   bool valid() const { return !image.empty(); }
 };
