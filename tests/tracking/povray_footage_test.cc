@@ -176,7 +176,9 @@ TEST_P(PovrayFootage, StatedOffsetUncertaintyCoversTheBias) {
       EXPECT_LE(s.bias_sigmas(ax), kCoverageSigmas)
           << names[k] << " " << axes[ax] << ": bias " << s.bias(ax) << " px, stated +-"
           << s.stated_err(ax) << " px";
-      if (a.MeetsTargets()) EXPECT_LE(s.stated_err(ax), 0.3) << names[k] << " " << axes[ax];
+      if (a.MeetsTargets()) {
+        EXPECT_LE(s.stated_err(ax), 0.3) << names[k] << " " << axes[ax];
+      }
     }
   }
 }
